@@ -1,0 +1,1 @@
+//! analysis (see lib.rs for the architecture).

@@ -1,0 +1,77 @@
+//! The `pdamp` command line: clap argument structs and one file per subcommand.
+//!
+//! The CLI turns arguments into validated library requests and calls the library; the
+//! library never imports clap. Errors are reported through `anyhow`.
+
+pub mod commands;
+
+use clap::{Parser, Subcommand};
+
+/// pdamp — particle vibration dampers: simulate, sweep, analyse and plot.
+///
+/// Simulation: `simulate`, `sweep`, `check-scene`, `tradeoff`.
+/// Series analysis (TISEAN-like, reads plain text/CSV columns): `mutual`, `fnn`, `embed`,
+/// `spectrum`, `poincare`, `lyap-k`, `analyze`.
+/// Studies and figures: `fit-frf`, `plot`, `reproduce`.
+#[derive(Debug, Parser)]
+#[command(name = "pdamp", version, about, long_about = None, propagate_version = true)]
+pub struct Cli {
+    /// The subcommand to run.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// All subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// [simulation] Run one scene and write series.csv and summary.json.
+    Simulate(commands::simulate::Args),
+    /// [simulation] Run a parameter sweep in parallel (resumable) and write sweep.csv, strobe.csv.
+    Sweep(commands::sweep::Args),
+    /// [simulation] Validate a scene file without running it.
+    CheckScene(commands::check_scene::Args),
+    /// [simulation] Measure speed against accuracy for a scene's cheaper settings.
+    Tradeoff(commands::tradeoff::Args),
+    /// [analysis] Time-delayed mutual information I(τ) and its first minimum (TISEAN `mutual`).
+    Mutual(commands::mutual::Args),
+    /// [analysis] False nearest neighbours (Kennel et al. 1992; TISEAN `false_nearest`).
+    Fnn(commands::fnn::Args),
+    /// [analysis] Write delay vectors (m, τ).
+    Embed(commands::embed::Args),
+    /// [analysis] Power spectrum with window and detected spectral lines.
+    Spectrum(commands::spectrum::Args),
+    /// [analysis] Stroboscopic Poincaré section.
+    Poincare(commands::poincare::Args),
+    /// [analysis] Kantz's maximal Lyapunov exponent (TISEAN `lyap_k`).
+    #[command(name = "lyap-k")]
+    LyapK(commands::lyap_k::Args),
+    /// [analysis] Whole analysis chain with automatic choices and a regime verdict.
+    Analyze(commands::analyze::Args),
+    /// [studies] Fit effective mass and damping to a frequency response (2.1.21).
+    FitFrf(commands::fit_frf::Args),
+    /// [figures] Draw one figure kind to PNG.
+    Plot(commands::plot::Args),
+    /// [figures] Regenerate the whole figure set for the source's scenes.
+    Reproduce(commands::reproduce::Args),
+}
+
+/// Parse the command line and run the chosen subcommand.
+pub fn run() -> anyhow::Result<()> {
+    let cli = Cli::parse();
+    match cli.command {
+        Command::Simulate(a) => commands::simulate::run(a),
+        Command::Sweep(a) => commands::sweep::run(a),
+        Command::CheckScene(a) => commands::check_scene::run(a),
+        Command::Tradeoff(a) => commands::tradeoff::run(a),
+        Command::Mutual(a) => commands::mutual::run(a),
+        Command::Fnn(a) => commands::fnn::run(a),
+        Command::Embed(a) => commands::embed::run(a),
+        Command::Spectrum(a) => commands::spectrum::run(a),
+        Command::Poincare(a) => commands::poincare::run(a),
+        Command::LyapK(a) => commands::lyap_k::run(a),
+        Command::Analyze(a) => commands::analyze::run(a),
+        Command::FitFrf(a) => commands::fit_frf::run(a),
+        Command::Plot(a) => commands::plot::run(a),
+        Command::Reproduce(a) => commands::reproduce::run(a),
+    }
+}

@@ -1,0 +1,1 @@
+//! contact (see lib.rs for the architecture).

@@ -1,0 +1,1 @@
+//! dem (see lib.rs for the architecture).

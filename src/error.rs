@@ -1,0 +1,125 @@
+//! Error types of the library (thiserror). The CLI wraps them with `anyhow`.
+//!
+//! Every error names the offending field or input and says how to fix it, e.g.
+//! ``damper.radius = -0.003: must be > 0 (metres)``.
+//! Each area owns its enum: scene validation ([`SceneError`]), simulation ([`SimError`]),
+//! series analysis ([`AnalysisError`]) and data files ([`DataError`]).
+
+use thiserror::Error;
+
+/// A scene (TOML) that cannot be used: names the key, the value and the fix.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum SceneError {
+    /// The TOML text does not parse, or a key has the wrong type, or is unknown.
+    #[error("scene file: {0}")]
+    Parse(String),
+    /// A key is present but its value is impossible.
+    #[error("{field} = {value}: {hint}")]
+    Invalid {
+        /// Dotted key, e.g. `damper.radius`.
+        field: String,
+        /// The value as given.
+        value: String,
+        /// What is wrong and how to fix it.
+        hint: String,
+    },
+    /// A required key is missing.
+    #[error("{field} is missing: {hint}")]
+    Missing {
+        /// Dotted key.
+        field: String,
+        /// What to write.
+        hint: String,
+    },
+}
+
+impl SceneError {
+    /// Shorthand for [`SceneError::Invalid`].
+    pub fn invalid(field: impl Into<String>, value: impl ToString, hint: impl Into<String>) -> Self {
+        SceneError::Invalid {
+            field: field.into(),
+            value: value.to_string(),
+            hint: hint.into(),
+        }
+    }
+}
+
+/// A simulation that had to stop.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum SimError {
+    /// The state became non-finite or energy grew without input: the integration is unstable.
+    #[error("simulation unstable at t = {t_s:.6e} s: {reason}")]
+    Unstable {
+        /// Simulated time when detected (s).
+        t_s: f64,
+        /// What was detected and its likely cause (e.g. time step versus stiffness).
+        reason: String,
+    },
+    /// The scene was rejected.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+}
+
+/// A series analysis that cannot be carried out on the given data/parameters.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum AnalysisError {
+    /// The series is too short for the requested parameters.
+    #[error("series too short: {0}")]
+    TooShort(String),
+    /// A parameter is out of range.
+    #[error("parameter {name} = {value}: {hint}")]
+    BadParameter {
+        /// Parameter name (as on the command line, e.g. `bins`).
+        name: String,
+        /// Given value.
+        value: String,
+        /// What is allowed.
+        hint: String,
+    },
+    /// The series contains NaN or infinite values.
+    #[error("series contains a non-finite value at index {index}")]
+    NonFinite {
+        /// First offending index.
+        index: usize,
+    },
+    /// The series is constant (zero range), so it cannot be rescaled or embedded.
+    #[error("series is constant: nothing to analyse")]
+    Constant,
+    /// A numerical procedure did not converge or found nothing (e.g. no MI minimum, fit failed).
+    #[error("{0}")]
+    NoResult(String),
+}
+
+impl AnalysisError {
+    /// Shorthand for [`AnalysisError::BadParameter`].
+    pub fn bad(name: impl Into<String>, value: impl ToString, hint: impl Into<String>) -> Self {
+        AnalysisError::BadParameter {
+            name: name.into(),
+            value: value.to_string(),
+            hint: hint.into(),
+        }
+    }
+}
+
+/// A data file (series, CSV) that cannot be read.
+#[derive(Debug, Error)]
+pub enum DataError {
+    /// File-system error, with the path.
+    #[error("{path}: {source}")]
+    Io {
+        /// Path of the file.
+        path: String,
+        /// Underlying error.
+        source: std::io::Error,
+    },
+    /// Malformed content: names the file, line and column.
+    #[error("{path}:{line}: {message}")]
+    Malformed {
+        /// Path of the file.
+        path: String,
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong and how to fix it.
+        message: String,
+    },
+}

@@ -1,0 +1,1 @@
+//! impact (see lib.rs for the architecture).

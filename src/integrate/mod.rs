@@ -1,0 +1,1 @@
+//! integrate (see lib.rs for the architecture).

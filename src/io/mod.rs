@@ -1,0 +1,1 @@
+//! io (see lib.rs for the architecture).

@@ -1,0 +1,41 @@
+//! # pdamp — particle (granular) vibration dampers
+//!
+//! A toolkit that simulates particle dampers on a one-degree-of-freedom primary system and
+//! analyses the nonlinear dynamics of the grains. Physics and equation numbers follow
+//! `SPEC.md` (Sánchez 2012 thesis numbering, e.g. (2.1.21)).
+//!
+//! ## Architecture (dependencies point one way)
+//! ```text
+//! cli → sweep / plot / io / observe → dem / impact → contact / neighbor / integrate → model / scene → units / error
+//! analysis → (nothing of the simulators);  systems = reference dynamical systems for tests, benches and examples
+//! ```
+//! - [`scene`]: TOML scene files → validated [`scene::Scene`].
+//! - [`model`]: equations of the primary system (2.1.2), its analytic FRF (2.1.21).
+//! - [`impact`]: event-driven one-particle impact damper (SPEC §3).
+//! - [`contact`], [`neighbor`], [`integrate`], [`dem`], [`packing`]: the discrete element model (SPEC §2, §5).
+//! - [`sweep`]: parallel, resumable parameter sweeps.
+//! - [`analysis`]: delay embedding, mutual information, false nearest neighbours, spectra,
+//!   Poincaré sections, Kantz's Lyapunov exponent, regime classification, FRF fits (SPEC §4).
+//! - [`systems`]: logistic, Hénon, Lorenz, Rössler, bouncing ball — literature references.
+//! - [`plot`]: headless PNG figures (SPEC §7).
+//! - [`io`]: series and CSV input/output, atomic writes.
+//! - [`cli`]: the `pdamp` command line (thin layer over the library).
+#![warn(missing_docs)]
+
+pub mod analysis;
+pub mod cli;
+pub mod contact;
+pub mod dem;
+pub mod error;
+pub mod impact;
+pub mod integrate;
+pub mod io;
+pub mod model;
+pub mod neighbor;
+pub mod observe;
+pub mod packing;
+pub mod plot;
+pub mod scene;
+pub mod sweep;
+pub mod systems;
+pub mod units;

@@ -1,0 +1,1 @@
+//! neighbor (see lib.rs for the architecture).

@@ -1,0 +1,1 @@
+//! observe (see lib.rs for the architecture).

@@ -1,0 +1,1 @@
+//! packing (see lib.rs for the architecture).

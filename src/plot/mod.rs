@@ -1,0 +1,1 @@
+//! plot (see lib.rs for the architecture).

@@ -1,0 +1,1 @@
+//! sweep (see lib.rs for the architecture).

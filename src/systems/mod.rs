@@ -1,0 +1,1 @@
+//! systems (see lib.rs for the architecture).
