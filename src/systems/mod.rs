@@ -1,1 +1,3 @@
 //! systems (see lib.rs for the architecture).
+
+pub mod bouncing_ball;
