@@ -29,7 +29,13 @@ fn run(s: &Scene) -> RunSummary {
 /// Amplitude of scene B's primary carrying the particle as rigid added mass (2.1.21, M + m_p).
 fn loaded_reference(s: &Scene) -> f64 {
     let p = s.primary.as_ref().unwrap();
-    frf_amplitude(p.mass + 0.227, p.stiffness, p.damping_n_s_m(), s.excitation.amplitude, s.excitation.omega_rad_s())
+    frf_amplitude(
+        p.mass + 0.227,
+        p.stiffness,
+        p.damping_n_s_m(),
+        s.excitation.amplitude,
+        s.excitation.omega_rad_s(),
+    )
 }
 
 #[test]
@@ -41,7 +47,11 @@ fn vanishing_gap_is_added_mass() {
         let want = loaded_reference(&s);
         // (2.1.21) with M + m_p: a clamped particle is rigid added mass; 1e-4 covers the
         // decayed transient (the extrema are exact)
-        assert!((r.amplitude_m - want).abs() < 1e-4 * want, "f {f}: {} vs {want}", r.amplitude_m);
+        assert!(
+            (r.amplitude_m - want).abs() < 1e-4 * want,
+            "f {f}: {} vs {want}",
+            r.amplitude_m
+        );
         assert_eq!(r.impacts_total, 0);
         assert!(r.energy_balance_relative_error.unwrap() < 1e-9);
     }
@@ -51,7 +61,11 @@ fn vanishing_gap_is_added_mass() {
     s.run.periods = Some(400.0);
     let r = run(&s);
     let want = loaded_reference(&s);
-    assert!((r.amplitude_m - want).abs() < 1e-2 * want, "{} vs {want}", r.amplitude_m);
+    assert!(
+        (r.amplitude_m - want).abs() < 1e-2 * want,
+        "{} vs {want}",
+        r.amplitude_m
+    );
     assert!(r.energy_balance_relative_error.unwrap() < 1e-6);
 }
 
@@ -65,7 +79,11 @@ fn low_frequency_sticking_particle_is_added_mass() {
     let want = loaded_reference(&s);
     // 1e-4: the transient has decayed to < e^{−ξω0 t} ≈ 1e-30 and the extrema are exact; the
     // reference with M alone differs by 2e-4 at 0.5 Hz, so the test tells the masses apart
-    assert!((r.amplitude_m - want).abs() < 5e-5 * want, "{} vs {want}", r.amplitude_m);
+    assert!(
+        (r.amplitude_m - want).abs() < 5e-5 * want,
+        "{} vs {want}",
+        r.amplitude_m
+    );
     // (the start from u(0) = U rings the primary at f0, which makes the particle hop during
     // the transient; none in the steady state)
     assert_eq!(r.impacts_per_cycle, 0.0);
@@ -81,7 +99,11 @@ fn high_frequency_runs_and_balances() {
     s.run.periods = Some(4000.0);
     let r = run(&s);
     assert!(r.impacts_per_cycle > 0.0);
-    assert!(r.amplitude_m < 0.5 * s.excitation.amplitude, "{}", r.amplitude_m);
+    assert!(
+        r.amplitude_m < 0.5 * s.excitation.amplitude,
+        "{}",
+        r.amplitude_m
+    );
     assert!(r.energy_balance_relative_error.unwrap() < 1e-6);
 }
 
@@ -137,7 +159,11 @@ fn vanishing_damping_at_resonance() {
     s.run.steady_fraction = 0.01;
     let r = run(&s);
     let want = 1e-6 * (1.0 + 4.0 * xi * xi).sqrt() / (2.0 * xi);
-    assert!((r.amplitude_m - want).abs() < 1e-4 * want, "{} vs {want}", r.amplitude_m);
+    assert!(
+        (r.amplitude_m - want).abs() < 1e-4 * want,
+        "{} vs {want}",
+        r.amplitude_m
+    );
     assert!(r.energy_balance_relative_error.unwrap() < 1e-9);
     // with the particle the resonance is limited, and the run stays well-behaved
     let mut s2 = impact_scene(f0, 0.0835, 0.3);
@@ -182,14 +208,24 @@ fn chattering_ends_in_sticking_at_the_analytic_time() {
     });
     s.run.duration = Some(2.0);
     s.run.sample_interval = 1e-5;
-    let mut obs = RestTime { flew: false, rest: None };
+    let mut obs = RestTime {
+        flew: false,
+        rest: None,
+    };
     let r = pdamp::sweep::run_scene(&s, &mut obs, &RunOptions::full_series(&s)).unwrap();
     let t_inf = (2.0 * h / g).sqrt() * (1.0 + e) / (1.0 - e);
     let rest = obs.rest.expect("the ball must come to rest");
     // within one sample interval (1e-5 s) plus the cut of the geometric tail (≪ 1e-6 s)
-    assert!((rest - t_inf).abs() < 2e-5, "rest at {rest}, analytic {t_inf}");
+    assert!(
+        (rest - t_inf).abs() < 2e-5,
+        "rest at {rest}, analytic {t_inf}"
+    );
     // all potential energy m g h is dissipated by impacts (plus the plastic cut)
-    assert!((r.energy_totals.impact_j - 0.1 * g * h).abs() < 1e-9, "{}", r.energy_totals.impact_j);
+    assert!(
+        (r.energy_totals.impact_j - 0.1 * g * h).abs() < 1e-9,
+        "{}",
+        r.energy_totals.impact_j
+    );
     // finite number of impacts: log(v0/s*)/log(1/e) ≈ 50 for these numbers
     assert!(r.impacts_total < 200, "impacts {}", r.impacts_total);
 }

@@ -43,16 +43,31 @@ fn closed_form_matches_2_1_21_over_frequencies_and_damping() {
             let decay = 10.0 / (xi * TWO_PI * f0);
             let duration = decay.max(40.0 / f) + 2.0 / (0.05 * f);
             let scene = primary_scene(xi, f, duration);
-            let s = pdamp::sweep::run_scene(&scene, &mut pdamp::observe::NullObserver, &RunOptions::summary_only()).unwrap();
+            let s = pdamp::sweep::run_scene(
+                &scene,
+                &mut pdamp::observe::NullObserver,
+                &RunOptions::summary_only(),
+            )
+            .unwrap();
             let p = scene.primary.as_ref().unwrap();
-            let want = frf_amplitude(p.mass, p.stiffness, p.damping_n_s_m(), scene.excitation.amplitude, scene.excitation.omega_rad_s());
+            let want = frf_amplitude(
+                p.mass,
+                p.stiffness,
+                p.damping_n_s_m(),
+                scene.excitation.amplitude,
+                scene.excitation.omega_rad_s(),
+            );
             let rel = (s.amplitude_m - want).abs() / want;
             worst = worst.max(rel);
             // (2.1.21), tolerance 0.1 % (the requirement; the residual transient is
             // ≤ e^{−10} of the initial one and the extrema are located exactly, so a correct
             // closed form lands at ~1e-5 or better; a wrong particular solution (e.g. forcing
             // K u only, without C u') is off by > 1 % above resonance for ξ ≥ 0.058)
-            assert!(rel < 1e-3, "xi {xi} f {f}: got {} want {want} (rel {rel:e})", s.amplitude_m);
+            assert!(
+                rel < 1e-3,
+                "xi {xi} f {f}: got {} want {want} (rel {rel:e})",
+                s.amplitude_m
+            );
             // energy ledger closes too
             assert!(s.energy_balance_relative_error.unwrap() < 1e-9);
         }
@@ -61,7 +76,17 @@ fn closed_form_matches_2_1_21_over_frequencies_and_damping() {
 }
 
 /// RK4 integration of M z'' + C z' + K z = C u' + K u (2.1.2), independent of the closed form.
-fn rk4(m: f64, k: f64, c: f64, u: f64, w: f64, z0: f64, v0: f64, dt: f64, n: usize) -> Vec<(f64, f64)> {
+fn rk4(
+    m: f64,
+    k: f64,
+    c: f64,
+    u: f64,
+    w: f64,
+    z0: f64,
+    v0: f64,
+    dt: f64,
+    n: usize,
+) -> Vec<(f64, f64)> {
     let acc = |t: f64, z: f64, v: f64| {
         let (s, co) = (w * t).sin_cos();
         (k * (u * co - z) + c * (-u * w * s - v)) / m
@@ -70,8 +95,14 @@ fn rk4(m: f64, k: f64, c: f64, u: f64, w: f64, z0: f64, v0: f64, dt: f64, n: usi
     let mut out = vec![(z, v)];
     for _ in 0..n {
         let (k1z, k1v) = (v, acc(t, z, v));
-        let (k2z, k2v) = (v + 0.5 * dt * k1v, acc(t + 0.5 * dt, z + 0.5 * dt * k1z, v + 0.5 * dt * k1v));
-        let (k3z, k3v) = (v + 0.5 * dt * k2v, acc(t + 0.5 * dt, z + 0.5 * dt * k2z, v + 0.5 * dt * k2v));
+        let (k2z, k2v) = (
+            v + 0.5 * dt * k1v,
+            acc(t + 0.5 * dt, z + 0.5 * dt * k1z, v + 0.5 * dt * k1v),
+        );
+        let (k3z, k3v) = (
+            v + 0.5 * dt * k2v,
+            acc(t + 0.5 * dt, z + 0.5 * dt * k2z, v + 0.5 * dt * k2v),
+        );
         let (k4z, k4v) = (v + dt * k3v, acc(t + dt, z + dt * k3z, v + dt * k3v));
         z += dt / 6.0 * (k1z + 2.0 * k2z + 2.0 * k3z + k4z);
         v += dt / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
@@ -84,7 +115,13 @@ fn rk4(m: f64, k: f64, c: f64, u: f64, w: f64, z0: f64, v0: f64, dt: f64, n: usi
 #[test]
 fn closed_form_matches_independent_rk4_in_every_damping_regime() {
     // underdamped (ξ → 0), moderately damped, critically damped and overdamped
-    for &(xi, f) in &[(0.001, 15.16), (0.058, 7.0), (0.5, 22.0), (1.0, 3.0), (2.5, 30.0)] {
+    for &(xi, f) in &[
+        (0.001, 15.16),
+        (0.058, 7.0),
+        (0.5, 22.0),
+        (1.0, 3.0),
+        (2.5, 30.0),
+    ] {
         let mut scene = primary_scene(xi, f, 1.0);
         scene.run.sample_interval = 1e-3;
         if let Some(p) = scene.primary.as_mut() {
@@ -95,7 +132,17 @@ fn closed_form_matches_independent_rk4_in_every_damping_regime() {
         pdamp::sweep::run_scene(&scene, &mut obs, &RunOptions::full_series(&scene)).unwrap();
         let p = scene.primary.as_ref().unwrap();
         // RK4 with 1e-6 s steps: global error ~ (ω dt)^4 ≈ (190 × 1e-6)^4 × t … ≪ 1e-9 m
-        let traj = rk4(p.mass, p.stiffness, p.damping_n_s_m(), scene.excitation.amplitude, scene.excitation.omega_rad_s(), 0.002, -0.05, 1e-6, 1_000_000);
+        let traj = rk4(
+            p.mass,
+            p.stiffness,
+            p.damping_n_s_m(),
+            scene.excitation.amplitude,
+            scene.excitation.omega_rad_s(),
+            0.002,
+            -0.05,
+            1e-6,
+            1_000_000,
+        );
         assert_eq!(obs.0.len(), 1001);
         let scale = obs.0.iter().map(|s| s.1.abs()).fold(0.0, f64::max);
         for &(t, z, _) in &obs.0 {
@@ -104,7 +151,10 @@ fn closed_form_matches_independent_rk4_in_every_damping_regime() {
             // tolerance 1e-7 of the motion's scale: RK4 at this step is accurate to ~1e-10;
             // a wrong homogeneous branch (e.g. using cos instead of cosh when overdamped)
             // is off by O(1)
-            assert!((z - zr).abs() < 1e-7 * scale, "xi {xi} t {t}: closed {z} rk4 {zr}");
+            assert!(
+                (z - zr).abs() < 1e-7 * scale,
+                "xi {xi} t {t}: closed {z} rk4 {zr}"
+            );
         }
     }
 }

@@ -80,6 +80,11 @@ impl Scene {
     /// message names the key and the line); [`SceneError::Invalid`] / [`SceneError::Missing`]
     /// for values out of range (see [`Scene::validate`]).
     pub fn from_toml(text: &str) -> Result<Scene, SceneError> {
+        SceneSource::parse(text)?.scene(&[])
+    }
+
+    /// Deserialize and validate (no syntax pre-pass, no `kind = "none"` check).
+    pub(crate) fn parse_validated(text: &str) -> Result<Scene, SceneError> {
         let scene: Scene =
             toml::from_str(text).map_err(|e| SceneError::Parse(clean_toml_error(&e)))?;
         scene.validate()?;

@@ -10,6 +10,9 @@ use crate::error::SceneError;
 #[derive(Debug, Clone, PartialEq)]
 pub struct SceneSource {
     table: toml::Table,
+    /// The original text, parsed directly when there are no overrides so that error messages
+    /// point at the user's lines.
+    text: String,
 }
 
 impl SceneSource {
@@ -21,7 +24,10 @@ impl SceneSource {
         let table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
             SceneError::Parse(e.to_string().trim_end().to_string())
         })?;
-        Ok(SceneSource { table })
+        Ok(SceneSource {
+            table,
+            text: text.to_string(),
+        })
     }
 
     /// Set a dotted key (`excitation.frequency`) to a value, creating missing tables.
@@ -72,6 +78,10 @@ impl SceneSource {
         if let Some(r) = rival {
             table.remove(r);
         }
+        if key == "damper.kind" && value.as_str() == Some("none") {
+            // switching the damper off: its other keys no longer apply
+            table.clear();
+        }
         table.insert(last.to_string(), value);
         Ok(())
     }
@@ -85,14 +95,40 @@ impl SceneSource {
         for (k, v) in overrides {
             src.set(k, v.clone())?;
         }
+        check_none_damper(&src.table)?;
+        if overrides.is_empty() {
+            return Scene::parse_validated(&self.text);
+        }
         let text = toml::to_string(&src.table).map_err(|e| SceneError::Parse(e.to_string()))?;
-        Scene::from_toml(&text)
+        Scene::parse_validated(&text).map_err(|e| match e {
+            SceneError::Parse(m) => {
+                SceneError::Parse(format!("after the --set/--vary overrides: {m}"))
+            }
+            other => other,
+        })
     }
 
     /// The (possibly overridden) table as TOML text.
     pub fn to_toml(&self) -> String {
         toml::to_string(&self.table).unwrap_or_default()
     }
+}
+
+/// `kind = "none"` takes no other keys (serde cannot reject them for a unit variant).
+fn check_none_damper(table: &toml::Table) -> Result<(), SceneError> {
+    let Some(toml::Value::Table(d)) = table.get("damper") else {
+        return Ok(());
+    };
+    if d.get("kind").and_then(|k| k.as_str()) == Some("none") {
+        if let Some(extra) = d.keys().find(|k| k.as_str() != "kind") {
+            return Err(SceneError::invalid(
+                format!("damper.{extra}"),
+                d[extra].to_string(),
+                "unknown key: damper.kind = \"none\" takes no parameters; remove it",
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Parse a TOML value written on the command line: `12`, `1e-3`, `inf`, `true`, `"auto"`, or a
