@@ -1,1 +1,4 @@
 //! analysis (see lib.rs for the architecture).
+pub mod poincare;
+pub mod spectrum;
+pub mod zero_one_test;
