@@ -86,14 +86,17 @@ pub fn sample_at(x: &[f64], t: f64, interp: Interpolation) -> Option<f64> {
     match interp {
         Interpolation::Linear => Some(linear),
         Interpolation::Cubic => {
-            if i == 0 || i + 2 >= n {
+            if n < 4 {
                 return Some(linear);
             }
-            let (a, b, c, d) = (x[i - 1], x[i], x[i + 1], x[i + 2]);
-            let (um1, up1, um2) = (u - 1.0, u + 1.0, u - 2.0);
+            // Nodes j..j+3 around t (shifted inwards in the first and last interval).
+            let j = i.saturating_sub(1).min(n - 4);
+            let s = t - j as f64;
+            let (s1, s2, s3) = (s - 1.0, s - 2.0, s - 3.0);
             Some(
-                -u * um1 * um2 / 6.0 * a + up1 * um1 * um2 / 2.0 * b - up1 * u * um2 / 2.0 * c
-                    + up1 * u * um1 / 6.0 * d,
+                -s1 * s2 * s3 / 6.0 * x[j] + s * s2 * s3 / 2.0 * x[j + 1]
+                    - s * s1 * s3 / 2.0 * x[j + 2]
+                    + s * s1 * s2 / 6.0 * x[j + 3],
             )
         }
     }
