@@ -10,6 +10,10 @@ pub mod embedding;
 pub mod false_nearest_neighbors;
 pub mod kantz;
 pub mod mutual_information;
+pub mod poincare;
+pub mod regime;
+pub mod spectrum;
+pub mod zero_one_test;
 
 pub use embedding::DelayEmbedding;
 pub use false_nearest_neighbors::{false_nearest_neighbors, FnnOptions, FnnPoint};
