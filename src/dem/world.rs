@@ -157,7 +157,8 @@ pub struct DemWorld {
     pub settle_drag: f64,
     /// Gravitational acceleration g (m/s², along −z); default 9.8 (tests may set 0).
     pub gravity: f64,
-    /// Energy flows since the drive started.
+    /// Energy flows since the drive started (collision and friction also accumulate while
+    /// settling; [`DemWorld::start_drive`] resets the ledger).
     pub ledger: EnergyLedger,
     base_power_prev: f64,
     viscous_power_prev: f64,
@@ -383,9 +384,9 @@ impl DemWorld {
             self.box_v += h * self.box_a;
         }
         // 7. ledger
+        self.ledger.collision_j += p_coll * dt;
+        self.ledger.friction_j += p_fric * dt;
         if self.drive_on {
-            self.ledger.collision_j += p_coll * dt;
-            self.ledger.friction_j += p_fric * dt;
             let (bp, vp) = self.box_powers();
             self.ledger.base_work_j += 0.5 * (bp + self.base_power_prev) * dt;
             self.ledger.viscous_j += 0.5 * (vp + self.viscous_power_prev) * dt;
