@@ -32,14 +32,13 @@ impl Damper {
     /// Validate the damper's parameters.
     ///
     /// # Errors
-    /// [`SceneError`] naming `damper.<key>`. (DEM parameters are validated by the DEM model.)
+    /// [`SceneError`] naming `damper.<key>`.
     pub fn validate(&self) -> Result<(), SceneError> {
         match self {
             Damper::None => Ok(()),
             Damper::Impact(p) => p.validate(),
-            // The DEM issue owns DemParams' validation (src/scene/dem.rs); it is run by the
-            // DEM simulator before it starts.
-            Damper::Dem(_) => Ok(()),
+            // DemParams' validation is owned by the DEM model (src/scene/dem.rs)
+            Damper::Dem(d) => d.validate(),
         }
     }
 }
