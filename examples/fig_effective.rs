@@ -37,7 +37,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let fit = fit_frf(&f, &z, &FrfFitOptions::new(k, u))?;
         csv += &format!(
             "{l},{},{},{},{}\n",
-            fit.mass_ef_kg, fit.mass_ef_stderr_kg, fit.damping_ef_ns_per_m, fit.damping_ef_stderr_ns_per_m
+            fit.mass_ef_kg,
+            fit.mass_ef_stderr_kg,
+            fit.damping_ef_ns_per_m,
+            fit.damping_ef_stderr_ns_per_m
         );
         me.push(fit.mass_ef_kg);
         ms.push(fit.mass_ef_stderr_kg);
@@ -50,7 +53,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         peak.x, peak.x_stderr, peak.y, peak.y_stderr
     );
     for x in level_crossings(&lz, &me, &ms, m)? {
-        println!("M_ef = M at Lz = {:.4} ± {:.4} m; truth 0.1635 m", x.x, x.x_stderr);
+        println!(
+            "M_ef = M at Lz = {:.4} ± {:.4} m; truth 0.1635 m",
+            x.x, x.x_stderr
+        );
     }
     std::fs::create_dir_all("figures")?;
     std::fs::write("figures/effective.csv", csv)?;
@@ -64,7 +70,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         mass_kg: Some(m),
         damping_ns_per_m: Some(c),
     };
-    render(&fig, "figures/effective.png".as_ref(), &FigureOptions::default())?;
+    render(
+        &fig,
+        "figures/effective.png".as_ref(),
+        &FigureOptions::default(),
+    )?;
     println!("wrote figures/effective.png");
     Ok(())
 }

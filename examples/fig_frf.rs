@@ -12,7 +12,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (m, mp, k, c, u) = (2.37, 0.227, 21500.0, 7.6, 4.5e-3);
     let f: Vec<f64> = (1..=60).map(|i| 0.5 * i as f64).collect();
     // stand-in for a granular damper: M_ef between M and M + m_p, C_ef ≈ 3 C
-    let z: Vec<f64> = f.iter().map(|&f| sdof_amplitude(f, m + 0.12, 3.0 * c, k, u)).collect();
+    let z: Vec<f64> = f
+        .iter()
+        .map(|&f| sdof_amplitude(f, m + 0.12, 3.0 * c, k, u))
+        .collect();
     std::fs::create_dir_all("figures")?;
     let mut csv = String::from("frequency_hz,amplitude_m\n");
     for (f, z) in f.iter().zip(&z) {
@@ -20,7 +23,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     std::fs::write("figures/frf.csv", csv)?;
     let fig = FrfFigure {
-        series: vec![Series { label: "synthetic damped FRF", x: &f, y: &z }],
+        series: vec![Series {
+            label: "synthetic damped FRF",
+            x: &f,
+            y: &z,
+        }],
         reference: Some(FrfReference {
             mass_kg: m,
             particle_mass_kg: Some(mp),
