@@ -62,6 +62,12 @@ pub enum SimError {
     /// The scene was rejected.
     #[error(transparent)]
     Scene(#[from] SceneError),
+    /// Output (series, summary, sweep files) could not be written: names the file.
+    #[error("output: {0}")]
+    Output(String),
+    /// The scene is valid but asks for a model that is not available in this build.
+    #[error("{0}")]
+    Unavailable(String),
 }
 
 /// A series analysis that cannot be carried out on the given data/parameters.
