@@ -109,6 +109,17 @@ impl NeighborList {
         worst > lim
     }
 
+    /// Reference positions of the last build and the shift then (m), for fused checks.
+    pub fn reference(&self) -> (&[[f64; 3]], [f64; 3]) {
+        (&self.ref_pos, self.ref_shift)
+    }
+
+    /// True when a largest squared displacement `max_d2` (m², relative to the common shift)
+    /// exceeds (skin/2)².
+    pub fn exceeded(&self, max_d2: f64) -> bool {
+        self.builds == 0 || max_d2 > 0.25 * self.skin_m * self.skin_m
+    }
+
     /// Rebuilds the pair list: all pairs with |r_i − r_j| < R_i + R_j + skin.
     ///
     /// `pos` are lab-frame centres (m), `shift` the box origin in the lab frame (m).
