@@ -35,7 +35,11 @@ pub enum SceneError {
 
 impl SceneError {
     /// Shorthand for [`SceneError::Invalid`].
-    pub fn invalid(field: impl Into<String>, value: impl ToString, hint: impl Into<String>) -> Self {
+    pub fn invalid(
+        field: impl Into<String>,
+        value: impl ToString,
+        hint: impl Into<String>,
+    ) -> Self {
         SceneError::Invalid {
             field: field.into(),
             value: value.to_string(),
