@@ -1,1 +1,145 @@
-//! analysis (see lib.rs for the architecture).
+//! Nonlinear time-series analysis of a scalar series (SPEC §4): delay embedding (4.1.1),
+//! time-delayed mutual information (4.1.5), false nearest neighbours (4.1.4), Kantz's maximal
+//! Lyapunov exponent (4.1.7), spectra, Poincaré sections and the regime classifier.
+//!
+//! One file per estimator. This module holds the helpers they share: series validation
+//! ([`validate_series`]), rescaling to [0, 1] as TISEAN does ([`rescale_unit`]) and the Theiler
+//! window test ([`outside_theiler_window`]).
+
+pub mod embedding;
+pub mod false_nearest_neighbors;
+pub mod frf_fit;
+pub mod kantz;
+pub mod mutual_information;
+pub mod optimum;
+pub mod poincare;
+pub mod regime;
+pub mod spectrum;
+pub mod zero_one_test;
+
+pub use embedding::DelayEmbedding;
+pub use false_nearest_neighbors::{false_nearest_neighbors, FnnOptions, FnnPoint};
+pub use kantz::{estimate_max_lyapunov, kantz, KantzDefinition, KantzOptions, KantzResult};
+pub use mutual_information::{mutual_information, MutualInformation, MutualInformationOptions};
+
+use crate::error::AnalysisError;
+
+/// Checks that a series can be analysed: at least `min_len` samples, all finite, not constant.
+///
+/// # Errors
+/// [`AnalysisError::TooShort`] (naming `what` and both lengths), [`AnalysisError::NonFinite`]
+/// (first offending index) or [`AnalysisError::Constant`].
+pub fn validate_series(x: &[f64], min_len: usize, what: &str) -> Result<(), AnalysisError> {
+    if x.len() < min_len {
+        return Err(AnalysisError::TooShort(format!(
+            "{what} needs at least {min_len} samples, the series has {}",
+            x.len()
+        )));
+    }
+    if let Some(index) = x.iter().position(|v| !v.is_finite()) {
+        return Err(AnalysisError::NonFinite { index });
+    }
+    let (lo, hi) = min_max(x);
+    if x.is_empty() || hi <= lo {
+        return Err(AnalysisError::Constant);
+    }
+    Ok(())
+}
+
+/// Minimum and maximum of a slice (`(+inf, -inf)` when empty).
+pub fn min_max(x: &[f64]) -> (f64, f64) {
+    x.iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        })
+}
+
+/// A series rescaled to [0, 1] by its minimum and range, as every TISEAN program does first
+/// (SPEC §8, TISEAN's `rescale_data`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rescaled {
+    /// `(x − min) / range`, in [0, 1].
+    pub values: Vec<f64>,
+    /// Minimum of the original series (data units).
+    pub min: f64,
+    /// `max − min` of the original series (data units); multiply rescaled distances by it to
+    /// get data units, or add `ln(range)` to logarithms of distances.
+    pub range: f64,
+}
+
+/// Rescales a series to [0, 1]: `y = (x − min)/(max − min)`.
+///
+/// # Errors
+/// Those of [`validate_series`] with `min_len = 1`.
+pub fn rescale_unit(x: &[f64]) -> Result<Rescaled, AnalysisError> {
+    validate_series(x, 1, "rescaling")?;
+    let (min, max) = min_max(x);
+    let range = max - min;
+    let values = x.iter().map(|&v| (v - min) / range).collect();
+    Ok(Rescaled { values, min, range })
+}
+
+/// Population standard deviation `sqrt(mean(x²) − mean(x)²)` (TISEAN's `variance` routine,
+/// which returns the standard deviation despite its name).
+pub fn standard_deviation(x: &[f64]) -> f64 {
+    if x.is_empty() {
+        return 0.0;
+    }
+    let n = x.len() as f64;
+    let mean = x.iter().sum::<f64>() / n;
+    let mean_sq = x.iter().map(|v| v * v).sum::<f64>() / n;
+    (mean_sq - mean * mean).abs().sqrt()
+}
+
+/// True when samples `i` and `j` are far enough apart in time to count as neighbours:
+/// `|i − j| > w` (Theiler 1986 window `w`; `w = 0` only excludes `i = j`).
+#[inline]
+pub fn outside_theiler_window(i: usize, j: usize, w: usize) -> bool {
+    i.abs_diff(j) > w
+}
+
+/// Checks a positive integer parameter.
+pub(crate) fn require_positive(name: &str, value: usize) -> Result<(), AnalysisError> {
+    if value == 0 {
+        return Err(AnalysisError::bad(name, value, "must be at least 1"));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rescale_maps_to_unit_interval() {
+        let r = rescale_unit(&[2.0, 4.0, 3.0]).unwrap();
+        assert_eq!(r.values, vec![0.0, 1.0, 0.5]);
+        assert_eq!((r.min, r.range), (2.0, 2.0));
+    }
+
+    #[test]
+    fn validation_errors_name_the_problem() {
+        assert_eq!(rescale_unit(&[1.0, 1.0]), Err(AnalysisError::Constant));
+        assert_eq!(
+            rescale_unit(&[1.0, f64::NAN]),
+            Err(AnalysisError::NonFinite { index: 1 })
+        );
+        assert!(matches!(
+            validate_series(&[1.0, 2.0], 3, "test"),
+            Err(AnalysisError::TooShort(_))
+        ));
+    }
+
+    #[test]
+    fn theiler_window() {
+        assert!(!outside_theiler_window(5, 5, 0));
+        assert!(outside_theiler_window(5, 6, 0));
+        assert!(!outside_theiler_window(5, 8, 3));
+        assert!(outside_theiler_window(9, 5, 3));
+    }
+
+    #[test]
+    fn standard_deviation_of_two_values() {
+        assert!((standard_deviation(&[0.0, 2.0]) - 1.0).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,396 @@
+//! Regime classifier: periodic-n, quasi-periodic, chaotic, stochastic or undetermined, from the
+//! evidence of the other estimators (SPEC §4: lines and sub-harmonics, Poincaré points / closed
+//! curve / cloud, the sign of Kantz's exponent) cross-checked by the 0–1 test.
+//!
+//! The pieces here are pure functions of already computed quantities, so the rules can be read
+//! and tested on their own: period detection from recurrence ([`recurrence_period`]) and from a
+//! harmonic line set ([`harmonic_fundamental`]), and the decision [`classify`].
+
+use crate::analysis::poincare::{SectionShape, SectionSummary};
+use crate::analysis::spectrum::SpectralLine;
+use serde::Serialize;
+
+/// Dynamical regime of a series.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Regime {
+    /// A periodic orbit (the period is reported separately).
+    Periodic,
+    /// Motion on a torus: two or more incommensurate frequencies.
+    QuasiPeriodic,
+    /// Deterministic chaos: positive exponent with a clear scaling region and K ≈ 1.
+    Chaotic,
+    /// Irregular without low-dimensional determinism (noise).
+    Stochastic,
+    /// The evidence disagrees or is too weak (short series, transients).
+    Undetermined,
+}
+
+impl Regime {
+    /// The name used in JSON and CSV: `periodic`, `quasi-periodic`, `chaotic`, `stochastic`,
+    /// `undetermined`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Regime::Periodic => "periodic",
+            Regime::QuasiPeriodic => "quasi-periodic",
+            Regime::Chaotic => "chaotic",
+            Regime::Stochastic => "stochastic",
+            Regime::Undetermined => "undetermined",
+        }
+    }
+}
+
+impl std::fmt::Display for Regime {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// Returns the smallest p ≤ `max_period` with max_n |s_{n+p} − s_n| ≤ `rel_tol`·(max − min)
+/// over the series, or `None`.
+///
+/// # Formula
+/// Exact recurrence s_{n+p} = s_n of a period-p orbit sampled at an integer number of samples
+/// per period (maps; flows strobed or sampled commensurately), up to a tolerance relative to the
+/// range.
+///
+/// # Units
+/// Samples.
+///
+/// # Pitfalls
+/// Feed the steady state: one transient sample breaks the recurrence. Flows sampled with a
+/// non-integer number of samples per period never recur exactly; use
+/// [`harmonic_fundamental`]. A constant series returns `None`.
+pub fn recurrence_period(x: &[f64], max_period: usize, rel_tol: f64) -> Option<usize> {
+    let (lo, hi) = x
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| {
+            (l.min(v), h.max(v))
+        });
+    let range = hi - lo;
+    if !(range > 0.0) {
+        return None;
+    }
+    let tol = rel_tol * range;
+    let max_p = max_period.min(x.len() / 3);
+    (1..=max_p).find(|&p| x.iter().zip(&x[p..]).all(|(a, b)| (b - a).abs() <= tol))
+}
+
+/// Returns the fundamental frequency f₀ of which every line is a harmonic, or `None`.
+///
+/// # Formula
+/// With f_s the strongest line, try f₀ = f_s/k for k = 1..=`max_subharmonic` (period-k adds
+/// f/k sub-harmonics, SPEC §4) and accept the first for which every line satisfies
+/// |f − round(f/f₀)·f₀| ≤ `tol` and f₀ ≥ `min_f0`. For lines at f, √2 f (a torus) no k fits.
+///
+/// # Units
+/// Those of the lines' frequencies; `tol` and `min_f0` in the same unit (use a fraction of
+/// the bin width for `tol`, and several bin widths for `min_f0` so that dense harmonics cannot
+/// fit any line set).
+pub fn harmonic_fundamental(
+    lines: &[SpectralLine],
+    max_subharmonic: usize,
+    tol: f64,
+    min_f0: f64,
+) -> Option<f64> {
+    let strongest = lines
+        .iter()
+        .max_by(|a, b| a.peak_power.total_cmp(&b.peak_power))?;
+    (1..=max_subharmonic.max(1)).find_map(|k| {
+        let f0 = strongest.frequency / k as f64;
+        if f0 < min_f0 || f0 <= 0.0 {
+            return None;
+        }
+        let fits = lines.iter().all(|l| {
+            let h = (l.frequency / f0).round().max(1.0);
+            (l.frequency - h * f0).abs() <= tol
+        });
+        fits.then_some(f0)
+    })
+}
+
+/// Everything the classifier looks at; each field is `None` when its estimator could not run.
+#[derive(Debug, Clone, PartialEq, Serialize, Default)]
+pub struct Evidence {
+    /// Exact recurrence period in samples ([`recurrence_period`]).
+    pub recurrence_period_samples: Option<usize>,
+    /// Period 1/f₀ in samples when every spectral line is a harmonic of f₀.
+    pub harmonic_period_samples: Option<f64>,
+    /// Number of spectral lines.
+    pub line_count: usize,
+    /// Fraction of the power in the lines ([`crate::analysis::spectrum::line_power_fraction`]).
+    pub line_power_fraction: f64,
+    /// Stroboscopic section (with a forcing frequency), of the steady state.
+    pub section: Option<SectionSummary>,
+    /// Forcing period in samples (with a forcing frequency).
+    pub forcing_period_samples: Option<f64>,
+    /// Kantz exponent per sample.
+    pub mle_per_sample: Option<f64>,
+    /// Whether Kantz's curve had a linear scaling region (R² ≥ 0.99 over ≥ 5 points).
+    pub kantz_linear: bool,
+    /// Growth of S over the fitted region, slope × (end − start), in e-folds.
+    pub kantz_growth: Option<f64>,
+    /// Gottwald–Melbourne K.
+    pub zero_one_k: Option<f64>,
+    /// Whether false nearest neighbours vanished (fraction ≤ threshold) at some m ≤ m_max: the
+    /// data are low-dimensional deterministic.
+    pub fnn_converged: Option<bool>,
+}
+
+/// Thresholds of [`classify`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct RegimeThresholds {
+    /// Lines must carry at least this fraction of the power for a line spectrum (default 0.95).
+    pub line_fraction: f64,
+    /// K above this is irregular (default 0.5, Gottwald & Melbourne's threshold).
+    pub zero_one: f64,
+    /// Kantz's scaling region must grow by at least this many e-folds (default 1).
+    pub min_growth: f64,
+    /// Largest period reported, in forcing periods or samples (default 64).
+    pub max_period: usize,
+}
+
+impl Default for RegimeThresholds {
+    fn default() -> Self {
+        RegimeThresholds {
+            line_fraction: 0.95,
+            zero_one: 0.5,
+            min_growth: 1.0,
+            max_period: 64,
+        }
+    }
+}
+
+/// A verdict with its period and the rule that decided it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Verdict {
+    /// The regime.
+    pub regime: Regime,
+    /// Period: in forcing periods when a forcing period is known, else in samples; `None`
+    /// unless periodic.
+    pub period: Option<f64>,
+    /// The rule that fired, in words.
+    pub reason: String,
+}
+
+/// Returns the regime of a series from its [`Evidence`].
+///
+/// # Formula
+/// Rules, first match wins:
+/// 1. Periodic: the section is n distinct points (period n forcing periods); without a
+///    section, an exact recurrence p, or a line spectrum (≥ `line_fraction` of the power) whose
+///    lines are all harmonics of f₀ (period 1/f₀ samples).
+/// 2. Quasi-periodic: the section is a closed curve, or a line spectrum that is not harmonic,
+///    with K < `zero_one` (when available).
+/// 3. Chaotic: K > `zero_one`, a Kantz scaling region growing ≥ `min_growth` e-folds with a
+///    positive slope, and FNN converged (when available).
+/// 4. Stochastic: K > `zero_one` and (no Kantz scaling region, or FNN not converged).
+/// 5. Otherwise undetermined.
+///
+/// # Parameters
+/// See [`RegimeThresholds`].
+///
+/// # References
+/// G. A. Gottwald, I. Melbourne, SIAM J. Appl. Dyn. Syst. 8, 129–145 (2009); H. Kantz, Phys.
+/// Lett. A 185, 77–87 (1994); M. B. Kennel, R. Brown, H. D. I. Abarbanel, Phys. Rev. A 45,
+/// 3403–3411 (1992).
+pub fn classify(e: &Evidence, t: &RegimeThresholds) -> Verdict {
+    let verdict = |regime, period, reason: String| Verdict {
+        regime,
+        period,
+        reason,
+    };
+    let line_spectrum = e.line_count > 0 && e.line_power_fraction >= t.line_fraction;
+    let k_regular = e.zero_one_k.is_none_or(|k| k < t.zero_one);
+    let k_irregular = e.zero_one_k.is_some_and(|k| k > t.zero_one);
+    let in_forcing = |samples: f64| match e.forcing_period_samples {
+        Some(tf) => samples / tf,
+        None => samples,
+    };
+    // 1. Periodic.
+    let section_shape = e.section.as_ref().map(|s| s.shape);
+    if let Some(SectionShape::Points(n)) = section_shape {
+        if n <= t.max_period {
+            return verdict(
+                Regime::Periodic,
+                Some(n as f64),
+                format!("the stroboscopic section is {n} distinct point(s)"),
+            );
+        }
+    }
+    let section_usable = matches!(
+        section_shape,
+        Some(SectionShape::Points(_) | SectionShape::ClosedCurve | SectionShape::Cloud)
+    );
+    if !section_usable {
+        if let Some(p) = e.recurrence_period_samples {
+            let period = in_forcing(p as f64);
+            if period <= t.max_period as f64 + 0.5 {
+                return verdict(
+                    Regime::Periodic,
+                    Some(round_if_close(period)),
+                    format!("the series repeats exactly every {p} samples"),
+                );
+            }
+        }
+        if let (true, Some(p)) = (line_spectrum, e.harmonic_period_samples) {
+            let period = in_forcing(p);
+            if period <= t.max_period as f64 + 0.5 && k_regular {
+                return verdict(
+                    Regime::Periodic,
+                    Some(round_if_close(period)),
+                    format!(
+                        "all {} spectral lines are harmonics of 1/{p:.4} per sample and carry {:.1} % of the power",
+                        e.line_count,
+                        100.0 * e.line_power_fraction
+                    ),
+                );
+            }
+        }
+    }
+    // 2. Quasi-periodic.
+    if section_shape == Some(SectionShape::ClosedCurve) && k_regular {
+        return verdict(
+            Regime::QuasiPeriodic,
+            None,
+            "the stroboscopic section is a closed curve (invariant circle)".into(),
+        );
+    }
+    if !section_usable && line_spectrum && e.harmonic_period_samples.is_none() && k_regular {
+        return verdict(
+            Regime::QuasiPeriodic,
+            None,
+            format!(
+                "{} spectral lines carry {:.1} % of the power but are not harmonics of one frequency",
+                e.line_count,
+                100.0 * e.line_power_fraction
+            ),
+        );
+    }
+    // 3.–4. Irregular: chaos or noise.
+    let scaling = e.kantz_linear
+        && e.mle_per_sample.is_some_and(|l| l > 0.0)
+        && e.kantz_growth.is_some_and(|g| g >= t.min_growth);
+    let deterministic = e.fnn_converged.unwrap_or(true);
+    if k_irregular && scaling && deterministic {
+        return verdict(
+            Regime::Chaotic,
+            None,
+            format!(
+                "0-1 test K = {:.2}, Kantz exponent {:.4} per sample over a linear region of {:.1} e-folds",
+                e.zero_one_k.unwrap_or(f64::NAN),
+                e.mle_per_sample.unwrap_or(f64::NAN),
+                e.kantz_growth.unwrap_or(f64::NAN)
+            ),
+        );
+    }
+    if k_irregular && (!scaling || !deterministic) {
+        let why = if !deterministic {
+            "false nearest neighbours do not vanish (no low-dimensional determinism)"
+        } else {
+            "no exponential-divergence region in Kantz's curve"
+        };
+        return verdict(
+            Regime::Stochastic,
+            None,
+            format!(
+                "irregular (0-1 test K = {:.2}) but {why}",
+                e.zero_one_k.unwrap_or(f64::NAN)
+            ),
+        );
+    }
+    verdict(
+        Regime::Undetermined,
+        None,
+        "the indicators disagree or are missing".into(),
+    )
+}
+
+/// Rounds to the nearest integer when within 1 % of it (periods of maps and strobed flows).
+fn round_if_close(p: f64) -> f64 {
+    let r = p.round();
+    if r >= 1.0 && (p - r).abs() <= 0.01 * r {
+        r
+    } else {
+        p
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn line(f: f64, p: f64) -> SpectralLine {
+        SpectralLine {
+            frequency: f,
+            bin: 0,
+            peak_power: p,
+            line_power: p,
+            prominence: 1e6,
+        }
+    }
+
+    #[test]
+    fn recurrence_finds_smallest_period() {
+        let x: Vec<f64> = (0..300).map(|n| [0.1, 0.7, 0.4][n % 3]).collect();
+        assert_eq!(recurrence_period(&x, 64, 1e-9), Some(3));
+        // A constant series has no period (zero range).
+        assert_eq!(recurrence_period(&[1.0; 50], 10, 1e-3), None);
+        // A ramp never recurs.
+        let ramp: Vec<f64> = (0..100).map(|n| n as f64).collect();
+        assert_eq!(recurrence_period(&ramp, 30, 1e-3), None);
+    }
+
+    #[test]
+    fn harmonics_and_tori() {
+        // Period-3 orbit: lines at f/3, 2f/3, f (f strongest) → f₀ = f/3.
+        let lines = [
+            line(0.1 / 3.0, 0.2),
+            line(0.2 / 3.0, 0.1),
+            line(0.1, 1.0),
+            line(0.2, 0.05),
+        ];
+        let f0 = harmonic_fundamental(&lines, 8, 1e-5, 1e-3).unwrap();
+        assert!((f0 - 0.1 / 3.0).abs() < 1e-12);
+        // Torus: f and √2 f are not harmonics of any f/k with k ≤ 8 within the tolerance.
+        let torus = [line(0.1, 1.0), line(0.1 * 2f64.sqrt(), 0.25)];
+        assert_eq!(harmonic_fundamental(&torus, 8, 1e-4, 1e-3), None);
+    }
+
+    #[test]
+    fn classify_rules() {
+        let t = RegimeThresholds::default();
+        let periodic = Evidence {
+            recurrence_period_samples: Some(4),
+            ..Default::default()
+        };
+        let v = classify(&periodic, &t);
+        assert_eq!((v.regime, v.period), (Regime::Periodic, Some(4.0)));
+        let noise = Evidence {
+            zero_one_k: Some(0.99),
+            fnn_converged: Some(false),
+            ..Default::default()
+        };
+        assert_eq!(classify(&noise, &t).regime, Regime::Stochastic);
+        let chaos = Evidence {
+            zero_one_k: Some(0.99),
+            fnn_converged: Some(true),
+            kantz_linear: true,
+            mle_per_sample: Some(0.69),
+            kantz_growth: Some(4.0),
+            ..Default::default()
+        };
+        assert_eq!(classify(&chaos, &t).regime, Regime::Chaotic);
+        // Negative control: the same exponent with K ≈ 0 is not chaos.
+        let regular = Evidence {
+            zero_one_k: Some(0.02),
+            ..chaos
+        };
+        assert_ne!(classify(&regular, &t).regime, Regime::Chaotic);
+        assert_eq!(Regime::QuasiPeriodic.as_str(), "quasi-periodic");
+        assert_eq!(
+            serde_json::to_string(&Regime::QuasiPeriodic).unwrap(),
+            "\"quasi-periodic\""
+        );
+    }
+}
