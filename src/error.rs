@@ -62,6 +62,12 @@ pub enum SimError {
     /// The scene was rejected.
     #[error(transparent)]
     Scene(#[from] SceneError),
+    /// Output (series, summary, sweep files) could not be written: names the file.
+    #[error("output: {0}")]
+    Output(String),
+    /// The scene is valid but asks for a model that is not available in this build.
+    #[error("{0}")]
+    Unavailable(String),
 }
 
 /// A series analysis that cannot be carried out on the given data/parameters.
@@ -126,4 +132,44 @@ pub enum DataError {
         /// What is wrong and how to fix it.
         message: String,
     },
+}
+
+/// A figure that cannot be drawn: names the figure, the input field and the fix.
+#[derive(Debug, Error)]
+pub enum PlotError {
+    /// The data given to a figure is unusable (empty, mismatched lengths, NaN …).
+    #[error("{figure} figure: {field}: {hint}")]
+    BadData {
+        /// Figure kind, e.g. `frf`.
+        figure: String,
+        /// Input field or column, e.g. `amplitude_m`.
+        field: String,
+        /// What is wrong and how to fix it.
+        hint: String,
+    },
+    /// The output file name has an extension no backend handles.
+    #[error("{path}: unsupported figure format (use .png)")]
+    Format {
+        /// Requested output path.
+        path: String,
+    },
+    /// The drawing backend failed (file not writable, font missing …).
+    #[error("{path}: drawing failed: {message}")]
+    Draw {
+        /// Output path (or `<memory>`).
+        path: String,
+        /// Backend message.
+        message: String,
+    },
+}
+
+impl PlotError {
+    /// Shorthand for [`PlotError::BadData`].
+    pub fn bad(figure: &str, field: impl Into<String>, hint: impl Into<String>) -> Self {
+        PlotError::BadData {
+            figure: figure.to_string(),
+            field: field.into(),
+            hint: hint.into(),
+        }
+    }
 }

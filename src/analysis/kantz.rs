@@ -537,17 +537,21 @@ pub struct SlopeFit {
 /// Settings of the scaling-region finder [`fit_scaling_region`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ScalingOptions {
-    /// Shortest window, in points. Default 5.
+    /// Shortest window, in points (at least 6). Default 6.
     pub min_len: usize,
     /// Minimum R² for a window to count as linear. Default 0.99.
     pub r2_min: f64,
+    /// Largest relative difference between the slopes of the window's first and last thirds,
+    /// `|s₁ − s₂| ≤ tol·|s|`. Default 0.2.
+    pub slope_tolerance: f64,
 }
 
 impl Default for ScalingOptions {
     fn default() -> Self {
         Self {
-            min_len: 5,
+            min_len: 6,
             r2_min: 0.99,
+            slope_tolerance: 0.2,
         }
     }
 }
@@ -555,12 +559,14 @@ impl Default for ScalingOptions {
 /// Finds the linear part of a curve S(Δn) and fits its slope.
 ///
 /// # Formula
-/// Every window `[a, b]` of at least `min_len` defined points is fitted by least squares;
-/// among windows with `R² ≥ r2_min` the longest is chosen (ties: higher R²). If no window
-/// qualifies, the whole curve is fitted and `linear = false`.
+/// Every window `[a, b]` of at least `min_len` defined points is fitted by least squares.
+/// A window is linear if `R² ≥ r2_min` and the slopes `s₁`, `s₂` fitted to its first and
+/// last thirds agree, `|s₁ − s₂| ≤ slope_tolerance·|s|` (a window that bends into saturation fails this
+/// even when its R² is high). Among linear windows the longest is chosen (ties: higher R²).
+/// If no window qualifies, the whole curve is fitted and `linear = false`.
 ///
 /// # Parameters
-/// [`ScalingOptions`]: `min_len = 5`, `r2_min = 0.99`.
+/// [`ScalingOptions`]: `min_len = 6`, `r2_min = 0.99`, `slope_tolerance = 0.2`.
 ///
 /// # Pitfalls
 /// A curve that bends slowly into saturation can keep R² above the threshold over a window
@@ -596,12 +602,18 @@ pub fn fit_scaling_region(s: &[Option<f64>], opts: &ScalingOptions) -> Option<Sl
         };
         (slope, intercept, r2)
     };
-    let min_len = opts.min_len.max(2).min(n);
+    let min_len = opts.min_len.max(6).min(n);
     let mut best: Option<(usize, f64, usize, usize)> = None;
     for a in 0..=n - min_len {
         for b in a + min_len - 1..n {
-            let (_, _, r2) = fit(a, b);
+            let (slope, _, r2) = fit(a, b);
             if r2 < opts.r2_min {
+                continue;
+            }
+            // first and last thirds must have the same slope (rejects windows that bend)
+            let third = (b - a) / 3;
+            let (s1, s2) = (fit(a, a + third).0, fit(b - third, b).0);
+            if (s1 - s2).abs() > opts.slope_tolerance * slope.abs() {
                 continue;
             }
             let len = b - a + 1;

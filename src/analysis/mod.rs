@@ -9,8 +9,10 @@
 pub mod analyze;
 pub mod embedding;
 pub mod false_nearest_neighbors;
+pub mod frf_fit;
 pub mod kantz;
 pub mod mutual_information;
+pub mod optimum;
 pub mod poincare;
 pub mod regime;
 pub mod spectrum;

@@ -1,1 +1,100 @@
-//! contact (see lib.rs for the architecture).
+//! Narrow phase and force laws of the DEM (SPEC §2): one file per contact law, selected by
+//! the [`NormalLaw`] and [`TangentialLaw`] enums (LAMMPS-style sub-models).
+//!
+//! A contact is a [`ContactGeometry`] (overlap ζ, unit normal n, relative velocity) plus a
+//! normal law and a tangential law. The kernels are pure functions of the geometry; the laws'
+//! coefficients for a pair (k_n, damping) come from [`material`] mixing. The hot loop of
+//! [`crate::dem`] matches the enums once per step and runs a monomorphised loop.
+
+pub mod coulomb_viscous;
+pub mod hertz_kuwabara_kono;
+pub mod linear_spring_dashpot;
+pub mod material;
+pub mod restitution;
+
+pub use coulomb_viscous::coulomb_viscous_force;
+pub use hertz_kuwabara_kono::{hertz_elastic_energy, hertz_normal_force, hertz_stiffness};
+pub use linear_spring_dashpot::{linear_normal_force, LinearContactParams};
+pub use material::{Material, PairProperties};
+
+use serde::{Deserialize, Serialize};
+
+/// Geometry and kinematics of one contact, as seen from grain i.
+///
+/// `normal` points from j (or the wall) to i; `overlap_m` ζ = R_i + R_j − |r_i − r_j| > 0;
+/// `v_n_m_s` = ζ' is the normal approach speed (> 0 while approaching); `v_s_m_s` is the
+/// sliding velocity of i's contact point relative to j's (2.2.13–2.2.15).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactGeometry {
+    /// Overlap ζ (m).
+    pub overlap_m: f64,
+    /// Unit normal from j to i (–).
+    pub normal: [f64; 3],
+    /// Normal approach speed ζ' (m/s), positive when approaching.
+    pub v_n_m_s: f64,
+    /// Tangential slip velocity of the contact point, i relative to j (m/s).
+    pub v_s_m_s: [f64; 3],
+}
+
+/// Normal contact law (the enum is the registry: one variant per law).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", tag = "law")]
+pub enum NormalLaw {
+    /// Hertz with the Kuwabara–Kono viscous term (2.2.8–2.2.9):
+    /// F_n = k_n ζ^{3/2} + γ_n ζ' √ζ, k_n = (4/3) E* √R* (k_n mixed per pair).
+    HertzKuwabaraKono {
+        /// Normal damping γ_n (kg s⁻¹ m^-1/2).
+        gamma_n: f64,
+    },
+    /// Linear spring–dashpot F_n = k_n ζ + c_n ζ' with the seed paper's parameter selection
+    /// (see [`linear_spring_dashpot`]).
+    LinearSpringDashpot {
+        /// Coefficient of restitution e the damping is built from (–).
+        restitution: f64,
+        /// Yield strength Y of the grain material (Pa), fixes the yield overlap.
+        yield_strength: f64,
+    },
+}
+
+/// Tangential contact law.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", tag = "law")]
+pub enum TangentialLaw {
+    /// No tangential force (frictionless grains).
+    None,
+    /// Simplified Coulomb law with viscous regularisation (2.2.12):
+    /// F_s = −min(γ_s |v_s| √ζ, μ |F_n|) v_s/|v_s|.
+    CoulombViscous {
+        /// Tangential damping γ_s (kg s⁻¹ m^-1/2).
+        gamma_s: f64,
+        /// Coulomb friction coefficient μ (–).
+        friction: f64,
+    },
+}
+
+/// Whether the total normal force may turn attractive near the end of a contact.
+///
+/// With viscous normal damping the sum k_n ζ^{3/2} + γ_n ζ' √ζ becomes negative while the
+/// grains separate. [`AttractionPolicy::Clamp`] (default) sets it to 0, so the collision ends
+/// when the force vanishes, which is the assumption of the Müller–Pöschel restitution formula
+/// (SPEC §9); [`AttractionPolicy::Allow`] keeps the raw sum until the overlap vanishes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum AttractionPolicy {
+    /// Total normal force clamped to ≥ 0 (default).
+    #[default]
+    Clamp,
+    /// Attractive (negative) total normal force allowed until ζ = 0.
+    Allow,
+}
+
+impl AttractionPolicy {
+    /// Applies the policy to a raw total normal force (N).
+    #[inline(always)]
+    pub fn apply(self, f_n: f64) -> f64 {
+        match self {
+            AttractionPolicy::Clamp => f_n.max(0.0),
+            AttractionPolicy::Allow => f_n,
+        }
+    }
+}

@@ -1,1 +1,15 @@
-//! dem (see lib.rs for the architecture).
+//! The DEM time-stepping pipeline (SPEC §2): [`DemWorld`] owns the grains' arrays, the box
+//! and primary mass, the neighbour list and the energy ledger; [`DemWorld::step`] runs
+//! neighbour search → contact forces → box equation (2.1.22) → velocity Verlet (2.2.4–2.2.5)
+//! → quaternion renormalisation → energy ledger. [`run`] deposits a bed, settles it and
+//! drives the box, emitting samples to an observer.
+
+pub mod energy;
+pub mod run;
+pub mod snapshot;
+pub mod stability;
+pub mod world;
+
+pub use energy::{EnergyLedger, EnergyState};
+pub use run::{run_dem, DemObserver, DemRunConfig, DemSample, DemSummary, DtChoice};
+pub use world::{BoxDrive, DemWorld, PrimarySystem};

@@ -1,1 +1,9 @@
-//! model (see lib.rs for the architecture).
+//! Equations of the primary system, no time stepping: the linear single-degree-of-freedom
+//! system under harmonic base excitation (2.1.2), its closed-form solution between events and
+//! its analytic steady-state amplitude (2.1.21); and what every run reports ([`summary`]).
+
+pub mod primary;
+pub mod summary;
+
+pub use primary::{base_motion, frf_amplitude, Anchor, Sdof};
+pub use summary::{EnergyTotals, RunOptions, RunSummary, StrobePoint};

@@ -1,1 +1,20 @@
-//! plot (see lib.rs for the architecture).
+//! Headless figures (SPEC §7): plotters with the bundled DejaVu Sans font, PNG output, one file
+//! per figure kind. Every figure is a struct of borrowed slices implementing [`Figure`];
+//! [`render`] writes it to a file and [`render_rgb`] to memory.
+
+pub mod bed_motion;
+pub mod bifurcation;
+pub mod common;
+pub mod effective;
+pub mod energy;
+pub mod frf;
+pub mod lines;
+pub mod poincare;
+pub mod reconstruction;
+pub mod regime_frf;
+pub mod regime_map;
+pub mod resonance;
+pub mod spectrum;
+pub mod table;
+
+pub use common::{render, render_rgb, Figure, FigureOptions, Series};

@@ -1,9 +1,82 @@
 //! `[damper] kind = "dem"`: parameters of the granular (DEM) damper (SPEC §2, §5).
 //!
-//! This is the contract between the scene format and the DEM simulator; the DEM issue owns
-//! the validation and derived quantities (effective moduli, automatic time step).
+//! This is the contract between the scene format and the DEM simulator. Every key keeps the
+//! name of the issue and documents its unit; [`DemParams::validate`] checks every constraint
+//! once and names the offending key in its error.
+//!
+//! ```toml
+//! [damper]
+//! kind = "dem"
+//! box = [0.03675, 0.03675, 0.1225]  # m: Lx, Ly, Lz
+//! count = 250
+//! radius = 0.003                    # m (or radius_min / radius_max, or radius_distribution)
+//! density = 8030.0                  # kg/m³
+//! youngs_modulus = 2.03e11          # Pa
+//! poisson = 0.28
+//! friction = 0.3
+//! gamma_n = 3660.0                  # kg s⁻¹ m^-1/2 (Kuwabara–Kono normal damping)
+//! gamma_s = 10980.0                 # kg s⁻¹ m^-1/2 (tangential damping)
+//! contact = "hertz-kk"              # or "linear" (needs restitution, yield_strength)
+//! ```
 
 use serde::{Deserialize, Serialize};
+
+use crate::contact::material::Material;
+use crate::error::SceneError;
+use crate::packing::RadiusDistribution;
+
+/// Contact law family of the scene (`damper.contact`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum ContactKind {
+    /// Hertz + Kuwabara–Kono normal force, Coulomb–viscous tangential force (2.2.8–2.2.15).
+    #[default]
+    #[serde(rename = "hertz-kk", alias = "hertz_kuwabara_kono")]
+    HertzKk,
+    /// Linear spring–dashpot with the seed paper's parameter selection.
+    #[serde(rename = "linear", alias = "linear_spring_dashpot")]
+    Linear,
+}
+
+/// How the initial bed is built (`damper.packing`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum PackingKind {
+    /// Grains dropped from an FCC lattice and left to settle.
+    #[default]
+    #[serde(rename = "lattice")]
+    Lattice,
+    /// Advancing-front packing (SPEC §5) on the floor, then settled.
+    #[serde(rename = "advancing-front", alias = "advancing_front")]
+    AdvancingFront,
+}
+
+/// Shape of the radius distribution (`damper.radius_distribution`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum RadiusDistributionKind {
+    /// All radii = `radius`.
+    Fixed,
+    /// Uniform on [`radius_min`, `radius_max`].
+    Uniform,
+    /// Normal(`radius`, `radius_std`) truncated to [`radius_min`, `radius_max`].
+    Normal,
+    /// `radius_table` rows `[radius_m, weight]` (by number).
+    Discrete,
+    /// `radius_table` rows `[radius_m, cumulative_fraction]`, a size curve by number.
+    Empirical,
+}
+
+/// Format of particle snapshots (`damper.snapshot_format`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SnapshotFormat {
+    /// `snapshots/grains_NNNNNN.csv`.
+    Csv,
+    /// Legacy VTK polydata `snapshots/grains_NNNNNN.vtk` (ParaView).
+    Vtk,
+    /// Both.
+    #[default]
+    Both,
+}
 
 /// Parameters of a box of spheres simulated with the discrete element method.
 ///
@@ -12,36 +85,420 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DemParams {
-    /// Inner box size [Lx, Ly, Lz] (m).
+    /// Inner box size [Lx, Ly, Lz] (m). The floor is at the box position z, the ceiling Lz above.
     pub r#box: [f64; 3],
     /// Number of spheres.
     pub count: usize,
-    /// Sphere radius (m) when all grains are equal.
+    /// Sphere radius (m) when all grains are equal; the mean of `normal`.
     #[serde(default)]
     pub radius: Option<f64>,
-    /// Smallest radius (m) of a uniform radius range.
+    /// Smallest radius (m) of a uniform range (or truncation of `normal`).
     #[serde(default)]
     pub radius_min: Option<f64>,
-    /// Largest radius (m) of a uniform radius range.
+    /// Largest radius (m) of a uniform range (or truncation of `normal`).
     #[serde(default)]
     pub radius_max: Option<f64>,
+    /// Radius distribution; default: `fixed` if `radius` alone, `uniform` if min/max given.
+    #[serde(default)]
+    pub radius_distribution: Option<RadiusDistributionKind>,
+    /// Standard deviation of the `normal` radius distribution (m).
+    #[serde(default)]
+    pub radius_std: Option<f64>,
+    /// Table for `discrete` ([radius_m, weight]) or `empirical` ([radius_m, cumulative]) radii.
+    #[serde(default)]
+    pub radius_table: Option<Vec<[f64; 2]>>,
     /// Grain density (kg/m³).
     pub density: f64,
     /// Grain Young's modulus E (Pa).
     pub youngs_modulus: f64,
     /// Grain Poisson ratio ν (–), 0 ≤ ν < 0.5.
     pub poisson: f64,
-    /// Coulomb friction coefficient μ (–).
+    /// Grain–grain Coulomb friction coefficient μ (–).
     pub friction: f64,
-    /// Kuwabara–Kono normal damping γ_n (kg s⁻¹ m^-1/2), (2.2.8).
+    /// Kuwabara–Kono normal damping γ_n (kg s⁻¹ m^-1/2), (2.2.8). Unused by `linear`.
+    #[serde(default)]
     pub gamma_n: f64,
-    /// Tangential damping γ_s (kg s⁻¹ m^-1/2), (2.2.12).
+    /// Tangential damping γ_s (kg s⁻¹ m^-1/2), (2.2.12). Unused by `linear`.
+    #[serde(default)]
     pub gamma_s: f64,
-    /// Contact law: `"hertz-kk"` (Hertz + Kuwabara–Kono) or `"linear"`.
-    #[serde(default = "default_contact")]
-    pub contact: String,
+    /// Contact law: `"hertz-kk"` (Hertz + Kuwabara–Kono, default) or `"linear"`.
+    #[serde(default)]
+    pub contact: ContactKind,
+    /// Coefficient of restitution e (–) for `contact = "linear"` (grain–grain).
+    #[serde(default)]
+    pub restitution: Option<f64>,
+    /// Yield strength Y (Pa) for `contact = "linear"` (fixes k_n via the yield overlap).
+    #[serde(default)]
+    pub yield_strength: Option<f64>,
+    /// Let the total normal force turn attractive while grains separate (default `false`:
+    /// clamped to ≥ 0, the collision ends when the force vanishes — Müller & Pöschel).
+    #[serde(default)]
+    pub attractive_normal_force: bool,
+    /// Wall Young's modulus E_b (Pa); default: the grains' E.
+    #[serde(default)]
+    pub wall_youngs_modulus: Option<f64>,
+    /// Wall Poisson ratio ν_b (–); default: the grains' ν.
+    #[serde(default)]
+    pub wall_poisson: Option<f64>,
+    /// Grain–wall friction coefficient (–); default: `friction`.
+    #[serde(default)]
+    pub wall_friction: Option<f64>,
+    /// Grain–wall γ_n (kg s⁻¹ m^-1/2); default: `gamma_n`.
+    #[serde(default)]
+    pub wall_gamma_n: Option<f64>,
+    /// Grain–wall γ_s (kg s⁻¹ m^-1/2); default: `gamma_s`.
+    #[serde(default)]
+    pub wall_gamma_s: Option<f64>,
+    /// Grain–wall restitution for `linear` (–); default: `restitution`.
+    #[serde(default)]
+    pub wall_restitution: Option<f64>,
+    /// Initial bed: `"lattice"` (FCC drop and settle, default) or `"advancing-front"`.
+    #[serde(default)]
+    pub packing: PackingKind,
+    /// Seed of every random draw (radii, packing, lattice jitter).
+    #[serde(default = "default_seed")]
+    pub seed: u64,
+    /// Integrate angular velocities and frictional torques (default `true`).
+    #[serde(default = "default_true")]
+    pub rotations: bool,
+    /// Track orientations as unit quaternions (default `false`: spheres do not need them).
+    #[serde(default)]
+    pub orientations: bool,
+    /// Interval between particle snapshots (s); none when absent.
+    #[serde(default)]
+    pub snapshot_interval: Option<f64>,
+    /// Snapshot files: `"csv"`, `"vtk"` or `"both"` (default).
+    #[serde(default)]
+    pub snapshot_format: SnapshotFormat,
+    /// Verlet-list skin (m); default 0.3 × the largest radius.
+    #[serde(default)]
+    pub neighbor_skin: Option<f64>,
+    /// Longest settling time before the base starts (s); default 1.0. Settling stops earlier
+    /// once the grains' mean speed is below 1 mm/s.
+    #[serde(default)]
+    pub settle_time: Option<f64>,
 }
 
-fn default_contact() -> String {
-    "hertz-kk".to_string()
+fn default_seed() -> u64 {
+    1
+}
+fn default_true() -> bool {
+    true
+}
+
+fn positive(field: &str, v: f64, unit: &str) -> Result<(), SceneError> {
+    if v > 0.0 && v.is_finite() {
+        Ok(())
+    } else {
+        Err(SceneError::invalid(field, v, format!("must be > 0 ({unit})")))
+    }
+}
+
+fn non_negative(field: &str, v: f64, unit: &str) -> Result<(), SceneError> {
+    if v >= 0.0 && v.is_finite() {
+        Ok(())
+    } else {
+        Err(SceneError::invalid(field, v, format!("must be ≥ 0 ({unit})")))
+    }
+}
+
+fn poisson_ok(field: &str, v: f64) -> Result<(), SceneError> {
+    if (0.0..0.5).contains(&v) {
+        Ok(())
+    } else {
+        Err(SceneError::invalid(field, v, "must be in [0, 0.5) (Poisson ratio)"))
+    }
+}
+
+impl DemParams {
+    /// Scene B of the thesis (Sánchez 2012 §3.2): 250 steel spheres, R = 3 mm, in a
+    /// 36.75 × 36.75 mm box, Lz = 0.1225 m (one of the thesis's heights).
+    pub fn thesis_b() -> Self {
+        DemParams {
+            r#box: [0.03675, 0.03675, 0.1225],
+            count: 250,
+            radius: Some(0.003),
+            radius_min: None,
+            radius_max: None,
+            radius_distribution: None,
+            radius_std: None,
+            radius_table: None,
+            density: 8030.0,
+            youngs_modulus: 2.03e11,
+            poisson: 0.28,
+            friction: 0.3,
+            gamma_n: 3660.0,
+            gamma_s: 10980.0,
+            contact: ContactKind::HertzKk,
+            restitution: None,
+            yield_strength: None,
+            attractive_normal_force: false,
+            wall_youngs_modulus: None,
+            wall_poisson: None,
+            wall_friction: None,
+            wall_gamma_n: None,
+            wall_gamma_s: None,
+            wall_restitution: None,
+            packing: PackingKind::Lattice,
+            seed: 1,
+            rotations: true,
+            orientations: false,
+            snapshot_interval: None,
+            snapshot_format: SnapshotFormat::Both,
+            neighbor_skin: None,
+            settle_time: None,
+        }
+    }
+
+    /// Scene B with both Young's moduli divided by `factor` and the damping rescaled so that
+    /// the restitution curve e(v) is unchanged: β ∝ γ_n k_n^{-3/5} (SPEC §9) ⇒ γ ∝ E^{3/5}.
+    /// Used by tests and benchmarks to take ~factor^{2/5} larger time steps.
+    pub fn thesis_b_softened(factor: f64) -> Self {
+        let mut p = Self::thesis_b();
+        p.youngs_modulus /= factor;
+        let s = factor.powf(-0.6);
+        p.gamma_n *= s;
+        p.gamma_s *= s;
+        p
+    }
+
+    /// The resolved radius distribution.
+    ///
+    /// # Errors
+    /// Names the missing or inconsistent radius key.
+    pub fn radius_distribution(&self) -> Result<RadiusDistribution, SceneError> {
+        let kind = match self.radius_distribution {
+            Some(k) => k,
+            None => match (self.radius, self.radius_min, self.radius_max) {
+                (Some(_), None, None) => RadiusDistributionKind::Fixed,
+                (None, Some(_), Some(_)) => RadiusDistributionKind::Uniform,
+                (None, None, None) if self.radius_table.is_some() => RadiusDistributionKind::Discrete,
+                _ => {
+                    return Err(SceneError::Missing {
+                        field: "damper.radius".into(),
+                        hint: "give `radius` (m), or `radius_min` and `radius_max` (m), or \
+                               `radius_distribution` with its keys"
+                            .into(),
+                    })
+                }
+            },
+        };
+        let need = |v: Option<f64>, f: &str| -> Result<f64, SceneError> {
+            let x = v.ok_or_else(|| SceneError::Missing {
+                field: format!("damper.{f}"),
+                hint: format!("required by radius_distribution = {kind:?} (metres)"),
+            })?;
+            positive(&format!("damper.{f}"), x, "metres")?;
+            Ok(x)
+        };
+        let d = match kind {
+            RadiusDistributionKind::Fixed => RadiusDistribution::Fixed(need(self.radius, "radius")?),
+            RadiusDistributionKind::Uniform => {
+                let (min, max) = (need(self.radius_min, "radius_min")?, need(self.radius_max, "radius_max")?);
+                if max < min {
+                    return Err(SceneError::invalid("damper.radius_max", max, "must be ≥ radius_min"));
+                }
+                RadiusDistribution::Uniform { min, max }
+            }
+            RadiusDistributionKind::Normal => {
+                let mean = need(self.radius, "radius")?;
+                let std = self.radius_std.ok_or_else(|| SceneError::Missing {
+                    field: "damper.radius_std".into(),
+                    hint: "standard deviation of the normal radius distribution (m)".into(),
+                })?;
+                non_negative("damper.radius_std", std, "metres")?;
+                let min = self.radius_min.unwrap_or((mean - 3.0 * std).max(0.05 * mean));
+                let max = self.radius_max.unwrap_or(mean + 3.0 * std);
+                positive("damper.radius_min", min, "metres")?;
+                if max < min {
+                    return Err(SceneError::invalid("damper.radius_max", max, "must be ≥ radius_min"));
+                }
+                RadiusDistribution::Normal { mean, std, min, max }
+            }
+            RadiusDistributionKind::Discrete | RadiusDistributionKind::Empirical => {
+                let t = self.radius_table.as_ref().filter(|t| !t.is_empty()).ok_or_else(|| {
+                    SceneError::Missing {
+                        field: "damper.radius_table".into(),
+                        hint: "rows [radius_m, weight] (discrete) or [radius_m, cumulative] (empirical)".into(),
+                    }
+                })?;
+                for row in t {
+                    positive("damper.radius_table", row[0], "radius, metres")?;
+                    non_negative("damper.radius_table", row[1], "weight or cumulative fraction")?;
+                }
+                let radii: Vec<f64> = t.iter().map(|r| r[0]).collect();
+                let w: Vec<f64> = t.iter().map(|r| r[1]).collect();
+                if kind == RadiusDistributionKind::Discrete {
+                    if w.iter().sum::<f64>() <= 0.0 {
+                        return Err(SceneError::invalid("damper.radius_table", "weights", "weights must not all be 0"));
+                    }
+                    RadiusDistribution::Discrete { values: radii, weights: w }
+                } else {
+                    let ok = t.len() >= 2
+                        && radii.windows(2).all(|p| p[1] > p[0])
+                        && w.windows(2).all(|p| p[1] >= p[0])
+                        && w[0] == 0.0
+                        && (w[w.len() - 1] - 1.0).abs() < 1e-9;
+                    if !ok {
+                        return Err(SceneError::invalid(
+                            "damper.radius_table",
+                            "curve",
+                            "empirical curve needs ≥ 2 rows, radii increasing, cumulative fraction \
+                             non-decreasing from 0 to 1",
+                        ));
+                    }
+                    RadiusDistribution::Empirical { radii, cdf: w }
+                }
+            }
+        };
+        Ok(d)
+    }
+
+    /// Grain material.
+    pub fn grain_material(&self) -> Material {
+        Material { youngs_modulus: self.youngs_modulus, poisson: self.poisson }
+    }
+
+    /// Wall material (defaults to the grains').
+    pub fn wall_material(&self) -> Material {
+        Material {
+            youngs_modulus: self.wall_youngs_modulus.unwrap_or(self.youngs_modulus),
+            poisson: self.wall_poisson.unwrap_or(self.poisson),
+        }
+    }
+
+    /// Verlet skin (m): `neighbor_skin` or 0.3 R_max.
+    pub fn skin(&self, r_max: f64) -> f64 {
+        self.neighbor_skin.unwrap_or(0.3 * r_max)
+    }
+
+    /// Checks every constraint once; the error names the key, the value and the fix.
+    ///
+    /// # Errors
+    /// Non-positive box, count, radii, density or moduli; ν ∉ [0, 0.5); negative friction or
+    /// damping; missing `restitution`/`yield_strength` for `linear`; grains that cannot fit
+    /// (largest diameter above the smallest box side, or solid volume above 58 % of the box,
+    /// about a random close packing).
+    pub fn validate(&self) -> Result<(), SceneError> {
+        for (k, v) in ["damper.box[0] (Lx)", "damper.box[1] (Ly)", "damper.box[2] (Lz)"].iter().zip(self.r#box) {
+            positive(k, v, "metres")?;
+        }
+        if self.count == 0 {
+            return Err(SceneError::invalid("damper.count", 0, "must be ≥ 1 grain"));
+        }
+        positive("damper.density", self.density, "kg/m³")?;
+        positive("damper.youngs_modulus", self.youngs_modulus, "Pa")?;
+        poisson_ok("damper.poisson", self.poisson)?;
+        non_negative("damper.friction", self.friction, "–")?;
+        non_negative("damper.gamma_n", self.gamma_n, "kg s⁻¹ m^-1/2")?;
+        non_negative("damper.gamma_s", self.gamma_s, "kg s⁻¹ m^-1/2")?;
+        if let Some(v) = self.wall_youngs_modulus {
+            positive("damper.wall_youngs_modulus", v, "Pa")?;
+        }
+        if let Some(v) = self.wall_poisson {
+            poisson_ok("damper.wall_poisson", v)?;
+        }
+        for (k, v) in [
+            ("damper.wall_friction", self.wall_friction),
+            ("damper.wall_gamma_n", self.wall_gamma_n),
+            ("damper.wall_gamma_s", self.wall_gamma_s),
+        ] {
+            if let Some(v) = v {
+                non_negative(k, v, "see the key's documentation")?;
+            }
+        }
+        if self.contact == ContactKind::Linear {
+            let e = self.restitution.ok_or_else(|| SceneError::Missing {
+                field: "damper.restitution".into(),
+                hint: "contact = \"linear\" needs the coefficient of restitution e in (0, 1]".into(),
+            })?;
+            for (k, e) in [("damper.restitution", Some(e)), ("damper.wall_restitution", self.wall_restitution)] {
+                if let Some(e) = e {
+                    if !(e > 0.0 && e <= 1.0) {
+                        return Err(SceneError::invalid(k, e, "must be in (0, 1] (coefficient of restitution)"));
+                    }
+                }
+            }
+            let y = self.yield_strength.ok_or_else(|| SceneError::Missing {
+                field: "damper.yield_strength".into(),
+                hint: "contact = \"linear\" needs the grains' yield strength (Pa), e.g. 1.0e9 for steel".into(),
+            })?;
+            positive("damper.yield_strength", y, "Pa")?;
+        }
+        if let Some(s) = self.snapshot_interval {
+            positive("damper.snapshot_interval", s, "seconds")?;
+        }
+        if let Some(s) = self.neighbor_skin {
+            positive("damper.neighbor_skin", s, "metres")?;
+        }
+        if let Some(s) = self.settle_time {
+            non_negative("damper.settle_time", s, "seconds")?;
+        }
+        let dist = self.radius_distribution()?;
+        let rmax = dist.r_max();
+        let side = self.r#box.iter().cloned().fold(f64::INFINITY, f64::min);
+        if 2.0 * rmax >= side {
+            return Err(SceneError::invalid(
+                "damper.radius",
+                rmax,
+                format!("largest diameter {:.4e} m does not fit the smallest box side {side:.4e} m", 2.0 * rmax),
+            ));
+        }
+        let v_grains = self.count as f64 * 4.0 / 3.0 * std::f64::consts::PI * rmax.powi(3);
+        let v_box = self.r#box[0] * self.r#box[1] * self.r#box[2];
+        if v_grains > 0.58 * v_box {
+            return Err(SceneError::invalid(
+                "damper.count",
+                self.count,
+                format!(
+                    "{} grains up to R = {rmax:.3e} m fill {:.0} % of the box; a random packing holds \
+                     at most ~58 %: lower count or radius, or enlarge damper.box",
+                    self.count,
+                    100.0 * v_grains / v_box
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn thesis_b_is_valid_and_errors_name_the_key() {
+        DemParams::thesis_b().validate().unwrap();
+        let mut p = DemParams::thesis_b();
+        p.radius = Some(-0.003);
+        let e = p.validate().unwrap_err().to_string();
+        assert!(e.contains("damper.radius") && e.contains("> 0"), "{e}");
+        let mut p = DemParams::thesis_b();
+        p.poisson = 0.5;
+        assert!(p.validate().unwrap_err().to_string().contains("damper.poisson"));
+        let mut p = DemParams::thesis_b();
+        p.count = 2000;
+        assert!(p.validate().unwrap_err().to_string().contains("damper.count"));
+        let mut p = DemParams::thesis_b();
+        p.contact = ContactKind::Linear;
+        assert!(p.validate().unwrap_err().to_string().contains("damper.restitution"));
+    }
+
+    #[test]
+    fn parses_from_toml() {
+        let t = r#"
+            box = [0.03675, 0.03675, 0.1225]
+            count = 250
+            radius = 0.003
+            density = 8030.0
+            youngs_modulus = 2.03e11
+            poisson = 0.28
+            friction = 0.3
+            gamma_n = 3660.0
+            gamma_s = 10980.0
+            contact = "hertz-kk"
+        "#;
+        let p: DemParams = toml::from_str(t).unwrap();
+        assert_eq!(p, DemParams::thesis_b());
+    }
 }

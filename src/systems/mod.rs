@@ -5,7 +5,9 @@
 //! - [`henon`]: Hénon map (1.4, 0.3), λ = 0.419217.
 //! - [`lorenz`]: Lorenz flow (10, 28, 8/3), λ₁ = 0.90563 per time unit.
 //! - [`roessler`]: Rössler flow (0.2, 0.2, 5.7), λ₁ = 0.0714 per time unit.
+//! - [`bouncing_ball`]: ball on a vibrating table, period-1 thresholds in Γ.
 
+pub mod bouncing_ball;
 pub mod henon;
 pub mod logistic;
 pub mod lorenz;

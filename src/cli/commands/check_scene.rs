@@ -1,10 +1,59 @@
-//! `pdamp check_scene` (to be written by the issue that owns it).
+//! `pdamp check-scene SCENE [--set key=value …]`: validate a scene without running it and print
+//! its derived quantities.
 
-/// Arguments of `pdamp check_scene`.
+use crate::scene::Damper;
+use std::path::PathBuf;
+
+/// Arguments of `pdamp check-scene`.
 #[derive(Debug, clap::Args)]
-pub struct Args {}
+pub struct Args {
+    /// Scene file (TOML).
+    pub scene: PathBuf,
+    /// Override a scene key, dotted (as in `simulate`). Repeatable.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+}
 
-/// Run `pdamp check_scene`.
-pub fn run(_args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("`check_scene` is not available yet")
+/// Run `pdamp check-scene`.
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let (_, _, scene) = super::simulate::load_scene(&args.scene, &args.set)?;
+    let f = scene.frequency_hz();
+    let omega = scene.excitation.omega_rad_s();
+    println!("{}: valid", args.scene.display());
+    match &scene.primary {
+        Some(p) => println!(
+            "primary: M = {} kg, K = {} N/m, C = {:.6} N s/m, ξ = {:.6}, f0 = {:.6} Hz",
+            p.mass,
+            p.stiffness,
+            p.damping_n_s_m(),
+            p.damping_ratio(),
+            p.natural_frequency_hz()
+        ),
+        None => println!("primary: none (container moves with the base)"),
+    }
+    let gamma = if scene.gravity > 0.0 {
+        format!(
+            "{:.6}",
+            scene.excitation.amplitude * omega * omega / scene.gravity
+        )
+    } else {
+        "inf (g = 0)".into()
+    };
+    println!(
+        "excitation: U = {} m, f = {} Hz, Γ = UΩ²/g = {gamma}; run: {:.6} s ({:.1} periods), steady from {:.6} s",
+        scene.excitation.amplitude,
+        f,
+        scene.duration_s(),
+        scene.duration_s() * f,
+        scene.steady_start_s()
+    );
+    match &scene.damper {
+        Damper::None => println!("damper: none"),
+        Damper::Impact(p) => println!(
+            "damper: impact, m_p = {} kg, gap = {} m, e = {}",
+            p.mass, p.gap, p.restitution
+        ),
+        Damper::Dem(d) => println!("damper: dem, {} grains, box {:?} m", d.count, d.r#box),
+    }
+    Ok(())
 }

@@ -1,10 +1,218 @@
-//! `pdamp fit_frf` (to be written by the issue that owns it).
+//! `pdamp fit-frf`: effective mass and damping from a frequency sweep, per group of a second
+//! varied key (e.g. container height), and the optimal value of that key.
 
-/// Arguments of `pdamp fit_frf`.
+use std::path::PathBuf;
+
+use anyhow::{bail, Context};
+
+use crate::analysis::frf_fit::{fit_frf, FrfFit, FrfFitOptions, FrfResidual};
+use crate::analysis::optimum::{level_crossings, parabolic_peak, Located};
+use crate::plot::table::Table;
+
+/// Arguments of `pdamp fit-frf`.
+///
+/// Fits (2.1.21) Z(Ω) = U sqrt((K² + (CΩ)²)/((K − MΩ²)² + (CΩ)²)) with K and U fixed to the
+/// `frequency_hz`, `amplitude_m` columns of SWEEP.csv (output of `pdamp sweep`). Writes CSV
+/// (one row per group) to stdout, or JSON with `--json`.
 #[derive(Debug, clap::Args)]
-pub struct Args {}
+pub struct Args {
+    /// Sweep table with columns `frequency_hz` and `amplitude_m` (e.g. DIR/sweep.csv).
+    pub input: PathBuf,
+    /// Spring stiffness K of the primary system, held fixed (N/m). Required.
+    #[arg(long, value_name = "N_PER_M")]
+    pub stiffness: f64,
+    /// Base-excitation amplitude U, held fixed (m). Required.
+    #[arg(long, value_name = "M")]
+    pub base_amplitude: f64,
+    /// Primary mass M (kg): enables the optimum "M_ef crosses M" over the groups.
+    #[arg(long, value_name = "KG")]
+    pub mass: Option<f64>,
+    /// Column to group the rows by, one fit per value (e.g. `damper.box`). Default: the only
+    /// dotted (varied-key) column other than `excitation.frequency`, if there is exactly one;
+    /// otherwise one fit of all rows.
+    #[arg(long, value_name = "COLUMN")]
+    pub group: Option<String>,
+    /// Residual: `log` (default; relative errors, all points weigh alike) or `absolute`
+    /// (metres; dominated by the resonance peak).
+    #[arg(long, value_enum, default_value = "log")]
+    pub residual: ResidualArg,
+    /// Print JSON instead of CSV: an object with `mass_ef_kg`, `mass_ef_stderr_kg`,
+    /// `damping_ef_ns_per_m`, `damping_ef_stderr_ns_per_m`, `rms_residual_m`, `points`,
+    /// `converged` (one group), or `{group_key, fits: [...], optimum}` (several groups).
+    #[arg(long)]
+    pub json: bool,
+}
 
-/// Run `pdamp fit_frf`.
-pub fn run(_args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("`fit_frf` is not available yet")
+/// Residual choice on the command line.
+#[derive(Debug, Clone, Copy, clap::ValueEnum)]
+pub enum ResidualArg {
+    /// ln Z_model − ln Z.
+    Log,
+    /// Z_model − Z (m).
+    Absolute,
+}
+
+/// One group's fit, with the value of the group key.
+#[derive(Debug, serde::Serialize)]
+struct GroupFit {
+    group_value: Option<f64>,
+    #[serde(flatten)]
+    fit: FrfFit,
+}
+
+/// The optimum of the group key, as far as it can be located.
+#[derive(Debug, Default, serde::Serialize)]
+struct Optimum {
+    /// Maximum of C_ef (parabola through the top 3 points).
+    damping_max: Option<Located>,
+    /// Why the maximum could not be located.
+    damping_max_error: Option<String>,
+    /// Where M_ef crosses M (needs --mass).
+    mass_crossings: Vec<Located>,
+}
+
+fn auto_group(table: &Table) -> Option<String> {
+    let keys: Vec<&String> = table
+        .headers
+        .iter()
+        .filter(|h| h.contains('.') && h.as_str() != "excitation.frequency")
+        .collect();
+    (keys.len() == 1).then(|| keys[0].clone())
+}
+
+/// Run `pdamp fit-frf`.
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let table = Table::read(&args.input)?;
+    let f = table.f64_column("frequency_hz")?;
+    let z = table.f64_column("amplitude_m")?;
+    let group = args.group.clone().or_else(|| auto_group(&table));
+    let mut groups: Vec<(f64, Vec<usize>)> = Vec::new();
+    match &group {
+        Some(g) => {
+            let v = table.f64_column(g)?;
+            let mut idx: Vec<usize> = (0..v.len()).collect();
+            idx.sort_by(|&a, &b| v[a].total_cmp(&v[b]));
+            for i in idx {
+                match groups.last_mut() {
+                    Some((gv, rows)) if *gv == v[i] => rows.push(i),
+                    _ => groups.push((v[i], vec![i])),
+                }
+            }
+        }
+        None => groups.push((f64::NAN, (0..f.len()).collect())),
+    }
+    let opts = FrfFitOptions {
+        residual: match args.residual {
+            ResidualArg::Log => FrfResidual::Log,
+            ResidualArg::Absolute => FrfResidual::Absolute,
+        },
+        ..FrfFitOptions::new(args.stiffness, args.base_amplitude)
+    };
+    let mut fits = Vec::new();
+    for (gv, rows) in &groups {
+        let mut pts: Vec<(f64, f64)> = rows.iter().map(|&i| (f[i], z[i])).collect();
+        pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let (fs, zs): (Vec<f64>, Vec<f64>) = pts.into_iter().unzip();
+        let where_ = match &group {
+            Some(g) => format!("{} (group {g} = {gv})", args.input.display()),
+            None => args.input.display().to_string(),
+        };
+        let fit = fit_frf(&fs, &zs, &opts).with_context(|| format!("fitting {where_}"))?;
+        fits.push(GroupFit {
+            group_value: group.as_ref().map(|_| *gv),
+            fit,
+        });
+    }
+    let optimum = (fits.len() >= 3).then(|| optimum(&fits, args.mass));
+    if let Some(Err(e)) = &optimum {
+        bail!("{e}");
+    }
+    let optimum = optimum.map(|o| o.expect("error handled above"));
+    if args.json {
+        let text = match (&group, fits.len()) {
+            (None, _) | (Some(_), 1) => serde_json::to_string_pretty(&fits[0].fit)?,
+            (Some(g), _) => serde_json::to_string_pretty(&serde_json::json!({
+                "group_key": g,
+                "fits": fits,
+                "optimum": optimum,
+            }))?,
+        };
+        println!("{text}");
+    } else {
+        print_csv(group.as_deref(), &fits);
+        if let Some(o) = &optimum {
+            eprint!("{}", describe(group.as_deref().unwrap_or("group"), o));
+        }
+    }
+    Ok(())
+}
+
+fn optimum(fits: &[GroupFit], mass: Option<f64>) -> anyhow::Result<Optimum> {
+    let x: Vec<f64> = fits
+        .iter()
+        .map(|g| g.group_value.unwrap_or(f64::NAN))
+        .collect();
+    let c: Vec<f64> = fits.iter().map(|g| g.fit.damping_ef_ns_per_m).collect();
+    let cs: Vec<f64> = fits
+        .iter()
+        .map(|g| g.fit.damping_ef_stderr_ns_per_m)
+        .collect();
+    let mut out = Optimum::default();
+    match parabolic_peak(&x, &c, &cs) {
+        Ok(p) => out.damping_max = Some(p),
+        Err(e) => out.damping_max_error = Some(e.to_string()),
+    }
+    if let Some(m) = mass {
+        let me: Vec<f64> = fits.iter().map(|g| g.fit.mass_ef_kg).collect();
+        let ms: Vec<f64> = fits.iter().map(|g| g.fit.mass_ef_stderr_kg).collect();
+        out.mass_crossings = level_crossings(&x, &me, &ms, m).context("--mass")?;
+    }
+    Ok(out)
+}
+
+fn describe(key: &str, o: &Optimum) -> String {
+    let mut s = String::new();
+    match (&o.damping_max, &o.damping_max_error) {
+        (Some(p), _) => {
+            s += &format!(
+                "# maximum of C_ef: {key} = {:.6e} ± {:.2e}, C_ef = {:.6e} ± {:.2e} N s/m\n",
+                p.x, p.x_stderr, p.y, p.y_stderr
+            )
+        }
+        (None, Some(e)) => s += &format!("# maximum of C_ef: not located: {e}\n"),
+        _ => {}
+    }
+    for c in &o.mass_crossings {
+        s += &format!(
+            "# M_ef crosses M at {key} = {:.6e} ± {:.2e}\n",
+            c.x, c.x_stderr
+        );
+    }
+    s
+}
+
+fn print_csv(group: Option<&str>, fits: &[GroupFit]) {
+    let mut header = String::new();
+    if let Some(g) = group {
+        header += g;
+        header += ",";
+    }
+    header += "mass_ef_kg,mass_ef_stderr_kg,damping_ef_ns_per_m,damping_ef_stderr_ns_per_m,\
+               correlation,rms_residual_m,points,converged";
+    println!("{header}");
+    for g in fits {
+        let f = &g.fit;
+        let prefix = g.group_value.map(|v| format!("{v},")).unwrap_or_default();
+        println!(
+            "{prefix}{:.10e},{:.4e},{:.10e},{:.4e},{:.6},{:.4e},{},{}",
+            f.mass_ef_kg,
+            f.mass_ef_stderr_kg,
+            f.damping_ef_ns_per_m,
+            f.damping_ef_stderr_ns_per_m,
+            f.correlation,
+            f.rms_residual_m,
+            f.points,
+            f.converged
+        );
+    }
 }

@@ -1,10 +1,533 @@
-//! `pdamp plot` (to be written by the issue that owns it).
+//! `pdamp plot KIND INPUT... -o FILE.png`: draw one figure kind of SPEC §7 from the CSV files
+//! of the output contract (series.csv, sweep.csv, strobe.csv, fit-frf output) or plain series.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{bail, Context};
+
+use crate::plot::bed_motion::BedMotionFigure;
+use crate::plot::bifurcation::BifurcationFigure;
+use crate::plot::effective::EffectiveFigure;
+use crate::plot::energy::{energy_figure, energy_label};
+use crate::plot::frf::{FrfFigure, FrfReference};
+use crate::plot::poincare::PoincareFigure;
+use crate::plot::reconstruction::ReconstructionFigure;
+use crate::plot::regime_frf::RegimeFrfFigure;
+use crate::plot::regime_map::RegimeMapFigure;
+use crate::plot::resonance::{resonance_amplitudes, resonance_figure};
+use crate::plot::spectrum::SpectrumFigure;
+use crate::plot::table::Table;
+use crate::plot::{render, Figure, FigureOptions, Series};
+
+/// Figure kinds (SPEC §7) and the input each one reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Kind {
+    /// Z(f) of one or more sweep.csv (`frequency_hz`, `amplitude_m`; one curve per file), with
+    /// the (2.1.21) reference curves for M and M + m_p if --mass, --stiffness, --damping,
+    /// --base-amplitude (and --particle-mass) are given.
+    Frf,
+    /// series.csv: floor/ceiling, grain band (`grain_zmin_m`..`grain_zmax_m` if present),
+    /// `grain_z_m`, and `grain_force_n` on a second panel. --from-time/--to-time crop.
+    BedMotion,
+    /// Poincaré section: columns --x/--y (default `x`,`y`) of a CSV, or for strobe.csv the
+    /// return map (z_k, z_{k+1}) of `grain_z_m` of sweep point --point.
+    Poincare,
+    /// Spectrum from columns `frequency_hz`, `power` (output of `pdamp spectrum`); --forcing-hz
+    /// marks f and its harmonics.
+    Spectrum,
+    /// 2-D delay reconstruction (s_n, s_{n+τ}) of a series (CSV column --column, default
+    /// `grain_z_m`, or 1-based column of a plain numeric file); --lag τ in samples.
+    Reconstruction,
+    /// strobe.csv: strobed `grain_z_m` versus --x (default `frequency_hz`).
+    Bifurcation,
+    /// sweep.csv: Z(f) with colour bands per `regime` and `mle_per_s` on a secondary axis.
+    RegimeFrf,
+    /// Output of `pdamp fit-frf` (CSV, grouped): M_ef and C_ef/C versus the group column (--x,
+    /// default the first column) with error bars; --mass and --damping for the references.
+    Effective,
+    /// sweep.csv: every `energy_*_j_per_cycle` column versus --x (default `frequency_hz`).
+    Energy,
+    /// One sweep.csv per N (labels via --label): Z_res = max `amplitude_m` per value of --x
+    /// (the damping parameter, e.g. `damper.gamma_n`).
+    Resonance,
+    /// sweep.csv with two varied keys --x and --y: cells coloured by `regime`, annotated with
+    /// `mle_per_s`.
+    RegimeMap,
+}
 
 /// Arguments of `pdamp plot`.
 #[derive(Debug, clap::Args)]
-pub struct Args {}
+pub struct Args {
+    /// Figure kind.
+    #[arg(value_enum)]
+    pub kind: Kind,
+    /// Input file(s): CSV with a header row (see the kind for the columns).
+    #[arg(required = true)]
+    pub inputs: Vec<PathBuf>,
+    /// Output image (.png).
+    #[arg(short, long, value_name = "FILE.png")]
+    pub output: PathBuf,
+    /// Figure options (size, labels, columns, reference parameters).
+    #[command(flatten)]
+    pub opts: Box<PlotOptions>,
+}
+
+/// Options of `pdamp plot` shared by the figure kinds (boxed in [`Args`]).
+#[derive(Debug, clap::Args)]
+pub struct PlotOptions {
+    /// Image width in pixels (default 1024).
+    #[arg(long, default_value_t = 1024)]
+    pub width: u32,
+    /// Image height in pixels (default 768).
+    #[arg(long, default_value_t = 768)]
+    pub height: u32,
+    /// Caption (default: a description of the figure kind).
+    #[arg(long)]
+    pub title: Option<String>,
+    /// Legend label per input file, in order (default: the file's parent directory name).
+    #[arg(long)]
+    pub label: Vec<String>,
+    /// x column (energy, bifurcation, resonance, regime-map, effective, poincare).
+    #[arg(long)]
+    pub x: Option<String>,
+    /// y column (regime-map, poincare).
+    #[arg(long)]
+    pub y: Option<String>,
+    /// Series column for reconstruction: a header name, or a 1-based index for plain files.
+    #[arg(long)]
+    pub column: Option<String>,
+    /// Delay τ in samples for reconstruction (default: first zero of the autocorrelation).
+    #[arg(long)]
+    pub lag: Option<usize>,
+    /// Sampling interval (s) of a plain series, to label τ in seconds.
+    #[arg(long)]
+    pub dt: Option<f64>,
+    /// Forcing frequency f (Hz) marked on spectra.
+    #[arg(long)]
+    pub forcing_hz: Option<f64>,
+    /// Sweep point (`point` column of strobe.csv) for the Poincaré return map (default: first).
+    #[arg(long)]
+    pub point: Option<i64>,
+    /// Start of the time window (s) for bed-motion.
+    #[arg(long)]
+    pub from_time: Option<f64>,
+    /// End of the time window (s) for bed-motion.
+    #[arg(long)]
+    pub to_time: Option<f64>,
+    /// Primary mass M (kg): FRF reference curve; M reference line of `effective`.
+    #[arg(long)]
+    pub mass: Option<f64>,
+    /// Grain mass m_p (kg): FRF reference curve for M + m_p.
+    #[arg(long)]
+    pub particle_mass: Option<f64>,
+    /// Spring stiffness K (N/m) for the FRF reference curves.
+    #[arg(long)]
+    pub stiffness: Option<f64>,
+    /// Primary damping C (N s/m): FRF references; `effective` then shows C_ef/C.
+    #[arg(long)]
+    pub damping: Option<f64>,
+    /// Base amplitude U (m) for the FRF reference curves.
+    #[arg(long)]
+    pub base_amplitude: Option<f64>,
+}
 
 /// Run `pdamp plot`.
-pub fn run(_args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("`plot` is not available yet")
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let o: &PlotOptions = &args.opts;
+    let opts = FigureOptions {
+        width: o.width,
+        height: o.height,
+        title: o.title.clone(),
+    };
+    let tables = args
+        .inputs
+        .iter()
+        .map(|p| Table::read(p))
+        .collect::<Result<Vec<_>, _>>()?;
+    let labels: Vec<String> = args
+        .inputs
+        .iter()
+        .enumerate()
+        .map(|(i, p)| o.label.get(i).cloned().unwrap_or_else(|| default_label(p)))
+        .collect();
+    let out = &args.output;
+    let first = &tables[0];
+    let one = || -> anyhow::Result<()> {
+        if tables.len() > 1 {
+            bail!("{:?} takes one input file, got {}", args.kind, tables.len());
+        }
+        Ok(())
+    };
+    match args.kind {
+        Kind::Frf => {
+            let cols = tables
+                .iter()
+                .map(|t| Ok((t.f64_column("frequency_hz")?, t.f64_column("amplitude_m")?)))
+                .collect::<anyhow::Result<Vec<_>>>()?;
+            let series = cols
+                .iter()
+                .zip(&labels)
+                .map(|((x, y), l)| Series { label: l, x, y })
+                .collect();
+            let reference = frf_reference(o)?;
+            draw(&FrfFigure { series, reference }, out, &opts)
+        }
+        Kind::BedMotion => {
+            one()?;
+            let t = first.f64_column("time_s")?;
+            let (a, b) = window(&t, o.from_time, o.to_time)?;
+            let col =
+                |n: &str| -> anyhow::Result<Vec<f64>> { Ok(first.f64_column(n)?[a..b].to_vec()) };
+            let (floor, ceil, grain) = (col("floor_z_m")?, col("ceiling_z_m")?, col("grain_z_m")?);
+            let band = if first.has("grain_zmin_m") && first.has("grain_zmax_m") {
+                Some((col("grain_zmin_m")?, col("grain_zmax_m")?))
+            } else {
+                None
+            };
+            let force = if first.has("grain_force_n") {
+                Some(col("grain_force_n")?)
+            } else {
+                None
+            };
+            let fig = BedMotionFigure {
+                time_s: &t[a..b],
+                floor_z_m: &floor,
+                ceiling_z_m: &ceil,
+                grain_z_m: &grain,
+                grain_band: band.as_ref().map(|(l, h)| (l.as_slice(), h.as_slice())),
+                grain_force_n: force.as_deref(),
+            };
+            draw(&fig, out, &opts)
+        }
+        Kind::Poincare => {
+            one()?;
+            let (x, y, xl, yl) = if first.has("cycle") && first.has("grain_z_m") && o.x.is_none() {
+                let z = strobe_of_point(first, o.point)?;
+                let x = z[..z.len().saturating_sub(1)].to_vec();
+                let y = z.get(1..).unwrap_or_default().to_vec();
+                (x, y, "z_k (m)".to_string(), "z_(k+1) (m)".to_string())
+            } else {
+                let xn = o.x.clone().unwrap_or_else(|| "x".into());
+                let yn = o.y.clone().unwrap_or_else(|| "y".into());
+                (first.f64_column(&xn)?, first.f64_column(&yn)?, xn, yn)
+            };
+            let fig = PoincareFigure {
+                x: &x,
+                y: &y,
+                x_label: xl,
+                y_label: yl,
+            };
+            draw(&fig, out, &opts)
+        }
+        Kind::Spectrum => {
+            one()?;
+            let f = first.f64_column("frequency_hz")?;
+            let p = first.f64_column("power")?;
+            let fig = SpectrumFigure {
+                frequency_hz: &f,
+                power: &p,
+                forcing_hz: o.forcing_hz,
+                power_label: "power (arb. units)".into(),
+            };
+            draw(&fig, out, &opts)
+        }
+        Kind::Reconstruction => {
+            one()?;
+            let (s, name) = read_series(&args.inputs[0], first, o.column.as_deref())?;
+            let (dt, s) = match (o.dt, first.has("time_s")) {
+                (Some(dt), _) => (Some(dt), s),
+                (None, true) => {
+                    let t = first.f64_column("time_s")?;
+                    (t.get(1).map(|t1| t1 - t[0]), s)
+                }
+                (None, false) => (None, s),
+            };
+            let lag = match o.lag {
+                Some(l) => l,
+                None => acf_zero_lag(&s).with_context(|| {
+                    format!("{}: give --lag (samples)", args.inputs[0].display())
+                })?,
+            };
+            let fig = ReconstructionFigure {
+                series: &s,
+                lag,
+                dt_s: dt,
+                value_label: name,
+            };
+            draw(&fig, out, &opts)
+        }
+        Kind::Bifurcation => {
+            one()?;
+            let xn = o.x.clone().unwrap_or_else(|| "frequency_hz".into());
+            let x = first.f64_column(&xn)?;
+            let z = first.f64_column("grain_z_m")?;
+            let fig = BifurcationFigure {
+                x: &x,
+                z_m: &z,
+                x_label: axis_label(&xn),
+            };
+            draw(&fig, out, &opts)
+        }
+        Kind::RegimeFrf => {
+            one()?;
+            let f = first.f64_column("frequency_hz")?;
+            let z = first.f64_column("amplitude_m")?;
+            let r = first.str_column("regime")?;
+            let m = if first.has("mle_per_s") {
+                Some(first.opt_f64_column("mle_per_s")?)
+            } else {
+                None
+            };
+            let fig = RegimeFrfFigure {
+                frequency_hz: &f,
+                amplitude_m: &z,
+                regime: &r,
+                mle_per_s: m.as_deref(),
+            };
+            draw(&fig, out, &opts)
+        }
+        Kind::Effective => {
+            one()?;
+            let xn = o.x.clone().unwrap_or_else(|| first.headers[0].clone());
+            let x = first.f64_column(&xn)?;
+            let c = |n: &str| first.f64_column(n);
+            let (m, ms, d, ds) = (
+                c("mass_ef_kg")?,
+                c("mass_ef_stderr_kg")?,
+                c("damping_ef_ns_per_m")?,
+                c("damping_ef_stderr_ns_per_m")?,
+            );
+            let fig = EffectiveFigure {
+                x: &x,
+                x_label: axis_label(&xn),
+                mass_ef_kg: &m,
+                mass_ef_stderr_kg: &ms,
+                damping_ef_ns_per_m: &d,
+                damping_ef_stderr_ns_per_m: &ds,
+                mass_kg: o.mass,
+                damping_ns_per_m: o.damping,
+            };
+            draw(&fig, out, &opts)
+        }
+        Kind::Energy => {
+            one()?;
+            let xn = o.x.clone().unwrap_or_else(|| "frequency_hz".into());
+            let x = first.f64_column(&xn)?;
+            let names = first.columns_matching("energy_", "_j_per_cycle");
+            if names.is_empty() {
+                bail!(
+                    "{}: no `energy_*_j_per_cycle` columns (columns present: {})",
+                    first.path,
+                    first.headers.join(", ")
+                );
+            }
+            let cols = names
+                .iter()
+                .map(|n| first.f64_column(n))
+                .collect::<Result<Vec<_>, _>>()?;
+            let pairs: Vec<(&str, &[f64])> = names
+                .iter()
+                .zip(&cols)
+                .map(|(n, c)| (energy_label(n), c.as_slice()))
+                .collect();
+            draw(&energy_figure(&x, &axis_label(&xn), &pairs), out, &opts)
+        }
+        Kind::Resonance => {
+            let xn = o.x.clone().context(
+                "resonance needs --x COLUMN (the damping parameter, e.g. damper.gamma_n)",
+            )?;
+            let curves = tables
+                .iter()
+                .map(|t| {
+                    Ok(resonance_amplitudes(
+                        &t.f64_column(&xn)?,
+                        &t.f64_column("amplitude_m")?,
+                    ))
+                })
+                .collect::<anyhow::Result<Vec<_>>>()?;
+            let series = curves
+                .iter()
+                .zip(&labels)
+                .map(|((x, y), l)| Series { label: l, x, y })
+                .collect();
+            draw(&resonance_figure(series, &axis_label(&xn)), out, &opts)
+        }
+        Kind::RegimeMap => {
+            one()?;
+            let xn =
+                o.x.clone()
+                    .context("regime-map needs --x COLUMN and --y COLUMN (the two varied keys)")?;
+            let yn = o.y.clone().context("regime-map needs --y COLUMN")?;
+            let (x, y) = (first.f64_column(&xn)?, first.f64_column(&yn)?);
+            let r = first.str_column("regime")?;
+            let m = if first.has("mle_per_s") {
+                Some(first.opt_f64_column("mle_per_s")?)
+            } else {
+                None
+            };
+            let fig = RegimeMapFigure {
+                x: &x,
+                y: &y,
+                regime: &r,
+                mle_per_s: m.as_deref(),
+                x_label: axis_label(&xn),
+                y_label: axis_label(&yn),
+            };
+            draw(&fig, out, &opts)
+        }
+    }
+}
+
+fn draw<F: Figure>(fig: &F, out: &Path, opts: &FigureOptions) -> anyhow::Result<()> {
+    render(fig, out, opts)?;
+    eprintln!("wrote {}", out.display());
+    Ok(())
+}
+
+fn default_label(p: &Path) -> String {
+    p.parent()
+        .and_then(|d| d.file_name())
+        .or_else(|| p.file_stem())
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| p.display().to_string())
+}
+
+/// Axis description for a column: known names get words and units.
+fn axis_label(col: &str) -> String {
+    match col {
+        "frequency_hz" | "excitation.frequency" => "frequency f (Hz)".into(),
+        "damper.box" | "damper.lz" => "container height Lz (m)".into(),
+        "damper.gap" => "gap (m)".into(),
+        "damper.gamma_n" => "normal damping γ_n (kg s⁻¹ m^-1/2)".into(),
+        "damper.gamma_s" => "tangential damping γ_s (kg s⁻¹ m^-1/2)".into(),
+        "excitation.amplitude" => "base amplitude U (m)".into(),
+        other => other.into(),
+    }
+}
+
+fn frf_reference(a: &PlotOptions) -> anyhow::Result<Option<FrfReference>> {
+    match (a.mass, a.stiffness, a.damping, a.base_amplitude) {
+        (Some(m), Some(k), Some(c), Some(u)) => Ok(Some(FrfReference {
+            mass_kg: m,
+            particle_mass_kg: a.particle_mass,
+            stiffness_n_per_m: k,
+            damping_ns_per_m: c,
+            base_amplitude_m: u,
+        })),
+        (None, None, None, None) => Ok(None),
+        _ => bail!("reference curves need all of --mass, --stiffness, --damping, --base-amplitude (and optionally --particle-mass)"),
+    }
+}
+
+/// Index range [a, b) of the samples with from ≤ t ≤ to.
+fn window(t: &[f64], from: Option<f64>, to: Option<f64>) -> anyhow::Result<(usize, usize)> {
+    let a = from.map_or(0, |f| t.partition_point(|&x| x < f));
+    let b = to.map_or(t.len(), |e| t.partition_point(|&x| x <= e));
+    if b < a + 2 {
+        bail!(
+            "--from-time/--to-time leave fewer than 2 samples (series spans {} .. {} s)",
+            t[0],
+            t[t.len() - 1]
+        );
+    }
+    Ok((a, b))
+}
+
+/// `grain_z_m` of one sweep point of strobe.csv, in cycle order.
+fn strobe_of_point(t: &Table, point: Option<i64>) -> anyhow::Result<Vec<f64>> {
+    let z = t.f64_column("grain_z_m")?;
+    let cyc = t.f64_column("cycle")?;
+    let pts = if t.has("point") {
+        t.f64_column("point")?
+    } else {
+        vec![0.0; z.len()]
+    };
+    let p = point.map_or(pts[0], |p| p as f64);
+    let mut rows: Vec<(f64, f64)> = (0..z.len())
+        .filter(|&i| pts[i] == p)
+        .map(|i| (cyc[i], z[i]))
+        .collect();
+    if rows.len() < 2 {
+        bail!(
+            "{}: sweep point {p} has {} strobe rows; need ≥ 2 (choose --point)",
+            t.path,
+            rows.len()
+        );
+    }
+    rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+    Ok(rows.into_iter().map(|r| r.1).collect())
+}
+
+/// A series from a CSV column (header name) or a plain numeric file (1-based column index).
+fn read_series(
+    path: &Path,
+    table: &Table,
+    column: Option<&str>,
+) -> anyhow::Result<(Vec<f64>, String)> {
+    let numeric_header = table
+        .headers
+        .iter()
+        .flat_map(|h| h.split_whitespace())
+        .all(|h| h.parse::<f64>().is_ok());
+    if numeric_header {
+        // plain file: no header row; re-read all lines as whitespace/comma separated numbers
+        let idx: usize = column
+            .unwrap_or("1")
+            .parse()
+            .context("--column must be a 1-based index for a plain numeric file")?;
+        let text = std::fs::read_to_string(path)?;
+        let mut v = Vec::new();
+        for (ln, line) in text.lines().enumerate() {
+            let line = line.trim();
+            if line.is_empty() || line.starts_with('#') {
+                continue;
+            }
+            let cell = line
+                .split(|c: char| c == ',' || c.is_whitespace())
+                .filter(|s| !s.is_empty())
+                .nth(idx.saturating_sub(1))
+                .with_context(|| format!("{}:{}: no column {idx}", path.display(), ln + 1))?;
+            let x: f64 = cell
+                .parse()
+                .ok()
+                .filter(|x: &f64| x.is_finite())
+                .with_context(|| {
+                    format!(
+                        "{}:{}: `{cell}` is not a finite number",
+                        path.display(),
+                        ln + 1
+                    )
+                })?;
+            v.push(x);
+        }
+        return Ok((v, format!("column {idx}")));
+    }
+    let name = column.map(str::to_string).unwrap_or_else(|| {
+        if table.has("grain_z_m") {
+            "grain_z_m".into()
+        } else {
+            table.headers[0].clone()
+        }
+    });
+    Ok((table.f64_column(&name)?, name))
+}
+
+/// First lag where the autocorrelation of `s` drops to ≤ 0 (a simple default delay; the
+/// mutual-information minimum of `pdamp mutual` is the better choice).
+fn acf_zero_lag(s: &[f64]) -> anyhow::Result<usize> {
+    let n = s.len();
+    let mean = s.iter().sum::<f64>() / n as f64;
+    let var: f64 = s.iter().map(|x| (x - mean).powi(2)).sum();
+    if var <= 0.0 {
+        bail!("series is constant: no delay reconstruction");
+    }
+    for lag in 1..n / 2 {
+        let c: f64 = (0..n - lag)
+            .map(|i| (s[i] - mean) * (s[i + lag] - mean))
+            .sum();
+        if c <= 0.0 {
+            return Ok(lag);
+        }
+    }
+    bail!("autocorrelation never reaches 0 within half the series")
 }

@@ -1,0 +1,332 @@
+//! Running a DEM scene: radii and initial bed (lattice or advancing front), settling under
+//! gravity with the box held still, then the driven run with samples at a fixed interval.
+
+use std::time::Instant;
+
+use serde::Serialize;
+
+use crate::error::{SceneError, SimError};
+use crate::packing::{advancing_front_packing, fcc_lattice, volume_fraction};
+use crate::scene::dem::{DemParams, PackingKind};
+use crate::units::G;
+
+use super::energy::{balance, EnergyLedger};
+use super::stability::{check, choose_dt, DEFAULT_DT_FRACTION};
+use super::world::{BoxDrive, DemWorld};
+
+/// Time step choice: automatic (a fraction of the Hertz contact time) or explicit.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum DtChoice {
+    /// `dt = "auto"`: dt = `dt_fraction` × t_s at the largest expected impact speed.
+    #[default]
+    Auto,
+    /// Explicit time step (s), rejected above t_s/20.
+    Seconds(f64),
+}
+
+/// Run settings of a DEM simulation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DemRunConfig {
+    /// Driven duration after settling (s).
+    pub duration_s: f64,
+    /// Interval between samples (s).
+    pub sample_interval_s: f64,
+    /// Fraction of the run treated as steady state for per-cycle figures (default 0.1).
+    pub steady_fraction: f64,
+    /// Time step.
+    pub dt: DtChoice,
+    /// dt / t_s with `DtChoice::Auto` (default 1/50).
+    pub dt_fraction: f64,
+}
+
+impl Default for DemRunConfig {
+    fn default() -> Self {
+        DemRunConfig { duration_s: 1.0, sample_interval_s: 1e-3, steady_fraction: 0.1, dt: DtChoice::Auto, dt_fraction: DEFAULT_DT_FRACTION }
+    }
+}
+
+/// One row of `series.csv` for a DEM run (lab frame, SI units; energies cumulative since the
+/// drive started).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct DemSample {
+    /// Time since the drive started (s).
+    pub time_s: f64,
+    /// Base displacement u (m).
+    pub base_u_m: f64,
+    /// Box (primary) displacement z (m).
+    pub box_z_m: f64,
+    /// Box velocity z' (m/s).
+    pub box_v_m_s: f64,
+    /// Floor height (m).
+    pub floor_z_m: f64,
+    /// Ceiling height (m).
+    pub ceiling_z_m: f64,
+    /// Grains' centre of mass z_cm (m).
+    pub grain_z_m: f64,
+    /// Lowest grain centre (m).
+    pub grain_zmin_m: f64,
+    /// Highest grain centre (m).
+    pub grain_zmax_m: f64,
+    /// Energy dissipated by normal damping (J).
+    pub e_collision_j: f64,
+    /// Energy dissipated by friction (J).
+    pub e_friction_j: f64,
+    /// Energy dissipated in the primary's damper C (J).
+    pub e_viscous_j: f64,
+    /// Work done by the base (J).
+    pub e_base_work_j: f64,
+    /// Grains' kinetic energy, translational + rotational (J).
+    pub e_kinetic_j: f64,
+    /// Grains' gravitational potential energy relative to the start (J).
+    pub e_potential_j: f64,
+    /// Elastic energy in contacts (J).
+    pub e_elastic_j: f64,
+    /// Energy of the primary: ½ M z'² + ½ K (z − u)² (J).
+    pub e_primary_j: f64,
+    /// Ledger residual E − E₀ − W_base + D (J); ≈ 0.
+    pub e_balance_residual_j: f64,
+    /// Vertical force of the grains on the box F_gz (N).
+    pub grain_force_n: f64,
+}
+
+/// Receives samples and (optionally) particle snapshots of a run.
+pub trait DemObserver {
+    /// One sample at `sample_interval`.
+    fn sample(&mut self, s: &DemSample);
+    /// A particle snapshot at `damper.snapshot_interval` (default: ignored).
+    fn snapshot(&mut self, _world: &DemWorld) {}
+}
+
+impl DemObserver for Vec<DemSample> {
+    fn sample(&mut self, s: &DemSample) {
+        self.push(*s);
+    }
+}
+
+/// Summary of a DEM run (`summary.json` keys).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DemSummary {
+    /// Half the peak-to-peak box displacement in the steady state (m).
+    pub amplitude_m: f64,
+    /// |E − E₀ − W_base + D| / max(W_base, D, |ΔE|) over the whole driven run (–).
+    pub energy_balance_relative_error: f64,
+    /// Collision dissipation per forcing cycle in the steady state (J).
+    pub energy_collision_j_per_cycle: Option<f64>,
+    /// Friction dissipation per cycle (J).
+    pub energy_friction_j_per_cycle: Option<f64>,
+    /// Viscous dissipation in C per cycle (J).
+    pub energy_viscous_j_per_cycle: Option<f64>,
+    /// Base work per cycle (J).
+    pub energy_base_work_j_per_cycle: Option<f64>,
+    /// Time steps of the driven run (settling excluded).
+    pub steps: u64,
+    /// Wall-clock time of the driven run (s).
+    pub wall_time_s: f64,
+    /// Grains × steps / wall time of the driven run (particle-steps/s).
+    pub particle_steps_per_s: f64,
+    /// Time step (s).
+    pub dt_s: f64,
+    /// Shortest Hertz contact time at the design impact speed (s).
+    pub contact_time_s: f64,
+    /// Simulated settling time before the drive (s).
+    pub settle_time_s: f64,
+    /// Settling steps.
+    pub settle_steps: u64,
+    /// Neighbour-list builds during the driven run.
+    pub neighbor_builds: u64,
+    /// Number of grains.
+    pub grains: usize,
+    /// Total grain mass m_p (kg).
+    pub grain_mass_kg: f64,
+    /// Settled bed height estimate 2 (z_cm − floor) (m).
+    pub bed_height_m: f64,
+    /// Settled volume fraction Σ V_i / (Lx Ly · bed height) (–).
+    pub volume_fraction: f64,
+    /// Forcing frequency (Hz).
+    pub frequency_hz: f64,
+}
+
+/// Builds the initial bed of `params` (radii, lattice or advancing front) at rest, with the
+/// box held still at `box_z` (m).
+///
+/// # Errors
+/// Scene errors (invalid parameters, grains that do not fit).
+pub fn initial_world(params: &DemParams, drive: BoxDrive, dt: f64, box_z: f64) -> Result<DemWorld, SceneError> {
+    params.validate()?;
+    let dist = params.radius_distribution()?;
+    let radii = dist.sample_n(params.count, params.seed);
+    let r_max = dist.r_max();
+    let pos = match params.packing {
+        PackingKind::Lattice => fcc_lattice(params.r#box, params.count, r_max, 0.05, params.seed ^ 0x5eed)?,
+        PackingKind::AdvancingFront => advancing_front_packing(params.r#box, &radii)?,
+    };
+    let mut w = DemWorld::new(params, drive, dt, radii, pos)?;
+    w.shift_box_to(box_z);
+    Ok(w)
+}
+
+/// Lets the bed settle under gravity with the box held still and a drag of rate 1/0.05 s⁻¹
+/// on the grains, until the mean grain speed is below 1 mm/s (after at least 0.05 s) or
+/// `max_time_s` elapsed. Returns (settling time s, steps).
+pub fn settle(world: &mut DemWorld, max_time_s: f64) -> (f64, u64) {
+    world.drive_on = false;
+    world.settle_drag = 1.0 / 0.05;
+    world.refresh();
+    let check_every = ((1e-3 / world.dt).round() as u64).max(1);
+    let mut t = 0.0;
+    let mut steps = 0u64;
+    while t < max_time_s {
+        world.step();
+        t += world.dt;
+        steps += 1;
+        if steps % check_every == 0 && t > 0.05 {
+            let mean_v = world.vel.iter().map(|v| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()).sum::<f64>()
+                / world.len() as f64;
+            if mean_v < 1e-3 {
+                break;
+            }
+        }
+    }
+    world.settle_drag = 0.0;
+    (t, steps)
+}
+
+fn sample_of(w: &DemWorld, e0: &super::energy::EnergyState) -> DemSample {
+    let (zcm, lo, hi) = w.z_stats();
+    let (u, _) = w.base_now();
+    let st = w.energy_state();
+    let (res, _) = balance(&st, e0, &w.ledger);
+    let l: EnergyLedger = w.ledger;
+    DemSample {
+        time_s: w.t,
+        base_u_m: u,
+        box_z_m: w.box_z,
+        box_v_m_s: w.box_v,
+        floor_z_m: w.box_z,
+        ceiling_z_m: w.box_z + w.box_size[2],
+        grain_z_m: zcm,
+        grain_zmin_m: lo,
+        grain_zmax_m: hi,
+        e_collision_j: l.collision_j,
+        e_friction_j: l.friction_j,
+        e_viscous_j: l.viscous_j,
+        e_base_work_j: l.base_work_j,
+        e_kinetic_j: st.kinetic_j + st.rotational_j,
+        e_potential_j: st.potential_j - e0.potential_j,
+        e_elastic_j: st.elastic_j,
+        e_primary_j: st.primary_j,
+        e_balance_residual_j: res,
+        grain_force_n: w.grain_force_n,
+    }
+}
+
+/// Runs a DEM damper scene: bed, settling, then `cfg.duration_s` of drive.
+///
+/// # Errors
+/// [`SimError::Scene`] for invalid parameters or time step; [`SimError::Unstable`] when the
+/// state turns non-finite, a grain leaves the box or energy grows without input.
+pub fn run_dem(
+    params: &DemParams,
+    drive: BoxDrive,
+    cfg: &DemRunConfig,
+    obs: &mut dyn DemObserver,
+) -> Result<DemSummary, SimError> {
+    let explicit = match cfg.dt {
+        DtChoice::Auto => None,
+        DtChoice::Seconds(s) => Some(s),
+    };
+    let (dt, ts) = choose_dt(params, &drive, explicit, cfg.dt_fraction)?;
+    for (k, v) in [("run.duration", cfg.duration_s), ("run.sample_interval", cfg.sample_interval_s)] {
+        if !(v > 0.0 && v.is_finite()) {
+            return Err(SceneError::invalid(k, v, "must be > 0 (seconds)").into());
+        }
+    }
+    if !(cfg.steady_fraction > 0.0 && cfg.steady_fraction <= 1.0) {
+        return Err(SceneError::invalid("run.steady_fraction", cfg.steady_fraction, "must be in (0, 1]").into());
+    }
+    // box held at its start position: u(0) for a kinematic box, the static equilibrium with
+    // the grains' weight for a primary
+    let mut world = initial_world(params, drive, dt, 0.0)?;
+    let m_p: f64 = world.mass.iter().sum();
+    let z_hold = match drive.primary {
+        Some(p) => -m_p * G / p.stiffness_n_m,
+        None => drive.base(0.0).0,
+    };
+    world.shift_box_to(z_hold);
+    let (settle_t, settle_steps) = settle(&mut world, params.settle_time.unwrap_or(1.0));
+    let (zcm, _, _) = world.z_stats();
+    let bed_height_m = 2.0 * (zcm - world.box_z);
+    let phi = volume_fraction(&world.radius, world.box_size[0] * world.box_size[1] * bed_height_m);
+    world.start_drive();
+    let e0 = world.energy_state();
+    let builds0 = world.neighbor_builds();
+
+    let n_steps = (cfg.duration_s / dt).ceil() as u64;
+    let per_sample = ((cfg.sample_interval_s / dt).round() as u64).max(1);
+    let per_snap = params.snapshot_interval.map(|s| ((s / dt).round() as u64).max(1));
+    let steady_from = ((1.0 - cfg.steady_fraction) * n_steps as f64).floor() as u64;
+    let abs_floor = 1e-3 * m_p * G * world.radius[0];
+    let mut steady_ledger: Option<(f64, EnergyLedger)> = None;
+    let (mut zmin, mut zmax) = (f64::INFINITY, f64::NEG_INFINITY);
+    obs.sample(&sample_of(&world, &e0));
+    if per_snap.is_some() {
+        obs.snapshot(&world);
+    }
+    let clock = Instant::now();
+    let mut check_time = 0.0;
+    for k in 1..=n_steps {
+        world.step();
+        if k >= steady_from {
+            if steady_ledger.is_none() {
+                steady_ledger = Some((world.t, world.ledger));
+            }
+            zmin = zmin.min(world.box_z);
+            zmax = zmax.max(world.box_z);
+        }
+        if k % per_sample == 0 || k == n_steps {
+            let c0 = Instant::now();
+            let s = sample_of(&world, &e0);
+            let rel = s.e_balance_residual_j.abs()
+                / (world.ledger.base_work_j.abs().max(world.ledger.dissipated_j()).max(abs_floor));
+            check(&world, s.e_balance_residual_j - abs_floor, rel)?;
+            obs.sample(&s);
+            check_time += c0.elapsed().as_secs_f64();
+        }
+        if let Some(ps) = per_snap {
+            if k % ps == 0 {
+                let c0 = Instant::now();
+                obs.snapshot(&world);
+                check_time += c0.elapsed().as_secs_f64();
+            }
+        }
+    }
+    let wall = (clock.elapsed().as_secs_f64() - check_time).max(1e-9);
+    let st = world.energy_state();
+    let (_, rel) = balance(&st, &e0, &world.ledger);
+    let per_cycle = |f: fn(&EnergyLedger) -> f64| -> Option<f64> {
+        let (t0, l0) = steady_ledger?;
+        let cycles = (world.t - t0) * drive.frequency_hz;
+        (cycles > 0.0).then(|| (f(&world.ledger) - f(&l0)) / cycles)
+    };
+    Ok(DemSummary {
+        amplitude_m: 0.5 * (zmax - zmin),
+        energy_balance_relative_error: rel,
+        energy_collision_j_per_cycle: per_cycle(|l| l.collision_j),
+        energy_friction_j_per_cycle: per_cycle(|l| l.friction_j),
+        energy_viscous_j_per_cycle: per_cycle(|l| l.viscous_j),
+        energy_base_work_j_per_cycle: per_cycle(|l| l.base_work_j),
+        steps: n_steps,
+        wall_time_s: wall,
+        particle_steps_per_s: world.len() as f64 * n_steps as f64 / wall,
+        dt_s: dt,
+        contact_time_s: ts,
+        settle_time_s: settle_t,
+        settle_steps,
+        neighbor_builds: world.neighbor_builds() - builds0,
+        grains: world.len(),
+        grain_mass_kg: m_p,
+        bed_height_m,
+        volume_fraction: phi,
+        frequency_hz: drive.frequency_hz,
+    })
+}

@@ -1,0 +1,142 @@
+//! What a run reports: [`RunSummary`] (written as `summary.json`), and how it is run
+//! ([`RunOptions`]). Shared by every simulator (impact, DEM).
+
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// Options of one run that are not part of the physics.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RunOptions {
+    /// Interval between samples sent to the observer (s); `None`: no samples.
+    pub sample_interval_s: Option<f64>,
+    /// No samples before this time (s).
+    pub sample_from_s: f64,
+}
+
+impl RunOptions {
+    /// Samples every `run.sample_interval` from t = 0 (what `pdamp simulate` writes).
+    pub fn full_series(scene: &crate::scene::Scene) -> RunOptions {
+        RunOptions {
+            sample_interval_s: Some(scene.run.sample_interval),
+            sample_from_s: 0.0,
+        }
+    }
+
+    /// Samples of the steady state only, decimated so that at most `run.analysis_max_samples`
+    /// are produced (input of the nonlinear analysis in sweeps).
+    pub fn steady_series(scene: &crate::scene::Scene) -> RunOptions {
+        let steady = scene.duration_s() - scene.steady_start_s();
+        let dt = scene
+            .run
+            .sample_interval
+            .max(steady / scene.run.analysis_max_samples as f64);
+        RunOptions {
+            sample_interval_s: Some(dt),
+            sample_from_s: scene.steady_start_s(),
+        }
+    }
+
+    /// No samples at all (summary only).
+    pub fn summary_only() -> RunOptions {
+        RunOptions {
+            sample_interval_s: None,
+            sample_from_s: 0.0,
+        }
+    }
+}
+
+/// One stroboscopic sample (once per forcing period, at t = n/f, in the steady state).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct StrobePoint {
+    /// Forcing cycle index n (t = n T).
+    pub cycle: u64,
+    /// Time (s).
+    pub time_s: f64,
+    /// Particle position / grains' centre of mass (m).
+    pub grain_z_m: f64,
+    /// Box position (m).
+    pub box_z_m: f64,
+}
+
+/// Energy ledger of a whole run (J).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct EnergyTotals {
+    /// Work done by the base through spring and damper, ∫ [K(u − z) + C(u' − z')] u' dt (J).
+    pub base_work_j: f64,
+    /// Viscous loss ∫ C (z' − u')² dt (J).
+    pub viscous_j: f64,
+    /// Kinetic energy lost in impacts, Σ ΔT (5.3.1) (J) (DEM: collisions + friction).
+    pub impact_j: f64,
+    /// Mechanical energy at the start: ½Mz'² + ½K(z − u)² + grains' kinetic + m_p g y (J).
+    pub initial_mechanical_j: f64,
+    /// Mechanical energy at the end (J).
+    pub final_mechanical_j: f64,
+}
+
+impl EnergyTotals {
+    /// |W − ΔE − D − L| / max(|W|, D + L, |ΔE|): relative residual of the energy balance.
+    pub fn relative_error(&self) -> f64 {
+        let de = self.final_mechanical_j - self.initial_mechanical_j;
+        let resid = self.base_work_j - de - self.viscous_j - self.impact_j;
+        let scale = self
+            .base_work_j
+            .abs()
+            .max(self.viscous_j + self.impact_j)
+            .max(de.abs())
+            .max(f64::MIN_POSITIVE);
+        resid.abs() / scale
+    }
+}
+
+/// Summary of one run (`summary.json`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RunSummary {
+    /// Model that produced it: "primary", "impact", "dem".
+    pub model: String,
+    /// Forcing frequency f (Hz).
+    pub frequency_hz: f64,
+    /// Simulated time (s).
+    pub duration_s: f64,
+    /// Start of the steady-state window (s).
+    pub steady_start_s: f64,
+    /// Forcing cycles in the steady-state window.
+    pub cycles_steady: f64,
+    /// Steady-state amplitude of the primary, Z = (max z − min z)/2 over the window (m).
+    pub amplitude_m: f64,
+    /// Largest box position in the window (m).
+    pub box_z_max_m: f64,
+    /// Smallest box position in the window (m).
+    pub box_z_min_m: f64,
+    /// Reference amplitude of the primary alone, (2.1.21) with M (m); none for a kinematic box.
+    pub reference_amplitude_m: Option<f64>,
+    /// Work done by the base per forcing cycle in the window (J).
+    pub energy_input_j_per_cycle: f64,
+    /// Viscous loss in C per forcing cycle in the window (J).
+    pub energy_viscous_j_per_cycle: f64,
+    /// Impact (collision) loss per forcing cycle in the window (J).
+    pub energy_impact_j_per_cycle: f64,
+    /// Impacts per forcing cycle in the window.
+    pub impacts_per_cycle: f64,
+    /// Relative residual of the whole run's energy balance (see [`EnergyTotals::relative_error`]);
+    /// none for a kinematic box (no energy ledger).
+    pub energy_balance_relative_error: Option<f64>,
+    /// The whole run's energy ledger.
+    pub energy_totals: EnergyTotals,
+    /// Impacts over the whole run.
+    pub impacts_total: u64,
+    /// Events (impacts, detachments) over the whole run.
+    pub events_total: u64,
+    /// Model-specific extra values, flattened into the JSON (e.g. DEM's
+    /// `energy_friction_j_per_cycle`).
+    #[serde(flatten)]
+    pub extra: BTreeMap<String, f64>,
+    /// Stroboscopic samples of the steady state (written to strobe.csv, not to the JSON).
+    #[serde(skip)]
+    pub strobe: Vec<StrobePoint>,
+    /// Nonlinear analysis of the steady-state grain series, when run.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub analysis: Option<serde_json::Value>,
+    /// Why the analysis could not be carried out, when it failed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub analysis_error: Option<String>,
+}

@@ -1,0 +1,43 @@
+//! In-memory collector of the steady-state grain series (input of the nonlinear analysis).
+
+use super::{Observer, Sample};
+use crate::error::SimError;
+
+/// Keeps `grain_z_m` of the samples with `time_s ≥ from_s` (the steady state).
+#[derive(Debug, Clone, Default)]
+pub struct SteadyCollector {
+    /// First time kept (s).
+    pub from_s: f64,
+    /// Sample times (s).
+    pub time_s: Vec<f64>,
+    /// Grain position / centre of mass (m).
+    pub grain_z_m: Vec<f64>,
+    /// Box position (m).
+    pub box_z_m: Vec<f64>,
+}
+
+impl SteadyCollector {
+    /// Collect samples from `from_s` on.
+    pub fn new(from_s: f64) -> Self {
+        SteadyCollector {
+            from_s,
+            ..Default::default()
+        }
+    }
+
+    /// Sampling interval of the collected series (s), if at least two samples.
+    pub fn dt_s(&self) -> Option<f64> {
+        (self.time_s.len() >= 2).then(|| self.time_s[1] - self.time_s[0])
+    }
+}
+
+impl Observer for SteadyCollector {
+    fn sample(&mut self, s: &Sample<'_>) -> Result<(), SimError> {
+        if s.time_s >= self.from_s {
+            self.time_s.push(s.time_s);
+            self.grain_z_m.push(s.grain_z_m);
+            self.box_z_m.push(s.box_z_m);
+        }
+        Ok(())
+    }
+}

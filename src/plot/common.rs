@@ -1,0 +1,431 @@
+//! Shared machinery of the figures: bundled font, output backends, styling, input checks.
+
+use std::path::Path;
+use std::sync::Once;
+
+use plotters::coord::ranged1d::ValueFormatter;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::{register_font, FontStyle};
+
+use crate::error::PlotError;
+
+/// DejaVu Sans (Bitstream Vera licence, see `data/fonts/LICENSE-DejaVu`), bundled so that
+/// figures render without fontconfig, system fonts or a display.
+static FONT: &[u8] = include_bytes!("../../data/fonts/DejaVuSans.ttf");
+
+/// Font family name under which the bundled font is registered.
+pub const FONT_FAMILY: &str = "sans-serif";
+
+static REGISTER: Once = Once::new();
+
+/// Registers the bundled font with plotters' `ab_glyph` backend (idempotent, thread-safe).
+///
+/// Called by [`render`] and [`render_rgb`]; call it yourself only if you draw with plotters
+/// directly. Registration cannot fail for the bundled file; a failure would surface later as a
+/// drawing error naming the font.
+pub fn ensure_font() {
+    REGISTER.call_once(|| {
+        for style in [FontStyle::Normal, FontStyle::Bold] {
+            // the bytes are a valid TTF checked by the tests; an error here would only make text
+            // drawing fail later with a clear backend error
+            let _ = register_font(FONT_FAMILY, style, FONT);
+        }
+    });
+}
+
+/// Size and title of an output figure.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FigureOptions {
+    /// Width in pixels (default 1024).
+    pub width: u32,
+    /// Height in pixels (default 768).
+    pub height: u32,
+    /// Caption drawn above the plot; `None` (default) uses the figure's own default caption.
+    pub title: Option<String>,
+}
+
+impl Default for FigureOptions {
+    fn default() -> Self {
+        Self {
+            width: 1024,
+            height: 768,
+            title: None,
+        }
+    }
+}
+
+/// A figure kind: validates its data and draws itself on any plotters backend.
+pub trait Figure {
+    /// Short kind name used in error messages (e.g. `frf`).
+    fn kind(&self) -> &'static str;
+    /// Checks the data (lengths, finiteness, non-empty); `Err` names the field and the fix.
+    fn validate(&self) -> Result<(), PlotError>;
+    /// Draws the figure on `root` (already cleared to white) with the caption `title`.
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        title: &str,
+    ) -> Result<(), PlotError>;
+    /// The caption used when [`FigureOptions::title`] is `None`.
+    fn default_title(&self) -> String;
+}
+
+/// Converts any plotters error into [`PlotError::Draw`] (path filled in by [`render`]).
+pub fn draw_err<E: std::fmt::Display>(e: E) -> PlotError {
+    PlotError::Draw {
+        path: String::new(),
+        message: e.to_string(),
+    }
+}
+
+fn check_size(opts: &FigureOptions) -> Result<(), PlotError> {
+    if opts.width < 200 || opts.height < 150 || opts.width > 10_000 || opts.height > 10_000 {
+        return Err(PlotError::bad(
+            "any",
+            "width/height",
+            format!(
+                "{}×{} px: use 200..10000 × 150..10000 pixels",
+                opts.width, opts.height
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Draws `fig` into the file `path`; the format follows the extension (`.png`).
+///
+/// # Errors
+/// [`PlotError::BadData`] from the figure's validation, [`PlotError::Format`] for another
+/// extension, [`PlotError::Draw`] if the file cannot be written.
+pub fn render<F: Figure>(fig: &F, path: &Path, opts: &FigureOptions) -> Result<(), PlotError> {
+    fig.validate()?;
+    check_size(opts)?;
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase());
+    if ext.as_deref() != Some("png") {
+        return Err(PlotError::Format {
+            path: path.display().to_string(),
+        });
+    }
+    ensure_font();
+    let with_path = |e: PlotError| match e {
+        PlotError::Draw { message, .. } => PlotError::Draw {
+            path: path.display().to_string(),
+            message,
+        },
+        other => other,
+    };
+    let root = BitMapBackend::new(path, (opts.width, opts.height)).into_drawing_area();
+    let title = opts.title.clone().unwrap_or_else(|| fig.default_title());
+    root.fill(&WHITE).map_err(draw_err).map_err(with_path)?;
+    fig.draw(&root, &title).map_err(with_path)?;
+    root.present().map_err(draw_err).map_err(with_path)
+}
+
+/// Draws `fig` into an in-memory RGB buffer (3 bytes per pixel, row-major) of the requested
+/// size: for tests and for embedding in other outputs.
+///
+/// # Errors
+/// As [`render`], without the file errors.
+pub fn render_rgb<F: Figure>(fig: &F, opts: &FigureOptions) -> Result<Vec<u8>, PlotError> {
+    fig.validate()?;
+    check_size(opts)?;
+    ensure_font();
+    let mut buf = vec![0u8; opts.width as usize * opts.height as usize * 3];
+    {
+        let root =
+            BitMapBackend::with_buffer(&mut buf, (opts.width, opts.height)).into_drawing_area();
+        let title = opts.title.clone().unwrap_or_else(|| fig.default_title());
+        root.fill(&WHITE).map_err(draw_err)?;
+        fig.draw(&root, &title)?;
+        root.present().map_err(draw_err)?;
+    }
+    Ok(buf)
+}
+
+/// Colour-blind-friendly qualitative palette (Okabe & Ito 2008), for series.
+pub const PALETTE: [RGBColor; 8] = [
+    RGBColor(0, 114, 178),   // blue
+    RGBColor(213, 94, 0),    // vermillion
+    RGBColor(0, 158, 115),   // bluish green
+    RGBColor(204, 121, 167), // reddish purple
+    RGBColor(230, 159, 0),   // orange
+    RGBColor(86, 180, 233),  // sky blue
+    RGBColor(0, 0, 0),       // black
+    RGBColor(240, 228, 66),  // yellow
+];
+
+/// The i-th palette colour (cycling).
+pub fn series_color(i: usize) -> RGBColor {
+    PALETTE[i % PALETTE.len()]
+}
+
+/// Colour of a dynamical regime as written in the `regime` column.
+///
+/// periodic → green, quasi-periodic → blue, chaotic → red, stochastic → purple, anything else
+/// (undetermined, empty) → grey. Names starting with `periodic` (e.g. `periodic-2`) count as
+/// periodic.
+pub fn regime_color(regime: &str) -> RGBColor {
+    let r = regime.trim().to_ascii_lowercase();
+    if r.starts_with("quasi") {
+        RGBColor(86, 140, 233)
+    } else if r.starts_with("periodic") {
+        RGBColor(60, 175, 90)
+    } else if r.starts_with("chaotic") {
+        RGBColor(220, 50, 40)
+    } else if r.starts_with("stochastic") {
+        RGBColor(150, 90, 180)
+    } else {
+        RGBColor(160, 160, 160)
+    }
+}
+
+/// The regime names in a fixed legend order, restricted to those present in `regimes`
+/// (unknown names keep their first-seen order at the end).
+pub fn regime_legend(regimes: &[&str]) -> Vec<String> {
+    let rank = |r: &str| {
+        let r = r.to_ascii_lowercase();
+        ["periodic", "quasi", "chaotic", "stochastic", "undetermined"]
+            .iter()
+            .rposition(|o| r.starts_with(o))
+            .unwrap_or(5)
+    };
+    let mut seen: Vec<String> = Vec::new();
+    for r in regimes {
+        let r = r.trim().to_string();
+        if !seen.contains(&r) {
+            seen.push(r);
+        }
+    }
+    seen.sort_by_key(|r| rank(r));
+    seen
+}
+
+/// Perceptually ordered colour scale (viridis, 5 anchor colours linearly interpolated);
+/// `t` is clamped to [0, 1].
+pub fn viridis(t: f64) -> RGBColor {
+    const A: [(f64, f64, f64); 5] = [
+        (68.0, 1.0, 84.0),
+        (59.0, 82.0, 139.0),
+        (33.0, 145.0, 140.0),
+        (94.0, 201.0, 98.0),
+        (253.0, 231.0, 37.0),
+    ];
+    let t = if t.is_finite() {
+        t.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let s = t * (A.len() - 1) as f64;
+    let i = (s.floor() as usize).min(A.len() - 2);
+    let u = s - i as f64;
+    let mix = |a: f64, b: f64| (a + (b - a) * u).round() as u8;
+    RGBColor(
+        mix(A[i].0, A[i + 1].0),
+        mix(A[i].1, A[i + 1].1),
+        mix(A[i].2, A[i + 1].2),
+    )
+}
+
+/// Caption font.
+pub fn caption_font() -> TextStyle<'static> {
+    (FONT_FAMILY, 22).into_font().into()
+}
+
+/// Axis-description font.
+pub fn label_font() -> TextStyle<'static> {
+    (FONT_FAMILY, 17).into_font().into()
+}
+
+/// Tick-label font.
+pub fn tick_font() -> TextStyle<'static> {
+    (FONT_FAMILY, 14).into_font().into()
+}
+
+/// Small annotation font.
+pub fn small_font() -> TextStyle<'static> {
+    (FONT_FAMILY, 11).into_font().into()
+}
+
+/// Min and max of the finite values of one or more slices, padded by `pad` of the range
+/// (a zero range is widened by ±1 % of |value| or ±1).
+pub fn padded_range<'a>(values: impl IntoIterator<Item = &'a [f64]>, pad: f64) -> (f64, f64) {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for v in values {
+        for &x in v.iter().filter(|x| x.is_finite()) {
+            lo = lo.min(x);
+            hi = hi.max(x);
+        }
+    }
+    if !lo.is_finite() {
+        return (0.0, 1.0);
+    }
+    if hi - lo <= f64::EPSILON * hi.abs().max(lo.abs()) {
+        let w = if lo == 0.0 { 1.0 } else { 0.01 * lo.abs() };
+        return (lo - w, hi + w);
+    }
+    let w = (hi - lo) * pad;
+    (lo - w, hi + w)
+}
+
+/// Checks that a field is non-empty and finite; `Err` names the first bad index.
+pub fn check_finite(figure: &str, field: &str, v: &[f64]) -> Result<(), PlotError> {
+    if v.is_empty() {
+        return Err(PlotError::bad(
+            figure,
+            field,
+            "no data: the column is empty",
+        ));
+    }
+    if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+        return Err(PlotError::bad(
+            figure,
+            field,
+            format!(
+                "value {} at row {i} is not finite: remove or recompute that row",
+                v[i]
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Checks that `v` has `n` entries (same length as the figure's x data).
+pub fn check_len(figure: &str, field: &str, v: usize, n: usize) -> Result<(), PlotError> {
+    if v != n {
+        return Err(PlotError::bad(
+            figure,
+            field,
+            format!("has {v} values but the x data has {n}: columns must have equal lengths"),
+        ));
+    }
+    Ok(())
+}
+
+/// A named (x, y) data series borrowed from the caller.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Series<'a> {
+    /// Legend label.
+    pub label: &'a str,
+    /// Abscissae.
+    pub x: &'a [f64],
+    /// Ordinates (same length as `x`).
+    pub y: &'a [f64],
+}
+
+impl Series<'_> {
+    /// Checks non-empty, equal lengths, finite values.
+    pub fn validate(&self, figure: &str) -> Result<(), PlotError> {
+        check_finite(figure, &format!("{} (x)", self.label), self.x)?;
+        check_len(
+            figure,
+            &format!("{} (y)", self.label),
+            self.y.len(),
+            self.x.len(),
+        )?;
+        check_finite(figure, &format!("{} (y)", self.label), self.y)
+    }
+}
+
+/// Draws the legend of `chart` in its upper-right corner.
+pub fn legend<'a, DB, CT>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    pos: SeriesLabelPosition,
+) -> Result<(), PlotError>
+where
+    DB: DrawingBackend + 'a,
+    CT: CoordTranslate,
+{
+    chart
+        .configure_series_labels()
+        .position(pos)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.5))
+        .label_font(label_font())
+        .draw()
+        .map_err(draw_err)
+}
+
+/// Standard mesh (grid, axis descriptions, tick font) of a 2-D chart.
+pub fn mesh<'a, DB, X, Y>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    x_desc: &str,
+    y_desc: &str,
+) -> Result<(), PlotError>
+where
+    DB: DrawingBackend + 'a,
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .axis_desc_style(label_font())
+        .label_style(tick_font())
+        .light_line_style(BLACK.mix(0.05))
+        .bold_line_style(BLACK.mix(0.15))
+        .x_label_formatter(&|v| fmt_tick(*v))
+        .y_label_formatter(&|v| fmt_tick(*v))
+        .draw()
+        .map_err(draw_err)
+}
+
+/// Compact tick labels: plain decimals for moderate magnitudes, scientific otherwise.
+pub fn fmt_tick(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 {
+        "0".into()
+    } else if !(1e-3..1e5).contains(&a) {
+        format!("{v:.1e}")
+    } else {
+        let s = format!("{v:.4}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        s.to_string()
+    }
+}
+
+/// Pixel size helper: a fraction of the smaller side of the drawing area, at least `min`.
+pub fn scaled<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, frac: f64, min: u32) -> u32 {
+    let (w, h) = area.dim_in_pixel();
+    ((w.min(h) as f64 * frac) as u32).max(min)
+}
+
+/// Reduces a long line to at most ~`max_points` points keeping each bucket's minimum and
+/// maximum in time order, so that peaks survive (unlike plain striding).
+pub fn decimate_minmax(x: &[f64], y: &[f64], max_points: usize) -> Vec<(f64, f64)> {
+    let n = x.len().min(y.len());
+    if n <= max_points || max_points < 4 {
+        return x.iter().copied().zip(y.iter().copied()).collect();
+    }
+    let buckets = max_points / 2;
+    let mut out = Vec::with_capacity(2 * buckets + 2);
+    for b in 0..buckets {
+        let (lo, hi) = (b * n / buckets, ((b + 1) * n / buckets).min(n));
+        if lo >= hi {
+            continue;
+        }
+        let (mut imin, mut imax) = (lo, lo);
+        for i in lo..hi {
+            if y[i] < y[imin] {
+                imin = i;
+            }
+            if y[i] > y[imax] {
+                imax = i;
+            }
+        }
+        let (a, b) = if imin <= imax {
+            (imin, imax)
+        } else {
+            (imax, imin)
+        };
+        out.push((x[a], y[a]));
+        if b != a {
+            out.push((x[b], y[b]));
+        }
+    }
+    out
+}

@@ -1,0 +1,199 @@
+//! Frequency response Z(f) of one or more runs, with the reference curves (2.1.21) of the
+//! primary alone (mass M) and with the grains frozen to it (M + m_p) (SPEC §7).
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use super::common::{self, check_finite, draw_err, padded_range, series_color, Figure, Series};
+use crate::analysis::frf_fit::sdof_amplitude;
+use crate::error::PlotError;
+
+/// Parameters of the reference curves of an FRF figure.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrfReference {
+    /// Primary mass M (kg).
+    pub mass_kg: f64,
+    /// Mass of the grains m_p (kg); `None` draws only the M curve.
+    pub particle_mass_kg: Option<f64>,
+    /// Spring stiffness K (N/m).
+    pub stiffness_n_per_m: f64,
+    /// Primary damping C (N s/m).
+    pub damping_ns_per_m: f64,
+    /// Base amplitude U (m).
+    pub base_amplitude_m: f64,
+}
+
+/// FRF figure: amplitude (mm) versus frequency (Hz), markers and lines per series, dashed
+/// reference curves.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrfFigure<'a> {
+    /// Simulated or measured curves: x = `frequency_hz`, y = `amplitude_m`.
+    pub series: Vec<Series<'a>>,
+    /// Reference curves (2.1.21), if given.
+    pub reference: Option<FrfReference>,
+}
+
+impl FrfReference {
+    fn validate(&self) -> Result<(), PlotError> {
+        let fields = [
+            ("mass", Some(self.mass_kg)),
+            ("particle-mass", self.particle_mass_kg),
+            ("stiffness", Some(self.stiffness_n_per_m)),
+            ("base-amplitude", Some(self.base_amplitude_m)),
+        ];
+        for (name, v) in fields {
+            if let Some(v) = v {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(PlotError::bad(
+                        "frf",
+                        name,
+                        format!("{v}: must be > 0 (SI)"),
+                    ));
+                }
+            }
+        }
+        if !(self.damping_ns_per_m.is_finite() && self.damping_ns_per_m >= 0.0) {
+            return Err(PlotError::bad(
+                "frf",
+                "damping",
+                format!("{}: must be ≥ 0 N s/m", self.damping_ns_per_m),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The reference curves as (label, points in (Hz, mm)) over `f_lo..f_hi`.
+    fn curves(&self, f_lo: f64, f_hi: f64) -> Vec<(String, Vec<(f64, f64)>)> {
+        let mut masses = vec![(
+            format!("reference M = {} kg", fmt(self.mass_kg)),
+            self.mass_kg,
+        )];
+        if let Some(mp) = self.particle_mass_kg {
+            masses.push((
+                format!("reference M + m_p = {} kg", fmt(self.mass_kg + mp)),
+                self.mass_kg + mp,
+            ));
+        }
+        let n = 600;
+        masses
+            .into_iter()
+            .map(|(label, m)| {
+                let pts = (0..=n)
+                    .map(|i| {
+                        let f = f_lo + (f_hi - f_lo) * i as f64 / n as f64;
+                        let z = sdof_amplitude(
+                            f,
+                            m,
+                            self.damping_ns_per_m,
+                            self.stiffness_n_per_m,
+                            self.base_amplitude_m,
+                        );
+                        (f, 1e3 * z)
+                    })
+                    .collect();
+                (label, pts)
+            })
+            .collect()
+    }
+}
+
+fn fmt(v: f64) -> String {
+    format!("{}", (v * 1e4).round() / 1e4)
+}
+
+impl Figure for FrfFigure<'_> {
+    fn kind(&self) -> &'static str {
+        "frf"
+    }
+
+    fn validate(&self) -> Result<(), PlotError> {
+        if self.series.is_empty() {
+            return Err(PlotError::bad(
+                "frf",
+                "series",
+                "no FRF given: pass at least one sweep",
+            ));
+        }
+        for s in &self.series {
+            s.validate("frf")?;
+            check_finite("frf", "frequency_hz", s.x)?;
+        }
+        if let Some(r) = &self.reference {
+            r.validate()?;
+        }
+        Ok(())
+    }
+
+    fn default_title(&self) -> String {
+        "Frequency response of the primary mass".into()
+    }
+
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        title: &str,
+    ) -> Result<(), PlotError> {
+        let (f_lo, f_hi) = padded_range(self.series.iter().map(|s| s.x), 0.02);
+        let f_lo = f_lo.max(0.0);
+        let refs = self
+            .reference
+            .map(|r| r.curves(f_lo.max(1e-3), f_hi))
+            .unwrap_or_default();
+        let data_mm: Vec<Vec<f64>> = self
+            .series
+            .iter()
+            .map(|s| s.y.iter().map(|z| 1e3 * z).collect())
+            .collect();
+        let ref_mm: Vec<Vec<f64>> = refs
+            .iter()
+            .map(|(_, p)| p.iter().map(|q| q.1).collect())
+            .collect();
+        let (_, mut z_hi) = padded_range(
+            data_mm
+                .iter()
+                .map(|v| v.as_slice())
+                .chain(ref_mm.iter().map(|v| v.as_slice())),
+            0.05,
+        );
+        // an almost undamped reference peak would squash the data: cap at 3× the data maximum
+        let (_, data_hi) = padded_range(data_mm.iter().map(|v| v.as_slice()), 0.05);
+        z_hi = z_hi.min(3.0 * data_hi);
+        let mut chart = ChartBuilder::on(root)
+            .caption(title, common::caption_font())
+            .margin(common::scaled(root, 0.02, 8))
+            .x_label_area_size(common::scaled(root, 0.08, 40))
+            .y_label_area_size(common::scaled(root, 0.1, 55))
+            .build_cartesian_2d(f_lo..f_hi, 0.0..z_hi)
+            .map_err(draw_err)?;
+        common::mesh(&mut chart, "frequency f (Hz)", "amplitude Z (mm)")?;
+        for (i, (label, pts)) in refs.into_iter().enumerate() {
+            let color = if i == 0 {
+                BLACK.mix(0.7)
+            } else {
+                RGBColor(120, 120, 120).mix(0.9)
+            };
+            let style = ShapeStyle::from(color).stroke_width(2);
+            let clipped: Vec<(f64, f64)> = pts.into_iter().filter(|p| p.1 <= z_hi).collect();
+            chart
+                .draw_series(DashedLineSeries::new(clipped, 8 + 4 * i as u32, 5, style))
+                .map_err(draw_err)?
+                .label(label)
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
+        }
+        for (i, (s, y)) in self.series.iter().zip(&data_mm).enumerate() {
+            let color = series_color(i);
+            let pts: Vec<(f64, f64)> = s.x.iter().copied().zip(y.iter().copied()).collect();
+            chart
+                .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
+                .map_err(draw_err)?
+                .label(s.label)
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                });
+            chart
+                .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
+                .map_err(draw_err)?;
+        }
+        common::legend(&mut chart, SeriesLabelPosition::UpperRight)
+    }
+}

@@ -1,0 +1,181 @@
+//! `[run]`: duration, steady-state window, output sampling and time-step settings.
+
+use super::positive;
+use crate::error::SceneError;
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+/// Run settings.
+///
+/// Give exactly one of `duration` (s) and `periods` (number of forcing periods).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Run {
+    /// Simulated time (s), > 0. Exclusive with `periods`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub duration: Option<f64>,
+    /// Simulated time as a number of forcing periods (dimensionless), > 0; handy in frequency
+    /// sweeps. Exclusive with `duration`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub periods: Option<f64>,
+    /// Last fraction of the run analysed as steady state (dimensionless), in (0, 1]. Default 0.1
+    /// (SPEC §1: "the last 10 %").
+    #[serde(default = "default_steady_fraction")]
+    pub steady_fraction: f64,
+    /// Output sampling interval of `series.csv` (s), > 0. Default 1e-4 s.
+    #[serde(default = "default_sample_interval")]
+    pub sample_interval: f64,
+    /// Time step of time-stepping models (DEM): `"auto"` (a fraction `dt_fraction` of the
+    /// contact duration) or seconds. The event-driven impact model ignores it. Default: auto.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dt: Option<DtSpec>,
+    /// Fraction of the contact duration used as time step when `dt = "auto"` (dimensionless),
+    /// in (0, 1]. Default 0.01 (the thesis's δt ≈ t_s/100).
+    #[serde(default = "default_dt_fraction")]
+    pub dt_fraction: f64,
+    /// Seed of every random number generator of the run (packing, polydispersity). Default 0.
+    #[serde(default)]
+    pub seed: u64,
+    /// Largest number of steady-state samples handed to the nonlinear analysis (the series is
+    /// decimated to stay below). Default 20000.
+    #[serde(default = "default_analysis_max_samples")]
+    pub analysis_max_samples: usize,
+}
+
+fn default_steady_fraction() -> f64 {
+    0.1
+}
+fn default_sample_interval() -> f64 {
+    1e-4
+}
+fn default_dt_fraction() -> f64 {
+    0.01
+}
+fn default_analysis_max_samples() -> usize {
+    20_000
+}
+
+impl Run {
+    /// A run of `duration_s` seconds with the default settings.
+    pub fn with_duration(duration_s: f64) -> Run {
+        Run {
+            duration: Some(duration_s),
+            periods: None,
+            steady_fraction: default_steady_fraction(),
+            sample_interval: default_sample_interval(),
+            dt: None,
+            dt_fraction: default_dt_fraction(),
+            seed: 0,
+            analysis_max_samples: default_analysis_max_samples(),
+        }
+    }
+
+    /// Duration (s) for forcing frequency `frequency_hz`: `duration`, or `periods / f`.
+    pub fn duration_s(&self, frequency_hz: f64) -> f64 {
+        match (self.duration, self.periods) {
+            (Some(d), _) => d,
+            (None, Some(n)) => n / frequency_hz,
+            (None, None) => 0.0,
+        }
+    }
+
+    /// Check the run settings.
+    ///
+    /// # Errors
+    /// [`SceneError`] naming `run.<key>`.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        match (self.duration, self.periods) {
+            (Some(_), Some(_)) => {
+                return Err(SceneError::invalid(
+                    "run.periods",
+                    self.periods.unwrap_or_default(),
+                    "give either run.duration (s) or run.periods (forcing periods), not both",
+                ))
+            }
+            (None, None) => {
+                return Err(SceneError::Missing {
+                    field: "run.duration".into(),
+                    hint: "write duration = seconds, or periods = number of forcing periods".into(),
+                })
+            }
+            (Some(d), None) => positive("run.duration", d, "s")?,
+            (None, Some(n)) => positive("run.periods", n, "forcing periods")?,
+        }
+        let sf = self.steady_fraction;
+        if !(sf > 0.0 && sf <= 1.0) {
+            return Err(SceneError::invalid(
+                "run.steady_fraction",
+                sf,
+                "must lie in (0, 1]",
+            ));
+        }
+        positive("run.sample_interval", self.sample_interval, "s")?;
+        if let Some(DtSpec::Seconds(dt)) = self.dt {
+            positive("run.dt", dt, "s, or \"auto\"")?;
+        }
+        let fr = self.dt_fraction;
+        if !(fr > 0.0 && fr <= 1.0) {
+            return Err(SceneError::invalid(
+                "run.dt_fraction",
+                fr,
+                "must lie in (0, 1] (fraction of the contact duration)",
+            ));
+        }
+        if self.analysis_max_samples < 100 {
+            return Err(SceneError::invalid(
+                "run.analysis_max_samples",
+                self.analysis_max_samples,
+                "must be ≥ 100",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Time step setting: `"auto"` or a number of seconds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum DtSpec {
+    /// A fraction `run.dt_fraction` of the estimated contact duration.
+    Auto,
+    /// A fixed step (s).
+    Seconds(f64),
+}
+
+impl Serialize for DtSpec {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            DtSpec::Auto => s.serialize_str("auto"),
+            DtSpec::Seconds(x) => s.serialize_f64(*x),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for DtSpec {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl serde::de::Visitor<'_> for V {
+            type Value = DtSpec;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("\"auto\" or a time step in seconds")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<DtSpec, E> {
+                if v == "auto" {
+                    Ok(DtSpec::Auto)
+                } else {
+                    Err(E::custom(format!(
+                        "run.dt = \"{v}\": expected \"auto\" or a number of seconds"
+                    )))
+                }
+            }
+            fn visit_f64<E: serde::de::Error>(self, v: f64) -> Result<DtSpec, E> {
+                Ok(DtSpec::Seconds(v))
+            }
+            fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<DtSpec, E> {
+                Ok(DtSpec::Seconds(v as f64))
+            }
+            fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<DtSpec, E> {
+                Ok(DtSpec::Seconds(v as f64))
+            }
+        }
+        d.deserialize_any(V)
+    }
+}

@@ -1,0 +1,466 @@
+//! Every figure kind renders headless (bundled font, no display) to a PNG of the requested
+//! size that is not blank and shows its data colour; bad data gives errors naming the field.
+
+use std::path::Path;
+
+use pdamp::analysis::frf_fit::sdof_amplitude;
+use pdamp::error::PlotError;
+use pdamp::plot::bed_motion::BedMotionFigure;
+use pdamp::plot::bifurcation::BifurcationFigure;
+use pdamp::plot::effective::EffectiveFigure;
+use pdamp::plot::energy::energy_figure;
+use pdamp::plot::frf::{FrfFigure, FrfReference};
+use pdamp::plot::poincare::PoincareFigure;
+use pdamp::plot::reconstruction::ReconstructionFigure;
+use pdamp::plot::regime_frf::RegimeFrfFigure;
+use pdamp::plot::regime_map::RegimeMapFigure;
+use pdamp::plot::resonance::{resonance_amplitudes, resonance_figure};
+use pdamp::plot::spectrum::SpectrumFigure;
+use pdamp::plot::{render, render_rgb, Figure, FigureOptions, Series};
+
+const W: u32 = 720;
+const H: u32 = 540;
+/// Okabe–Ito blue, the first series colour.
+const BLUE: [u8; 3] = [0, 114, 178];
+
+fn opts() -> FigureOptions {
+    FigureOptions {
+        width: W,
+        height: H,
+        title: None,
+    }
+}
+
+/// Width and height from the PNG IHDR chunk (bytes 16..24, big-endian), and the decoded RGB.
+fn read_png(path: &Path) -> (u32, u32, image::RgbImage) {
+    let bytes = std::fs::read(path).unwrap();
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "not a PNG");
+    assert_eq!(&bytes[12..16], b"IHDR");
+    let w = u32::from_be_bytes(bytes[16..20].try_into().unwrap());
+    let h = u32::from_be_bytes(bytes[20..24].try_into().unwrap());
+    let img = image::load_from_memory(&bytes).unwrap().to_rgb8();
+    (w, h, img)
+}
+
+/// Renders to PNG and checks size, non-blankness, that the data colour (or `data_color`)
+/// appears, and that text was drawn in the caption strip (font works headless).
+fn check_renders<F: Figure>(fig: &F, name: &str, data_color: [u8; 3], min_data_px: usize) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(format!("{name}.png"));
+    render(fig, &path, &opts()).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let (w, h, img) = read_png(&path);
+    assert_eq!((w, h), (W, H), "{name}: size from IHDR");
+    assert_eq!(img.dimensions(), (W, H));
+    let non_white = img.pixels().filter(|p| p.0 != [255, 255, 255]).count();
+    // axes, ticks and data cover well over 1 % of a real figure; a blank image has 0
+    assert!(
+        non_white > (W * H / 100) as usize,
+        "{name}: only {non_white} non-white pixels"
+    );
+    let close = |p: &image::Rgb<u8>| {
+        p.0.iter()
+            .zip(data_color)
+            .all(|(a, b)| (*a as i32 - b as i32).abs() <= 12)
+    };
+    let data_px = img.pixels().filter(|p| close(p)).count();
+    assert!(
+        data_px >= min_data_px,
+        "{name}: {data_px} pixels of the data colour {data_color:?}, want ≥ {min_data_px}"
+    );
+    // the caption strip (top 6 %) holds dark text pixels: the bundled font rendered
+    let caption_dark = (0..W)
+        .flat_map(|x| (0..H * 6 / 100).map(move |y| (x, y)))
+        .filter(|&(x, y)| img.get_pixel(x, y).0.iter().all(|&c| c < 100))
+        .count();
+    assert!(
+        caption_dark > 50,
+        "{name}: no caption text ({caption_dark})"
+    );
+}
+
+fn frf_data() -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let f: Vec<f64> = (1..=60).map(|i| 0.5 * i as f64).collect();
+    let z: Vec<f64> = f
+        .iter()
+        .map(|&f| sdof_amplitude(f, 2.37 + 0.15, 20.0, 21500.0, 4.5e-3))
+        .collect();
+    let z1: Vec<f64> = f
+        .iter()
+        .map(|&f| sdof_amplitude(f, 2.5, 14.0, 21500.0, 4.5e-3))
+        .collect();
+    (f, z, z1)
+}
+
+#[test]
+fn frf_with_reference_curves() {
+    let (f, z, z1) = frf_data();
+    let fig = FrfFigure {
+        series: vec![
+            Series {
+                label: "granular (DEM)",
+                x: &f,
+                y: &z,
+            },
+            Series {
+                label: "one particle (impact)",
+                x: &f,
+                y: &z1,
+            },
+        ],
+        reference: Some(FrfReference {
+            mass_kg: 2.37,
+            particle_mass_kg: Some(0.227),
+            stiffness_n_per_m: 21500.0,
+            damping_ns_per_m: 7.6,
+            base_amplitude_m: 4.5e-3,
+        }),
+    };
+    check_renders(&fig, "frf", BLUE, 200);
+}
+
+#[test]
+fn bed_motion_with_band_and_force() {
+    let t: Vec<f64> = (0..4000).map(|i| i as f64 * 1e-4).collect();
+    let w = std::f64::consts::TAU * 15.0;
+    let floor: Vec<f64> = t.iter().map(|t| 5e-3 * (w * t).cos()).collect();
+    let ceil: Vec<f64> = floor.iter().map(|z| z + 0.06).collect();
+    let zcm: Vec<f64> = t
+        .iter()
+        .map(|t| 0.02 + 8e-3 * (w * t - 0.5).cos())
+        .collect();
+    let lo: Vec<f64> = zcm.iter().map(|z| z - 0.012).collect();
+    let hi: Vec<f64> = zcm.iter().map(|z| z + 0.012).collect();
+    let force: Vec<f64> = t
+        .iter()
+        .map(|t| 20.0 + 30.0 * (w * t).sin().max(0.0))
+        .collect();
+    let fig = BedMotionFigure {
+        time_s: &t,
+        floor_z_m: &floor,
+        ceiling_z_m: &ceil,
+        grain_z_m: &zcm,
+        grain_band: Some((&lo, &hi)),
+        grain_force_n: Some(&force),
+    };
+    check_renders(&fig, "bed_motion", BLUE, 200);
+}
+
+#[test]
+fn poincare_section() {
+    // quasi-periodic torus section: a closed curve
+    let x: Vec<f64> = (0..500).map(|k| (k as f64 * 0.7548).cos()).collect();
+    let y: Vec<f64> = (0..500).map(|k| (k as f64 * 0.7548).sin()).collect();
+    let fig = PoincareFigure {
+        x: &x,
+        y: &y,
+        x_label: "z(t_k) (m)".into(),
+        y_label: "v(t_k) (m/s)".into(),
+    };
+    check_renders(&fig, "poincare", BLUE, 300);
+}
+
+#[test]
+fn spectrum_log_power() {
+    let f: Vec<f64> = (0..2000).map(|i| i as f64 * 0.05).collect();
+    let p: Vec<f64> = f
+        .iter()
+        .map(|&f| {
+            1e-10 + (-((f - 15.0) / 0.1).powi(2)).exp() + 1e-3 * (-((f - 30.0) / 0.1).powi(2)).exp()
+        })
+        .collect();
+    let fig = SpectrumFigure {
+        frequency_hz: &f,
+        power: &p,
+        forcing_hz: Some(15.0),
+        power_label: "power (m²/Hz)".into(),
+    };
+    check_renders(&fig, "spectrum", BLUE, 200);
+}
+
+#[test]
+fn delay_reconstruction() {
+    let s: Vec<f64> = (0..3000)
+        .map(|i| (i as f64 * 0.05).sin() + 0.3 * (i as f64 * 0.131).sin())
+        .collect();
+    let fig = ReconstructionFigure {
+        series: &s,
+        lag: 30,
+        dt_s: Some(1e-3),
+        value_label: "z_cm (m)".into(),
+    };
+    // the curve is drawn with 60 % alpha on white: blue blended, so test the blend colour
+    check_renders(&fig, "reconstruction", [102, 170, 209], 200);
+}
+
+#[test]
+fn bifurcation_diagram() {
+    // logistic map as a stand-in for strobed positions: a period-doubling cascade
+    let (mut x, mut z) = (vec![], vec![]);
+    for i in 0..300 {
+        let r = 2.8 + 1.2 * i as f64 / 300.0;
+        let mut v = 0.5;
+        for k in 0..400 {
+            v = r * v * (1.0 - v);
+            if k >= 350 {
+                x.push(r);
+                z.push(0.01 * v);
+            }
+        }
+    }
+    let fig = BifurcationFigure {
+        x: &x,
+        z_m: &z,
+        x_label: "parameter r".into(),
+    };
+    // black at 60 % alpha on white → grey 102
+    check_renders(&fig, "bifurcation", [102, 102, 102], 500);
+}
+
+#[test]
+fn regime_frf_with_lyapunov() {
+    let (f, z, _) = frf_data();
+    let regime: Vec<String> = f
+        .iter()
+        .map(|&f| {
+            if f < 12.0 {
+                "periodic"
+            } else if f < 18.0 {
+                "quasi-periodic"
+            } else if f < 22.0 {
+                "chaotic"
+            } else {
+                "periodic"
+            }
+            .to_string()
+        })
+        .collect();
+    let mle: Vec<Option<f64>> = f
+        .iter()
+        .map(|&f| {
+            if !(18.0..22.0).contains(&f) {
+                Some(-0.5)
+            } else {
+                Some(3.0)
+            }
+        })
+        .collect();
+    let fig = RegimeFrfFigure {
+        frequency_hz: &f,
+        amplitude_m: &z,
+        regime: &regime,
+        mle_per_s: Some(&mle),
+    };
+    check_renders(&fig, "regime_frf", BLUE, 200);
+}
+
+#[test]
+fn effective_mass_and_damping() {
+    let lz: Vec<f64> = (0..10).map(|i| 0.05 + 0.02 * i as f64).collect();
+    let m: Vec<f64> = lz.iter().map(|l| 2.6 - 2.0 * (l - 0.05)).collect();
+    let ms = vec![0.01; lz.len()];
+    let c: Vec<f64> = lz
+        .iter()
+        .map(|l| 7.6 + 20.0 * (-((l - 0.12) / 0.06f64).powi(2)).exp())
+        .collect();
+    let cs = vec![0.8; lz.len()];
+    let fig = EffectiveFigure {
+        x: &lz,
+        x_label: "container height Lz (m)".into(),
+        mass_ef_kg: &m,
+        mass_ef_stderr_kg: &ms,
+        damping_ef_ns_per_m: &c,
+        damping_ef_stderr_ns_per_m: &cs,
+        mass_kg: Some(2.37),
+        damping_ns_per_m: Some(7.6),
+    };
+    check_renders(&fig, "effective", BLUE, 100);
+}
+
+#[test]
+fn energy_per_cycle() {
+    let f: Vec<f64> = (1..=30).map(|i| i as f64).collect();
+    let coll: Vec<f64> = f
+        .iter()
+        .map(|f| 0.01 * (-((f - 15.0) / 4.0f64).powi(2)).exp())
+        .collect();
+    let fric: Vec<f64> = coll.iter().map(|c| 0.3 * c).collect();
+    let fig = energy_figure(
+        &f,
+        "frequency f (Hz)",
+        &[("collision", &coll), ("friction", &fric)],
+    );
+    check_renders(&fig, "energy", BLUE, 100);
+}
+
+#[test]
+fn resonance_amplitude_versus_parameter() {
+    // two-key sweep flattened: γ_n × f; Z_res = max over f per γ_n
+    let (mut g, mut z) = (vec![], vec![]);
+    for gi in 0..6 {
+        for fi in 0..20 {
+            let gamma = 2000.0 * gi as f64;
+            g.push(gamma);
+            z.push(sdof_amplitude(
+                10.0 + fi as f64 * 0.5,
+                2.6,
+                5.0 + gamma * 1e-3,
+                21500.0,
+                4.5e-3,
+            ));
+        }
+    }
+    let (x, zr) = resonance_amplitudes(&g, &z);
+    assert_eq!(x.len(), 6);
+    // Z_res of the first group is the max of its 20 rows
+    assert_eq!(zr[0], z[..20].iter().cloned().fold(f64::MIN, f64::max));
+    let zr2: Vec<f64> = zr.iter().map(|v| 0.8 * v).collect();
+    let fig = resonance_figure(
+        vec![
+            Series {
+                label: "N = 250",
+                x: &x,
+                y: &zr,
+            },
+            Series {
+                label: "N = 1000",
+                x: &x,
+                y: &zr2,
+            },
+        ],
+        "normal damping γ_n (kg s⁻¹ m^-1/2)",
+    );
+    check_renders(&fig, "resonance", BLUE, 100);
+}
+
+#[test]
+fn regime_map_cells_and_legend() {
+    let (mut x, mut y, mut reg, mut mle) = (vec![], vec![], vec![], vec![]);
+    for i in 0..12 {
+        for j in 0..8 {
+            let f = 5.0 + 2.0 * i as f64;
+            let lz = 0.05 + 0.02 * j as f64;
+            x.push(f);
+            y.push(lz);
+            let chaotic = (f - 15.0).abs() < 4.0 && lz > 0.1;
+            reg.push(
+                if chaotic {
+                    "chaotic"
+                } else if f > 20.0 {
+                    "quasi-periodic"
+                } else {
+                    "periodic"
+                }
+                .to_string(),
+            );
+            mle.push(Some(if chaotic { 2.5 } else { -0.4 }));
+        }
+    }
+    let fig = RegimeMapFigure {
+        x: &x,
+        y: &y,
+        regime: &reg,
+        mle_per_s: Some(&mle),
+        x_label: "frequency f (Hz)".into(),
+        y_label: "container height Lz (m)".into(),
+    };
+    // chaotic cells: red (220, 50, 40) at 75 % on white → (229, 101, 94)
+    check_renders(&fig, "regime_map", [229, 101, 94], 2000);
+}
+
+#[test]
+fn render_rgb_has_requested_size_and_custom_title() {
+    let (f, z, _) = frf_data();
+    let fig = FrfFigure {
+        series: vec![Series {
+            label: "run",
+            x: &f,
+            y: &z,
+        }],
+        reference: None,
+    };
+    let o = FigureOptions {
+        width: 400,
+        height: 300,
+        title: Some("custom".into()),
+    };
+    let buf = render_rgb(&fig, &o).unwrap();
+    assert_eq!(buf.len(), 400 * 300 * 3);
+    assert!(buf.iter().any(|&b| b != 255));
+}
+
+// ---------- negative controls: bad data never gives a silent figure ----------
+
+#[test]
+fn nan_in_data_is_an_error_naming_the_field() {
+    let f = [1.0, 2.0, 3.0];
+    let z = [1e-3, f64::NAN, 2e-3];
+    let fig = FrfFigure {
+        series: vec![Series {
+            label: "run",
+            x: &f,
+            y: &z,
+        }],
+        reference: None,
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("bad.png");
+    let e = render(&fig, &path, &opts()).unwrap_err();
+    assert!(matches!(e, PlotError::BadData { .. }));
+    assert!(
+        e.to_string().contains("run (y)") && e.to_string().contains("row 1"),
+        "{e}"
+    );
+    assert!(!path.exists(), "no file may be written for bad data");
+}
+
+#[test]
+fn mismatched_lengths_empty_data_and_bad_extension_are_errors() {
+    let t = [0.0, 1.0, 2.0];
+    let short = [0.0, 1.0];
+    let fig = BedMotionFigure {
+        time_s: &t,
+        floor_z_m: &t,
+        ceiling_z_m: &short,
+        grain_z_m: &t,
+        grain_band: None,
+        grain_force_n: None,
+    };
+    let e = render_rgb(&fig, &opts()).unwrap_err();
+    assert!(e.to_string().contains("ceiling_z_m"), "{e}");
+    let empty = PoincareFigure {
+        x: &[],
+        y: &[],
+        x_label: "x".into(),
+        y_label: "y".into(),
+    };
+    assert!(render_rgb(&empty, &opts()).is_err());
+    let s = [1.0, 2.0, 3.0, 4.0];
+    let rec = ReconstructionFigure {
+        series: &s,
+        lag: 10,
+        dt_s: None,
+        value_label: "s".into(),
+    };
+    assert!(render_rgb(&rec, &opts())
+        .unwrap_err()
+        .to_string()
+        .contains("lag"));
+    let ok = PoincareFigure {
+        x: &s,
+        y: &s,
+        x_label: "x".into(),
+        y_label: "y".into(),
+    };
+    let e = render(&ok, Path::new("/tmp/x.jpg"), &opts()).unwrap_err();
+    assert!(matches!(e, PlotError::Format { .. }), "{e}");
+    let zero = SpectrumFigure {
+        frequency_hz: &s,
+        power: &[0.0; 4],
+        forcing_hz: None,
+        power_label: "p".into(),
+    };
+    assert!(render_rgb(&zero, &opts())
+        .unwrap_err()
+        .to_string()
+        .contains("power"));
+}
