@@ -237,7 +237,7 @@ fn regime_frf_with_lyapunov() {
     let mle: Vec<Option<f64>> = f
         .iter()
         .map(|&f| {
-            if f < 18.0 || f >= 22.0 {
+            if !(18.0..22.0).contains(&f) {
                 Some(-0.5)
             } else {
                 Some(3.0)

@@ -128,7 +128,7 @@ pub fn parabolic_peak(x: &[f64], y: &[f64], y_stderr: &[f64]) -> Result<Located,
     }
     let dot = |w: &[f64; 3]| w.iter().zip(&ys).map(|(a, b)| a * b).sum::<f64>();
     let (a, b, c) = (dot(&alpha), dot(&beta), dot(&gamma));
-    if !(a < 0.0) {
+    if a.is_nan() || a >= 0.0 {
         return Err(AnalysisError::NoResult(format!(
             "the three points around the maximum (x = {}) are not concave: cannot interpolate a peak",
             x[i]

@@ -6,7 +6,7 @@ use crate::contact::linear_spring_dashpot::LinearContactParams;
 use crate::contact::material::{Material, PairProperties};
 use crate::contact::{coulomb_viscous_force, hertz_stiffness};
 use crate::error::SceneError;
-use crate::integrate::{advance_orientation, drift, half_kick};
+use crate::integrate::{advance_orientation, half_kick, kick_drift};
 use crate::neighbor::{NeighborList, Pair};
 use crate::scene::dem::{ContactKind, DemParams};
 use crate::units::{G, TWO_PI};
@@ -366,21 +366,10 @@ impl DemWorld {
     pub fn step(&mut self) {
         let dt = self.dt;
         let h = 0.5 * dt;
-        // 1. half kick
-        half_kick(&mut self.vel, &self.force, &self.inv_mass, h);
-        if self.laws.rotations {
-            half_kick(&mut self.omega, &self.torque, &self.inv_inertia, h);
-        }
+        // 1.–2. box first (its new position is the common shift of the displacement check)
         let primary_free = self.drive_on && self.drive.primary.is_some();
         if primary_free {
             self.box_v += h * self.box_a;
-        }
-        // 2. drift
-        drift(&mut self.pos, &self.vel, dt);
-        if let Some(q) = self.orientation.as_mut() {
-            for (q, w) in q.iter_mut().zip(&self.omega) {
-                advance_orientation(q, *w, dt);
-            }
         }
         if self.drive_on {
             self.t += dt;
@@ -392,8 +381,30 @@ impl DemWorld {
                 self.box_v = v;
             }
         }
+        // half kick + drift of the grains, fused with the Verlet-list displacement check
+        let (reference, ref_shift) = self.neighbors.reference();
+        let shift = [0.0, 0.0, self.box_z - ref_shift[2]];
+        let max_d2 = kick_drift(
+            &mut self.pos,
+            &mut self.vel,
+            &self.force,
+            &self.inv_mass,
+            h,
+            dt,
+            reference,
+            shift,
+        );
+        if self.laws.rotations {
+            half_kick(&mut self.omega, &self.torque, &self.inv_inertia, h);
+        }
+        if let Some(q) = self.orientation.as_mut() {
+            for (q, w) in q.iter_mut().zip(&self.omega) {
+                advance_orientation(q, *w, dt);
+            }
+        }
         // 3.–4. neighbours and forces
-        let (p_coll, p_fric) = self.compute_forces();
+        let rebuild = self.neighbors.exceeded(max_d2);
+        let (p_coll, p_fric) = self.forces(rebuild);
         // 5. box equation
         if primary_free {
             self.box_a = self.box_acceleration();
@@ -447,8 +458,15 @@ impl DemWorld {
     /// Rebuilds the neighbour list if needed, then evaluates every force and torque.
     /// Returns the dissipated powers (collision, friction) (W).
     pub fn compute_forces(&mut self) -> (f64, f64) {
+        let rebuild = self
+            .neighbors
+            .needs_rebuild(&self.pos, [0.0, 0.0, self.box_z]);
+        self.forces(rebuild)
+    }
+
+    fn forces(&mut self, rebuild: bool) -> (f64, f64) {
         let shift = [0.0, 0.0, self.box_z];
-        if self.neighbors.needs_rebuild(&self.pos, shift) {
+        if rebuild {
             self.neighbors.rebuild(&self.pos, &self.radius, shift);
             self.pair_coef.clear();
             for &Pair { i, j } in &self.neighbors.pairs {

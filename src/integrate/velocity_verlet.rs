@@ -34,6 +34,52 @@ pub fn drift(x: &mut [[f64; 3]], v: &[[f64; 3]], dt: f64) {
     }
 }
 
+/// Fused half kick + drift: v ← v + h f inv_m; x ← x + dt v, returning the largest squared
+/// displacement |x − x_ref − shift|² (m²) for the Verlet-list validity check, in one pass.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub fn kick_drift(
+    x: &mut [[f64; 3]],
+    v: &mut [[f64; 3]],
+    f: &[[f64; 3]],
+    inv_m: &[f64],
+    h: f64,
+    dt: f64,
+    reference: &[[f64; 3]],
+    shift: [f64; 3],
+) -> f64 {
+    let mut worst = 0.0f64;
+    let tracked = reference.len() == x.len();
+    for (k, ((x, v), (f, &im))) in x
+        .iter_mut()
+        .zip(v.iter_mut())
+        .zip(f.iter().zip(inv_m))
+        .enumerate()
+    {
+        let s = h * im;
+        v[0] += s * f[0];
+        v[1] += s * f[1];
+        v[2] += s * f[2];
+        x[0] += dt * v[0];
+        x[1] += dt * v[1];
+        x[2] += dt * v[2];
+        if tracked {
+            let r = reference[k];
+            let d = [
+                x[0] - r[0] - shift[0],
+                x[1] - r[1] - shift[1],
+                x[2] - r[2] - shift[2],
+            ];
+            worst = worst.max(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        }
+    }
+    if tracked {
+        worst
+    } else {
+        f64::INFINITY
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

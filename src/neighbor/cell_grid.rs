@@ -109,6 +109,17 @@ impl NeighborList {
         worst > lim
     }
 
+    /// Reference positions of the last build and the shift then (m), for fused checks.
+    pub fn reference(&self) -> (&[[f64; 3]], [f64; 3]) {
+        (&self.ref_pos, self.ref_shift)
+    }
+
+    /// True when a largest squared displacement `max_d2` (m², relative to the common shift)
+    /// exceeds (skin/2)².
+    pub fn exceeded(&self, max_d2: f64) -> bool {
+        self.builds == 0 || max_d2 > 0.25 * self.skin_m * self.skin_m
+    }
+
     /// Rebuilds the pair list: all pairs with |r_i − r_j| < R_i + R_j + skin.
     ///
     /// `pos` are lab-frame centres (m), `shift` the box origin in the lab frame (m).
@@ -121,13 +132,8 @@ impl NeighborList {
         self.cell_of.resize(n, 0);
         self.cell_items.resize(n, 0);
         self.cell_count.iter_mut().for_each(|c| *c = 0);
-        for i in 0..n {
-            let p = [
-                pos[i][0] - shift[0],
-                pos[i][1] - shift[1],
-                pos[i][2] - shift[2],
-            ];
-            let c = self.cell_index(p);
+        for (i, q) in pos.iter().enumerate() {
+            let c = self.cell_index([q[0] - shift[0], q[1] - shift[1], q[2] - shift[2]]);
             self.cell_of[i] = c as u32;
             self.cell_count[c] += 1;
         }

@@ -108,12 +108,12 @@ impl Figure for RegimeMapFigure<'_> {
                     plotters::style::text_anchor::HPos::Center,
                     plotters::style::text_anchor::VPos::Center,
                 ));
-                for i in 0..self.x.len() {
-                    if let Some(v) = m[i] {
+                for ((&x, &y), v) in self.x.iter().zip(self.y).zip(m) {
+                    if let Some(v) = v {
                         chart
                             .draw_series(std::iter::once(Text::new(
                                 format!("{v:.2}"),
-                                (self.x[i], self.y[i]),
+                                (x, y),
                                 font.clone(),
                             )))
                             .map_err(draw_err)?;

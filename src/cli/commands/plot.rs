@@ -67,6 +67,14 @@ pub struct Args {
     /// Output image (.png).
     #[arg(short, long, value_name = "FILE.png")]
     pub output: PathBuf,
+    /// Figure options (size, labels, columns, reference parameters).
+    #[command(flatten)]
+    pub opts: Box<PlotOptions>,
+}
+
+/// Options of `pdamp plot` shared by the figure kinds (boxed in [`Args`]).
+#[derive(Debug, clap::Args)]
+pub struct PlotOptions {
     /// Image width in pixels (default 1024).
     #[arg(long, default_value_t = 1024)]
     pub width: u32,
@@ -125,10 +133,11 @@ pub struct Args {
 
 /// Run `pdamp plot`.
 pub fn run(args: Args) -> anyhow::Result<()> {
+    let o: &PlotOptions = &args.opts;
     let opts = FigureOptions {
-        width: args.width,
-        height: args.height,
-        title: args.title.clone(),
+        width: o.width,
+        height: o.height,
+        title: o.title.clone(),
     };
     let tables = args
         .inputs
@@ -139,12 +148,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .inputs
         .iter()
         .enumerate()
-        .map(|(i, p)| {
-            args.label
-                .get(i)
-                .cloned()
-                .unwrap_or_else(|| default_label(p))
-        })
+        .map(|(i, p)| o.label.get(i).cloned().unwrap_or_else(|| default_label(p)))
         .collect();
     let out = &args.output;
     let first = &tables[0];
@@ -165,13 +169,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 .zip(&labels)
                 .map(|((x, y), l)| Series { label: l, x, y })
                 .collect();
-            let reference = frf_reference(&args)?;
+            let reference = frf_reference(o)?;
             draw(&FrfFigure { series, reference }, out, &opts)
         }
         Kind::BedMotion => {
             one()?;
             let t = first.f64_column("time_s")?;
-            let (a, b) = window(&t, args.from_time, args.to_time)?;
+            let (a, b) = window(&t, o.from_time, o.to_time)?;
             let col =
                 |n: &str| -> anyhow::Result<Vec<f64>> { Ok(first.f64_column(n)?[a..b].to_vec()) };
             let (floor, ceil, grain) = (col("floor_z_m")?, col("ceiling_z_m")?, col("grain_z_m")?);
@@ -197,15 +201,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         Kind::Poincare => {
             one()?;
-            let (x, y, xl, yl) = if first.has("cycle") && first.has("grain_z_m") && args.x.is_none()
-            {
-                let z = strobe_of_point(first, args.point)?;
+            let (x, y, xl, yl) = if first.has("cycle") && first.has("grain_z_m") && o.x.is_none() {
+                let z = strobe_of_point(first, o.point)?;
                 let x = z[..z.len().saturating_sub(1)].to_vec();
                 let y = z.get(1..).unwrap_or_default().to_vec();
                 (x, y, "z_k (m)".to_string(), "z_(k+1) (m)".to_string())
             } else {
-                let xn = args.x.clone().unwrap_or_else(|| "x".into());
-                let yn = args.y.clone().unwrap_or_else(|| "y".into());
+                let xn = o.x.clone().unwrap_or_else(|| "x".into());
+                let yn = o.y.clone().unwrap_or_else(|| "y".into());
                 (first.f64_column(&xn)?, first.f64_column(&yn)?, xn, yn)
             };
             let fig = PoincareFigure {
@@ -223,15 +226,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             let fig = SpectrumFigure {
                 frequency_hz: &f,
                 power: &p,
-                forcing_hz: args.forcing_hz,
+                forcing_hz: o.forcing_hz,
                 power_label: "power (arb. units)".into(),
             };
             draw(&fig, out, &opts)
         }
         Kind::Reconstruction => {
             one()?;
-            let (s, name) = read_series(&args.inputs[0], first, args.column.as_deref())?;
-            let (dt, s) = match (args.dt, first.has("time_s")) {
+            let (s, name) = read_series(&args.inputs[0], first, o.column.as_deref())?;
+            let (dt, s) = match (o.dt, first.has("time_s")) {
                 (Some(dt), _) => (Some(dt), s),
                 (None, true) => {
                     let t = first.f64_column("time_s")?;
@@ -239,7 +242,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 }
                 (None, false) => (None, s),
             };
-            let lag = match args.lag {
+            let lag = match o.lag {
                 Some(l) => l,
                 None => acf_zero_lag(&s).with_context(|| {
                     format!("{}: give --lag (samples)", args.inputs[0].display())
@@ -255,7 +258,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         Kind::Bifurcation => {
             one()?;
-            let xn = args.x.clone().unwrap_or_else(|| "frequency_hz".into());
+            let xn = o.x.clone().unwrap_or_else(|| "frequency_hz".into());
             let x = first.f64_column(&xn)?;
             let z = first.f64_column("grain_z_m")?;
             let fig = BifurcationFigure {
@@ -285,7 +288,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         Kind::Effective => {
             one()?;
-            let xn = args.x.clone().unwrap_or_else(|| first.headers[0].clone());
+            let xn = o.x.clone().unwrap_or_else(|| first.headers[0].clone());
             let x = first.f64_column(&xn)?;
             let c = |n: &str| first.f64_column(n);
             let (m, ms, d, ds) = (
@@ -301,14 +304,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 mass_ef_stderr_kg: &ms,
                 damping_ef_ns_per_m: &d,
                 damping_ef_stderr_ns_per_m: &ds,
-                mass_kg: args.mass,
-                damping_ns_per_m: args.damping,
+                mass_kg: o.mass,
+                damping_ns_per_m: o.damping,
             };
             draw(&fig, out, &opts)
         }
         Kind::Energy => {
             one()?;
-            let xn = args.x.clone().unwrap_or_else(|| "frequency_hz".into());
+            let xn = o.x.clone().unwrap_or_else(|| "frequency_hz".into());
             let x = first.f64_column(&xn)?;
             let names = first.columns_matching("energy_", "_j_per_cycle");
             if names.is_empty() {
@@ -330,7 +333,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             draw(&energy_figure(&x, &axis_label(&xn), &pairs), out, &opts)
         }
         Kind::Resonance => {
-            let xn = args.x.clone().context(
+            let xn = o.x.clone().context(
                 "resonance needs --x COLUMN (the damping parameter, e.g. damper.gamma_n)",
             )?;
             let curves = tables
@@ -351,11 +354,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         Kind::RegimeMap => {
             one()?;
-            let xn = args
-                .x
-                .clone()
-                .context("regime-map needs --x COLUMN and --y COLUMN (the two varied keys)")?;
-            let yn = args.y.clone().context("regime-map needs --y COLUMN")?;
+            let xn =
+                o.x.clone()
+                    .context("regime-map needs --x COLUMN and --y COLUMN (the two varied keys)")?;
+            let yn = o.y.clone().context("regime-map needs --y COLUMN")?;
             let (x, y) = (first.f64_column(&xn)?, first.f64_column(&yn)?);
             let r = first.str_column("regime")?;
             let m = if first.has("mle_per_s") {
@@ -403,7 +405,7 @@ fn axis_label(col: &str) -> String {
     }
 }
 
-fn frf_reference(a: &Args) -> anyhow::Result<Option<FrfReference>> {
+fn frf_reference(a: &PlotOptions) -> anyhow::Result<Option<FrfReference>> {
     match (a.mass, a.stiffness, a.damping, a.base_amplitude) {
         (Some(m), Some(k), Some(c), Some(u)) => Ok(Some(FrfReference {
             mass_kg: m,
