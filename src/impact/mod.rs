@@ -223,8 +223,11 @@ impl NodeCache {
         if self.h == h && self.loaded == loaded {
             return;
         }
-        for i in 0..9 {
-            let tau = if i < 8 { 0.5 * h * (1.0 + GL_X[i]) } else { h };
+        let taus = GL_X
+            .iter()
+            .map(|x| 0.5 * h * (1.0 + x))
+            .chain(std::iter::once(h));
+        for (i, tau) in taus.enumerate() {
             self.sc[i] = (omega * tau).sin_cos();
             self.basis[i] = sd.homogeneous_basis(tau);
         }
@@ -869,13 +872,13 @@ impl ImpactWorld {
     ) {
         let half = 0.5 * cache.h;
         let (mut work, mut visc) = (0.0, 0.0);
-        for i in 0..8 {
+        for (i, wgt) in GL_W.iter().enumerate() {
             let sc = rotate(sc0, cache.sc[i]);
             let (z, v) = sd.eval_parts(an, cache.basis[i], sc);
             let (u, du) = (self.u_amp * sc.1, -self.u_amp * self.omega * sc.0);
             let rel_v = du - v;
-            work += GL_W[i] * (self.k * (u - z) + self.c * rel_v) * du;
-            visc += GL_W[i] * self.c * rel_v * rel_v;
+            work += wgt * (self.k * (u - z) + self.c * rel_v) * du;
+            visc += wgt * self.c * rel_v * rel_v;
         }
         led.base_work.add(work * half);
         led.viscous.add(visc * half);

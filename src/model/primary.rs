@@ -222,8 +222,8 @@ mod tests {
     #[test]
     fn closed_form_satisfies_ode_all_damping_regimes() {
         for xi in [0.0, 0.01, 0.999_999, 1.0, 1.000_001, 3.0] {
-            let (m, k) = (2.0, 800.0);
-            let c = 2.0 * xi * (k * m as f64).sqrt();
+            let (m, k): (f64, f64) = (2.0, 800.0);
+            let c = 2.0 * xi * (k * m).sqrt();
             let sd = Sdof::new(m, k, c, 0.01, 13.0, -1.5);
             let an = sd.anchor(0.3, 0.002, -0.1);
             for t in [0.31, 0.5, 1.7] {

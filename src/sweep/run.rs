@@ -95,7 +95,7 @@ impl Observer for Decimate<'_> {
         if s.time_s < self.inner.from_s {
             return Ok(());
         }
-        let keep = self.count % self.stride == 0;
+        let keep = self.count.is_multiple_of(self.stride);
         self.count += 1;
         if keep {
             self.inner.sample(s)
