@@ -52,3 +52,53 @@ fn one_and_two_threads_give_identical_files() {
         "{header}"
     );
 }
+
+#[test]
+fn analysis_columns_are_thread_independent_too() {
+    // the nonlinear analysis of each point (regime, period, Lyapunov exponent) must not depend
+    // on the thread count either (it may use rayon internally)
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/data/scenes/thesis_b_impact.toml"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let run = |out: &Path, threads: &str| {
+        let st = Command::new(env!("CARGO_BIN_EXE_pdamp"))
+            .args([
+                "sweep",
+                scene,
+                "--out",
+                out.to_str().unwrap(),
+                "--set",
+                "run.periods=300",
+                "--set",
+                "run.analysis_max_samples=4000",
+                "--vary",
+                "excitation.frequency=9,15,22",
+            ])
+            .env("RAYON_NUM_THREADS", threads)
+            .status()
+            .unwrap();
+        assert!(st.success());
+    };
+    let (a, b) = (dir.path().join("t1"), dir.path().join("t2"));
+    run(&a, "1");
+    run(&b, "2");
+    let x = std::fs::read_to_string(a.join("sweep.csv")).unwrap();
+    let y = std::fs::read_to_string(b.join("sweep.csv")).unwrap();
+    assert_eq!(x, y);
+    // the regime column is filled
+    let row = x.lines().nth(2).unwrap();
+    assert!(
+        [
+            "periodic",
+            "quasi-periodic",
+            "chaotic",
+            "stochastic",
+            "undetermined"
+        ]
+        .iter()
+        .any(|r| row.contains(r)),
+        "{row}"
+    );
+}
