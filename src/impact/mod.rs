@@ -620,7 +620,8 @@ impl ImpactWorld {
 
     /// Segment length: a sixteenth of the fastest time scale, or of the forcing period once
     /// the homogeneous (transient) part of the box motion is negligible (amplitude below
-    /// 1e-13 of the motion's scale): it then neither moves the event functions nor the
+    /// 1e-13 of the motion's scale, or below the rounding floor 640 ε Ω t of the forcing
+    /// phase, whichever is larger): it then neither moves the event functions nor the
     /// quadrature at any resolvable level, and the particular solution only varies at the
     /// forcing frequency.
     #[inline]
@@ -629,7 +630,10 @@ impl ImpactWorld {
             BoxMotion::Spring(s) => {
                 let w0 = (s.stiffness / s.mass).sqrt();
                 let amp = an.y0.abs() + an.w0.abs() / w0;
-                if amp < self.negligible {
+                // the phase Ωt carries a rounding error ~ eps Ω t, which re-anchoring turns into
+                // a homogeneous residue of that relative size: the floor grows with t
+                let floor = self.negligible * (1.0 + 640.0 * f64::EPSILON / 1e-13 * self.omega * an.t0_s);
+                if amp < floor {
                     self.slow_step.max(self.step)
                 } else {
                     self.step
