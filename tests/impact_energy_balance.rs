@@ -40,7 +40,10 @@ fn balance_closes_across_regimes() {
     for (f, gap, e) in cases {
         let s = run(&impact_scene(f, gap, e));
         let err = s.energy_balance_relative_error.unwrap();
-        eprintln!("f {f} gap {gap} e {e}: residual {err:.2e}, {} impacts", s.impacts_total);
+        eprintln!(
+            "f {f} gap {gap} e {e}: residual {err:.2e}, {} impacts",
+            s.impacts_total
+        );
         // 1e-6 (the requirement). Quadrature of the closed forms is exact to rounding
         // and (5.3.1) is exact, so a correct ledger closes at ~1e-12; a missing viscous term or
         // a wrong impact loss (e.g. (1 − e) instead of (1 − e²)) breaks it by O(1).
@@ -73,7 +76,10 @@ fn no_drift_over_a_million_forcing_periods() {
     s.run.steady_fraction = 0.001;
     let r = run(&s);
     let err = r.energy_balance_relative_error.unwrap();
-    eprintln!("1e6 periods: residual {err:.2e}, {} impacts", r.impacts_total);
+    eprintln!(
+        "1e6 periods: residual {err:.2e}, {} impacts",
+        r.impacts_total
+    );
     // 1e-6 (the requirement); compensated sums keep the residual at rounding level
     assert!(err < 1e-6, "residual after 1e6 periods: {err:e}");
     assert!(r.impacts_total > 100_000, "impacts {}", r.impacts_total);

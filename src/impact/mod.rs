@@ -632,7 +632,8 @@ impl ImpactWorld {
                 let amp = an.y0.abs() + an.w0.abs() / w0;
                 // the phase Ωt carries a rounding error ~ eps Ω t, which re-anchoring turns into
                 // a homogeneous residue of that relative size: the floor grows with t
-                let floor = self.negligible * (1.0 + 640.0 * f64::EPSILON / 1e-13 * self.omega * an.t0_s);
+                let floor =
+                    self.negligible * (1.0 + 640.0 * f64::EPSILON / 1e-13 * self.omega * an.t0_s);
                 if amp < floor {
                     self.slow_step.max(self.step)
                 } else {

@@ -18,6 +18,9 @@ pub struct Args {
     pub out: PathBuf,
     /// Override a scene key, dotted: `--set excitation.frequency=12 --set damper.gap=inf`.
     /// Values are TOML (numbers, inf, true, "text"); bare words are strings. Repeatable.
+    /// `run.periods` replaces `run.duration` (and vice versa), `primary.damping` replaces
+    /// `primary.damping_ratio`; `damper.kind=none` drops the damper's keys; an empty value
+    /// (`--set run.dt=`) removes a key.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
     /// Skip the nonlinear analysis of the steady-state grain series (faster).
