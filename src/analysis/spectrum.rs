@@ -443,6 +443,9 @@ pub fn line_power_fraction(s: &Spectrum, lines: &[SpectralLine]) -> f64 {
         .filter(|(_, &c)| c)
         .map(|(p, _)| p)
         .sum();
+    if in_lines <= 0.0 {
+        return 0.0; // also avoids −0.0 (the empty f64 sum)
+    }
     (in_lines / total).clamp(0.0, 1.0)
 }
 

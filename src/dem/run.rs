@@ -41,7 +41,13 @@ pub struct DemRunConfig {
 
 impl Default for DemRunConfig {
     fn default() -> Self {
-        DemRunConfig { duration_s: 1.0, sample_interval_s: 1e-3, steady_fraction: 0.1, dt: DtChoice::Auto, dt_fraction: DEFAULT_DT_FRACTION }
+        DemRunConfig {
+            duration_s: 1.0,
+            sample_interval_s: 1e-3,
+            steady_fraction: 0.1,
+            dt: DtChoice::Auto,
+            dt_fraction: DEFAULT_DT_FRACTION,
+        }
     }
 }
 
@@ -151,13 +157,24 @@ pub struct DemSummary {
 ///
 /// # Errors
 /// Scene errors (invalid parameters, grains that do not fit).
-pub fn initial_world(params: &DemParams, drive: BoxDrive, dt: f64, box_z: f64) -> Result<DemWorld, SceneError> {
+pub fn initial_world(
+    params: &DemParams,
+    drive: BoxDrive,
+    dt: f64,
+    box_z: f64,
+) -> Result<DemWorld, SceneError> {
     params.validate()?;
     let dist = params.radius_distribution()?;
     let radii = dist.sample_n(params.count, params.seed);
     let r_max = dist.r_max();
     let pos = match params.packing {
-        PackingKind::Lattice => fcc_lattice(params.r#box, params.count, r_max, 0.05, params.seed ^ 0x5eed)?,
+        PackingKind::Lattice => fcc_lattice(
+            params.r#box,
+            params.count,
+            r_max,
+            0.05,
+            params.seed ^ 0x5eed,
+        )?,
         PackingKind::AdvancingFront => advancing_front_packing(params.r#box, &radii)?,
     };
     let mut w = DemWorld::new(params, drive, dt, radii, pos)?;
@@ -180,7 +197,11 @@ pub fn settle(world: &mut DemWorld, max_time_s: f64) -> (f64, u64) {
         t += world.dt;
         steps += 1;
         if steps % check_every == 0 && t > 0.05 {
-            let mean_v = world.vel.iter().map(|v| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()).sum::<f64>()
+            let mean_v = world
+                .vel
+                .iter()
+                .map(|v| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt())
+                .sum::<f64>()
                 / world.len() as f64;
             if mean_v < 1e-3 {
                 break;
@@ -236,13 +257,21 @@ pub fn run_dem(
         DtChoice::Seconds(s) => Some(s),
     };
     let (dt, ts) = choose_dt(params, &drive, explicit, cfg.dt_fraction)?;
-    for (k, v) in [("run.duration", cfg.duration_s), ("run.sample_interval", cfg.sample_interval_s)] {
+    for (k, v) in [
+        ("run.duration", cfg.duration_s),
+        ("run.sample_interval", cfg.sample_interval_s),
+    ] {
         if !(v > 0.0 && v.is_finite()) {
             return Err(SceneError::invalid(k, v, "must be > 0 (seconds)").into());
         }
     }
     if !(cfg.steady_fraction > 0.0 && cfg.steady_fraction <= 1.0) {
-        return Err(SceneError::invalid("run.steady_fraction", cfg.steady_fraction, "must be in (0, 1]").into());
+        return Err(SceneError::invalid(
+            "run.steady_fraction",
+            cfg.steady_fraction,
+            "must be in (0, 1]",
+        )
+        .into());
     }
     // box held at its start position: u(0) for a kinematic box, the static equilibrium with
     // the grains' weight for a primary
@@ -256,14 +285,19 @@ pub fn run_dem(
     let (settle_t, settle_steps) = settle(&mut world, params.settle_time.unwrap_or(1.0));
     let (zcm, _, _) = world.z_stats();
     let bed_height_m = 2.0 * (zcm - world.box_z);
-    let phi = volume_fraction(&world.radius, world.box_size[0] * world.box_size[1] * bed_height_m);
+    let phi = volume_fraction(
+        &world.radius,
+        world.box_size[0] * world.box_size[1] * bed_height_m,
+    );
     world.start_drive();
     let e0 = world.energy_state();
     let builds0 = world.neighbor_builds();
 
     let n_steps = (cfg.duration_s / dt).ceil() as u64;
     let per_sample = ((cfg.sample_interval_s / dt).round() as u64).max(1);
-    let per_snap = params.snapshot_interval.map(|s| ((s / dt).round() as u64).max(1));
+    let per_snap = params
+        .snapshot_interval
+        .map(|s| ((s / dt).round() as u64).max(1));
     let steady_from = ((1.0 - cfg.steady_fraction) * n_steps as f64).floor() as u64;
     let abs_floor = 1e-3 * m_p * G * world.radius[0];
     let mut steady_ledger: Option<(f64, EnergyLedger)> = None;
@@ -287,7 +321,12 @@ pub fn run_dem(
             let c0 = Instant::now();
             let s = sample_of(&world, &e0);
             let rel = s.e_balance_residual_j.abs()
-                / (world.ledger.base_work_j.abs().max(world.ledger.dissipated_j()).max(abs_floor));
+                / (world
+                    .ledger
+                    .base_work_j
+                    .abs()
+                    .max(world.ledger.dissipated_j())
+                    .max(abs_floor));
             check(&world, s.e_balance_residual_j - abs_floor, rel)?;
             obs.sample(&s);
             check_time += c0.elapsed().as_secs_f64();
