@@ -132,13 +132,8 @@ impl NeighborList {
         self.cell_of.resize(n, 0);
         self.cell_items.resize(n, 0);
         self.cell_count.iter_mut().for_each(|c| *c = 0);
-        for i in 0..n {
-            let p = [
-                pos[i][0] - shift[0],
-                pos[i][1] - shift[1],
-                pos[i][2] - shift[2],
-            ];
-            let c = self.cell_index(p);
+        for (i, q) in pos.iter().enumerate() {
+            let c = self.cell_index([q[0] - shift[0], q[1] - shift[1], q[2] - shift[2]]);
             self.cell_of[i] = c as u32;
             self.cell_count[c] += 1;
         }

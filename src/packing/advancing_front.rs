@@ -398,8 +398,8 @@ mod tests {
         let c = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 1.7, 0.0]];
         let s = three_spheres(c, [2.0, 2.0, 2.0]).unwrap();
         for p in s {
-            for k in 0..3 {
-                let v = sub(p, c[k]);
+            for ck in c {
+                let v = sub(p, ck);
                 assert!((dot(v, v).sqrt() - 2.0).abs() < 1e-12);
             }
         }
