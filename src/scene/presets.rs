@@ -56,7 +56,10 @@ mod tests {
     #[test]
     fn thesis_b_natural_frequency() {
         // SPEC §6: f0 = 15.16 Hz for M = 2.37 kg, K = 21500 N/m
-        let f0 = Scene::thesis_b_impact().primary.unwrap().natural_frequency_hz();
+        let f0 = Scene::thesis_b_impact()
+            .primary
+            .unwrap()
+            .natural_frequency_hz();
         assert!((f0 - 15.16).abs() < 0.005);
     }
 }

@@ -24,7 +24,9 @@ fn scene(f: f64, e: f64, periods: f64) -> Scene {
 }
 
 fn run(s: &Scene) -> f64 {
-    pdamp::sweep::run_scene(s, &mut NullObserver, &RunOptions::summary_only()).unwrap().amplitude_m
+    pdamp::sweep::run_scene(s, &mut NullObserver, &RunOptions::summary_only())
+        .unwrap()
+        .amplitude_m
 }
 
 fn period(c: &mut Criterion) {
@@ -32,7 +34,9 @@ fn period(c: &mut Criterion) {
     g.throughput(Throughput::Elements(200));
     for e in [0.0, 0.8] {
         let s = scene(15.0, e, 200.0);
-        g.bench_with_input(BenchmarkId::from_parameter(format!("e{e}")), &s, |b, s| b.iter(|| run(s)));
+        g.bench_with_input(BenchmarkId::from_parameter(format!("e{e}")), &s, |b, s| {
+            b.iter(|| run(s))
+        });
     }
     g.finish();
     let mut g = c.benchmark_group("primary/period");
@@ -48,7 +52,9 @@ fn frf_point(c: &mut Criterion) {
     g.sample_size(10);
     for f in [0.5, 15.0, 30.0] {
         let s = scene(f, 0.8, 2000.0);
-        g.bench_with_input(BenchmarkId::from_parameter(format!("f{f}")), &s, |b, s| b.iter(|| run(s)));
+        g.bench_with_input(BenchmarkId::from_parameter(format!("f{f}")), &s, |b, s| {
+            b.iter(|| run(s))
+        });
     }
     g.finish();
 }
