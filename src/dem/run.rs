@@ -192,6 +192,12 @@ pub struct DemSummary {
     /// Whole-run ledger (J).
     #[serde(skip)]
     pub ledger: EnergyLedger,
+    /// Stored mechanical energy when the drive started (J).
+    #[serde(skip)]
+    pub energy_start_j: f64,
+    /// Stored mechanical energy at the end (J).
+    #[serde(skip)]
+    pub energy_end_j: f64,
     /// Stroboscopic points of the steady state (one per forcing period).
     #[serde(skip)]
     pub strobe: Vec<StrobeRow>,
@@ -443,6 +449,8 @@ pub fn run_dem(
         box_z_max_m: zmax,
         box_z_min_m: zmin,
         ledger: world.ledger,
+        energy_start_j: e0.total_j(),
+        energy_end_j: st.total_j(),
         strobe,
     })
 }

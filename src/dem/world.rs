@@ -6,7 +6,7 @@ use crate::contact::linear_spring_dashpot::LinearContactParams;
 use crate::contact::material::{Material, PairProperties};
 use crate::contact::{coulomb_viscous_force, hertz_stiffness};
 use crate::error::SceneError;
-use crate::integrate::{advance_orientation, half_kick, kick_drift};
+use crate::integrate::{advance_orientation, half_kick, half_kick_predict, kick_drift};
 use crate::neighbor::{NeighborList, Pair};
 use crate::scene::dem::{ContactKind, DemParams};
 use crate::units::{G, TWO_PI};
@@ -140,6 +140,9 @@ pub struct DemWorld {
     pub force: Vec<[f64; 3]>,
     /// Torques on grains (N m).
     pub torque: Vec<[f64; 3]>,
+    vel_pred: Vec<[f64; 3]>,
+    omega_pred: Vec<[f64; 3]>,
+    box_v_pred: f64,
     /// Radii (m).
     pub radius: Vec<f64>,
     /// Masses (kg).
@@ -253,6 +256,9 @@ impl DemWorld {
             omega: vec![[0.0; 3]; n],
             force: vec![[0.0; 3]; n],
             torque: vec![[0.0; 3]; n],
+            vel_pred: vec![[0.0; 3]; n],
+            omega_pred: vec![[0.0; 3]; n],
+            box_v_pred: 0.0,
             pos,
             radius,
             mass,
@@ -359,7 +365,9 @@ impl DemWorld {
     /// 3. neighbour search: the Verlet list is rebuilt on the cell grid only when a grain has
     ///    moved more than skin/2 relative to the box;
     /// 4. contact forces: gravity, grain–grain contacts (once per pair, Newton's third law),
-    ///    grain–wall contacts, their torques and F_gz (2.2.8–2.2.15);
+    ///    grain–wall contacts, their torques and F_gz (2.2.8–2.2.15); velocity-dependent terms
+    ///    use the predicted full-step velocity v(t+dt/2) + (dt/2) F(t)/m, so that damping and
+    ///    its ledger entry are second-order accurate (with v(t+dt/2) the ledger misses O(dt));
     /// 5. box equation (2.1.22): M z'' = −C(z' − u') − K(z − u) + F_gz;
     /// 6. second half kick;
     /// 7. energy ledger: collision and friction dissipation, viscous loss in C, base work.
@@ -387,6 +395,7 @@ impl DemWorld {
         let max_d2 = kick_drift(
             &mut self.pos,
             &mut self.vel,
+            &mut self.vel_pred,
             &self.force,
             &self.inv_mass,
             h,
@@ -395,8 +404,19 @@ impl DemWorld {
             shift,
         );
         if self.laws.rotations {
-            half_kick(&mut self.omega, &self.torque, &self.inv_inertia, h);
+            half_kick_predict(
+                &mut self.omega,
+                &mut self.omega_pred,
+                &self.torque,
+                &self.inv_inertia,
+                h,
+            );
         }
+        self.box_v_pred = if primary_free {
+            self.box_v + h * self.box_a
+        } else {
+            self.box_v
+        };
         if let Some(q) = self.orientation.as_mut() {
             for (q, w) in q.iter_mut().zip(&self.omega) {
                 advance_orientation(q, *w, dt);
@@ -434,7 +454,7 @@ impl DemWorld {
         match self.drive.primary {
             Some(p) if self.drive_on => {
                 let (u, du) = self.drive.base(self.t);
-                (-p.damping_n_s_m * (self.box_v - du) - p.stiffness_n_m * (self.box_z - u)
+                (-p.damping_n_s_m * (self.box_v_pred - du) - p.stiffness_n_m * (self.box_z - u)
                     + self.grain_force_n)
                     / p.mass_kg
             }
@@ -458,6 +478,9 @@ impl DemWorld {
     /// Rebuilds the neighbour list if needed, then evaluates every force and torque.
     /// Returns the dissipated powers (collision, friction) (W).
     pub fn compute_forces(&mut self) -> (f64, f64) {
+        self.vel_pred.copy_from_slice(&self.vel);
+        self.omega_pred.copy_from_slice(&self.omega);
+        self.box_v_pred = self.box_v;
         let rebuild = self
             .neighbors
             .needs_rebuild(&self.pos, [0.0, 0.0, self.box_z]);
@@ -544,8 +567,8 @@ impl DemWorld {
     ) -> LoopOut {
         let (pc, pf) = pair_loop::<K, TANG, ROT, CLAMP>(
             &self.pos,
-            &self.vel,
-            &self.omega,
+            &self.vel_pred,
+            &self.omega_pred,
             &self.radius,
             &self.neighbors.pairs,
             &self.pair_coef,
@@ -747,7 +770,7 @@ fn wall_loop<K: NormalKernel, const TANG: bool, const ROT: bool, const CLAMP: bo
     let b = w.box_size;
     let floor = w.box_z;
     let ceil = w.box_z + b[2];
-    let vw = w.box_v;
+    let vw = w.box_v_pred;
     let mu = w.laws.wall_mu;
     let (mut fgz, mut p_coll, mut p_fric) = (0.0, 0.0, 0.0);
     for i in 0..w.pos.len() {
@@ -764,8 +787,8 @@ fn wall_loop<K: NormalKernel, const TANG: bool, const ROT: bool, const CLAMP: bo
             continue;
         }
         let c = w.wall_coef[i];
-        let vr = [w.vel[i][0], w.vel[i][1], w.vel[i][2] - vw];
-        let om = w.omega[i];
+        let vr = [w.vel_pred[i][0], w.vel_pred[i][1], w.vel_pred[i][2] - vw];
+        let om = w.omega_pred[i];
         let cands: [(f64, usize, f64); 6] = [
             (r - p[0], 0, 1.0),
             (r - (b[0] - p[0]), 0, -1.0),

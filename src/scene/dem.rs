@@ -167,6 +167,9 @@ pub struct DemParams {
     /// Interval between particle snapshots (s); none when absent.
     #[serde(default)]
     pub snapshot_interval: Option<f64>,
+    /// Directory of the snapshots (default `snapshots`, relative to the current directory).
+    #[serde(default)]
+    pub snapshot_dir: Option<String>,
     /// Snapshot files: `"csv"`, `"vtk"` or `"both"` (default).
     #[serde(default)]
     pub snapshot_format: SnapshotFormat,
@@ -256,6 +259,7 @@ impl DemParams {
             rotations: true,
             orientations: false,
             snapshot_interval: None,
+            snapshot_dir: None,
             snapshot_format: SnapshotFormat::Both,
             neighbor_skin: None,
             settle_time: None,
