@@ -161,6 +161,7 @@ pub fn simulate(
         ("steps", s.steps as f64),
         ("wall_time_s", s.wall_time_s),
         ("particle_steps_per_s", s.particle_steps_per_s),
+        ("particle_steps_per_cpu_s", opt(s.particle_steps_per_cpu_s)),
         ("dt_s", s.dt_s),
         ("contact_time_s", s.contact_time_s),
         ("settle_time_s", s.settle_time_s),
