@@ -104,3 +104,32 @@ fn explicit_dt_above_the_limit_is_a_scene_error() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("run.dt") && err.contains("t_s/20"), "{err}");
 }
+
+#[test]
+fn snapshots_are_written_as_csv_and_vtk() {
+    let dir = tempfile::tempdir().unwrap();
+    let snaps = dir.path().join("snaps");
+    let st = std::process::Command::new(env!("CARGO_BIN_EXE_pdamp"))
+        .args(["simulate", "data/scenes/thesis_b_soft.toml", "--out"])
+        .arg(dir.path().join("o"))
+        .args([
+            "--set",
+            "run.duration=0.02",
+            "--set",
+            "damper.count=40",
+            "--set",
+            "damper.snapshot_interval=0.01",
+        ])
+        .arg("--set")
+        .arg(format!("damper.snapshot_dir=\"{}\"", snaps.display()))
+        .status()
+        .unwrap();
+    assert!(st.success());
+    // t = 0, 0.01, 0.02 s → three snapshots of each kind
+    for k in 0..3 {
+        let csv = std::fs::read_to_string(snaps.join(format!("grains_{k:06}.csv"))).unwrap();
+        assert_eq!(csv.lines().count(), 41, "header + 40 grains");
+        let vtk = std::fs::read_to_string(snaps.join(format!("grains_{k:06}.vtk"))).unwrap();
+        assert!(vtk.starts_with("# vtk DataFile Version 3.0") && vtk.contains("POINTS 40 double"));
+    }
+}

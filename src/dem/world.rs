@@ -5,10 +5,11 @@ use nalgebra::UnitQuaternion;
 use crate::contact::linear_spring_dashpot::LinearContactParams;
 use crate::contact::material::{Material, PairProperties};
 use crate::contact::{coulomb_viscous_force, hertz_stiffness};
+use crate::contact::{AttractionPolicy, NormalLaw, TangentialLaw};
 use crate::error::SceneError;
 use crate::integrate::{advance_orientation, half_kick, half_kick_predict, kick_drift};
 use crate::neighbor::{NeighborList, Pair};
-use crate::scene::dem::{ContactKind, DemParams};
+use crate::scene::dem::DemParams;
 use crate::units::{G, TWO_PI};
 
 use super::energy::{EnergyLedger, EnergyState};
@@ -71,51 +72,63 @@ impl NormalKernel for LinearKernel {
     }
 }
 
-/// Contact coefficients per grain type (resolved from [`DemParams`]).
+/// Contact laws of the scene (grain–grain and grain–wall), resolved from [`DemParams`].
 #[derive(Debug, Clone)]
 struct Laws {
-    kind: ContactKind,
-    clamp: bool,
-    tangential: bool,
+    normal: NormalLaw,
+    wall_normal: NormalLaw,
+    tangential: TangentialLaw,
+    wall_tangential: TangentialLaw,
+    attraction: AttractionPolicy,
     rotations: bool,
     grain: Material,
     wall: Material,
-    gamma_n: f64,
-    gamma_s: f64,
-    mu: f64,
-    wall_gamma_n: f64,
-    wall_gamma_s: f64,
-    wall_mu: f64,
-    yield_strength: f64,
-    restitution: f64,
-    wall_restitution: f64,
 }
 
 impl Laws {
+    fn any_tangential(&self) -> bool {
+        self.tangential != TangentialLaw::None || self.wall_tangential != TangentialLaw::None
+    }
+
+    fn friction(&self, wall: bool) -> f64 {
+        match if wall {
+            self.wall_tangential
+        } else {
+            self.tangential
+        } {
+            TangentialLaw::None => 0.0,
+            TangentialLaw::CoulombViscous { friction, .. }
+            | TangentialLaw::LinearDashpotCoulomb { friction } => friction,
+        }
+    }
+
     /// (k_n, normal damping, tangential damping) of a pair or grain–wall contact.
     fn coefficients(&self, r_i: f64, m_i: f64, r_j: f64, m_j: f64, wall: bool) -> [f64; 3] {
-        let mat_j = if wall { &self.wall } else { &self.grain };
+        let (mat_j, normal, tangential) = if wall {
+            (&self.wall, self.wall_normal, self.wall_tangential)
+        } else {
+            (&self.grain, self.normal, self.tangential)
+        };
         let p = PairProperties::new(r_i, m_i, &self.grain, r_j, m_j, mat_j);
-        match self.kind {
-            ContactKind::HertzKk => {
-                let (gn, gs) = if wall {
-                    (self.wall_gamma_n, self.wall_gamma_s)
-                } else {
-                    (self.gamma_n, self.gamma_s)
-                };
-                [hertz_stiffness(p.e_star, p.r_star), gn, gs]
+        let (k, c, c_lin_s) = match normal {
+            NormalLaw::HertzKuwabaraKono { gamma_n } => {
+                (hertz_stiffness(p.e_star, p.r_star), gamma_n, 0.0)
             }
-            ContactKind::Linear => {
-                let e = if wall {
-                    self.wall_restitution
-                } else {
-                    self.restitution
-                };
-                let l = LinearContactParams::select(&p, &self.grain, self.yield_strength, e)
+            NormalLaw::LinearSpringDashpot {
+                restitution,
+                yield_strength,
+            } => {
+                let l = LinearContactParams::select(&p, &self.grain, yield_strength, restitution)
                     .expect("validated linear parameters");
-                [l.k_n, l.c_n, l.c_s]
+                (l.k_n, l.c_n, l.c_s)
             }
-        }
+        };
+        let cs = match tangential {
+            TangentialLaw::None => 0.0,
+            TangentialLaw::CoulombViscous { gamma_s, .. } => gamma_s,
+            TangentialLaw::LinearDashpotCoulomb { .. } => c_lin_s,
+        };
+        [k, c, cs]
     }
 }
 
@@ -219,30 +232,18 @@ impl DemWorld {
             .map(|(m, r)| 1.0 / (0.4 * m * r * r))
             .collect();
         let laws = Laws {
-            kind: params.contact,
-            clamp: !params.attractive_normal_force,
-            tangential: params.friction > 0.0
-                && match params.contact {
-                    ContactKind::HertzKk => {
-                        params.gamma_s > 0.0 || params.wall_gamma_s.unwrap_or(0.0) > 0.0
-                    }
-                    ContactKind::Linear => true,
-                },
+            normal: params.normal_law(false),
+            wall_normal: params.normal_law(true),
+            tangential: params.tangential_law(false),
+            wall_tangential: params.tangential_law(true),
+            attraction: if params.attractive_normal_force {
+                AttractionPolicy::Allow
+            } else {
+                AttractionPolicy::Clamp
+            },
             rotations: params.rotations,
             grain: params.grain_material(),
             wall: params.wall_material(),
-            gamma_n: params.gamma_n,
-            gamma_s: params.gamma_s,
-            mu: params.friction,
-            wall_gamma_n: params.wall_gamma_n.unwrap_or(params.gamma_n),
-            wall_gamma_s: params.wall_gamma_s.unwrap_or(params.gamma_s),
-            wall_mu: params.wall_friction.unwrap_or(params.friction),
-            yield_strength: params.yield_strength.unwrap_or(1.0),
-            restitution: params.restitution.unwrap_or(1.0),
-            wall_restitution: params
-                .wall_restitution
-                .or(params.restitution)
-                .unwrap_or(1.0),
         };
         let r_max = radius.iter().cloned().fold(0.0, f64::max);
         let neighbors = NeighborList::new(params.r#box, r_max, params.skin(r_max));
@@ -519,44 +520,24 @@ impl DemWorld {
                 f[2] += s * v[2];
             }
         }
+        // the enums are matched once per step; each arm runs a monomorphised loop without
+        // per-pair branches on the law, friction, rotations or the attraction policy
         let l = &self.laws;
-        let out = match (l.kind, l.tangential, l.rotations, l.clamp) {
-            (ContactKind::HertzKk, true, true, true) => {
-                self.contacts::<HertzKernel, true, true, true>()
-            }
-            (ContactKind::HertzKk, true, true, false) => {
-                self.contacts::<HertzKernel, true, true, false>()
-            }
-            (ContactKind::HertzKk, true, false, true) => {
-                self.contacts::<HertzKernel, true, false, true>()
-            }
-            (ContactKind::HertzKk, true, false, false) => {
-                self.contacts::<HertzKernel, true, false, false>()
-            }
-            (ContactKind::HertzKk, false, _, true) => {
-                self.contacts::<HertzKernel, false, false, true>()
-            }
-            (ContactKind::HertzKk, false, _, false) => {
-                self.contacts::<HertzKernel, false, false, false>()
-            }
-            (ContactKind::Linear, true, true, true) => {
-                self.contacts::<LinearKernel, true, true, true>()
-            }
-            (ContactKind::Linear, true, true, false) => {
-                self.contacts::<LinearKernel, true, true, false>()
-            }
-            (ContactKind::Linear, true, false, true) => {
-                self.contacts::<LinearKernel, true, false, true>()
-            }
-            (ContactKind::Linear, true, false, false) => {
-                self.contacts::<LinearKernel, true, false, false>()
-            }
-            (ContactKind::Linear, false, _, true) => {
-                self.contacts::<LinearKernel, false, false, true>()
-            }
-            (ContactKind::Linear, false, _, false) => {
-                self.contacts::<LinearKernel, false, false, false>()
-            }
+        let hertz = matches!(l.normal, NormalLaw::HertzKuwabaraKono { .. });
+        let clamp = l.attraction == AttractionPolicy::Clamp;
+        let out = match (hertz, l.any_tangential(), l.rotations, clamp) {
+            (true, true, true, true) => self.contacts::<HertzKernel, true, true, true>(),
+            (true, true, true, false) => self.contacts::<HertzKernel, true, true, false>(),
+            (true, true, false, true) => self.contacts::<HertzKernel, true, false, true>(),
+            (true, true, false, false) => self.contacts::<HertzKernel, true, false, false>(),
+            (true, false, _, true) => self.contacts::<HertzKernel, false, false, true>(),
+            (true, false, _, false) => self.contacts::<HertzKernel, false, false, false>(),
+            (false, true, true, true) => self.contacts::<LinearKernel, true, true, true>(),
+            (false, true, true, false) => self.contacts::<LinearKernel, true, true, false>(),
+            (false, true, false, true) => self.contacts::<LinearKernel, true, false, true>(),
+            (false, true, false, false) => self.contacts::<LinearKernel, true, false, false>(),
+            (false, false, _, true) => self.contacts::<LinearKernel, false, false, true>(),
+            (false, false, _, false) => self.contacts::<LinearKernel, false, false, false>(),
         };
         self.grain_force_n = out.0;
         (out.1, out.2)
@@ -572,7 +553,7 @@ impl DemWorld {
             &self.radius,
             &self.neighbors.pairs,
             &self.pair_coef,
-            (self.laws.mu, self.laws.wall_mu),
+            (self.laws.friction(false), self.laws.friction(true)),
             &mut self.force,
             &mut self.torque,
         );
@@ -590,9 +571,9 @@ impl DemWorld {
             s.rotational_j += 0.5 / self.inv_inertia[i] * (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
             s.potential_j += self.mass[i] * self.gravity * self.pos[i][2];
         }
-        let elastic = |k: f64, z: f64| match self.laws.kind {
-            ContactKind::HertzKk => 0.4 * k * z * z * z.sqrt(),
-            ContactKind::Linear => 0.5 * k * z * z,
+        let elastic = |k: f64, z: f64| match self.laws.normal {
+            NormalLaw::HertzKuwabaraKono { .. } => 0.4 * k * z * z * z.sqrt(),
+            NormalLaw::LinearSpringDashpot { .. } => 0.5 * k * z * z,
         };
         for (p, c) in self.neighbors.pairs.iter().zip(&self.pair_coef) {
             let (i, j) = (p.i as usize, p.j as usize);
@@ -771,7 +752,7 @@ fn wall_loop<K: NormalKernel, const TANG: bool, const ROT: bool, const CLAMP: bo
     let floor = w.box_z;
     let ceil = w.box_z + b[2];
     let vw = w.box_v_pred;
-    let mu = w.laws.wall_mu;
+    let mu = w.laws.friction(true);
     let (mut fgz, mut p_coll, mut p_fric) = (0.0, 0.0, 0.0);
     for i in 0..w.pos.len() {
         let p = w.pos[i];
