@@ -156,6 +156,83 @@ impl Ctx<'_> {
         })
     }
 
+    /// Like [`Ctx::sweep`] with `outer` as the slowest key of the grid, but as one sweep per
+    /// value of `outer` (in `OUT/data/<dir>/<key>=<value>/`), concatenated. Each sweep rebuilds
+    /// its `sweep.csv` after every point, so many small sweeps are cheaper than one large one.
+    ///
+    /// # Errors
+    /// As [`Ctx::sweep`]; also if the parts' columns differ.
+    pub fn sweep_split(
+        &self,
+        dir: &str,
+        scene: BundledScene,
+        set: &[(&str, String)],
+        outer: (&str, &[f64]),
+        vary: &[(&str, String)],
+        analyze: bool,
+    ) -> Result<SweepResult, StudyError> {
+        let (key, values) = outer;
+        let mut parts: Vec<(f64, SweepResult)> = Vec::new();
+        for &v in values {
+            let mut set_v: Vec<(&str, String)> = set.to_vec();
+            set_v.push((key, v.to_string()));
+            let sub = format!("{dir}/{key}={v}");
+            parts.push((v, self.sweep(&sub, scene, &set_v, vary, analyze)?));
+        }
+        let join =
+            |pick: &dyn Fn(&SweepResult) -> Option<&Table>| -> Result<Option<Table>, StudyError> {
+                let mut out: Option<Table> = None;
+                for (v, p) in &parts {
+                    let Some(t) = pick(p) else { continue };
+                    let mut headers = t.headers.clone();
+                    headers.insert(1, key.to_string());
+                    let rows = t.rows.iter().map(|r| {
+                        let mut r = r.clone();
+                        r.insert(1, v.to_string());
+                        r
+                    });
+                    match &mut out {
+                        None => {
+                            out = Some(Table {
+                                path: self.out.join("data").join(dir).display().to_string(),
+                                headers,
+                                rows: rows.collect(),
+                            })
+                        }
+                        Some(o) if o.headers == headers => o.rows.extend(rows),
+                        Some(_) => {
+                            return Err(StudyError::step(
+                                format!("sweep {dir}"),
+                                format!("the sweep at {key} = {v} has different columns"),
+                            ))
+                        }
+                    }
+                }
+                Ok(out)
+            };
+        let table = join(&|p| Some(&p.table))?.ok_or_else(|| {
+            StudyError::step(format!("sweep {dir}"), "no values of the outer key")
+        })?;
+        let strobe = join(&|p| p.strobe.as_ref())?;
+        let mut command = parts
+            .first()
+            .map(|(_, p)| p.command.clone())
+            .unwrap_or_default();
+        command += &format!(
+            "  (one sweep per {key} in {}; the outer key as --set)",
+            values
+                .iter()
+                .map(|v| v.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+        Ok(SweepResult {
+            table,
+            strobe,
+            command,
+        })
+    }
+
     /// Renders `fig` to `OUT/<name>.png` and returns its size.
     ///
     /// # Errors

@@ -222,17 +222,15 @@ fn list(v: &[f64]) -> String {
 }
 
 fn impact_gap_grid(ctx: &Ctx, s: &Settings, e: f64) -> Result<SweepResult, StudyError> {
-    ctx.sweep(
+    ctx.sweep_split(
         &format!("impact_gap_grid_e{e}"),
         IMPACT_B,
         &[
             ("damper.restitution", e.to_string()),
             ("run.duration", s.duration_s.to_string()),
         ],
-        &[
-            ("damper.gap", list(&s.gaps_m)),
-            ("excitation.frequency", s.grid_freq.vary()),
-        ],
+        ("damper.gap", &s.gaps_m),
+        &[("excitation.frequency", s.grid_freq.vary())],
         false,
     )
 }
@@ -467,32 +465,30 @@ fn energy_vs_gap(
 
 fn zres_vs_restitution(ctx: &Ctx, s: &Settings) -> Result<FigureRecord, StudyError> {
     let name = "zres_vs_restitution";
-    let sw = ctx.sweep(
-        "impact_restitution_grid",
-        IMPACT_B,
-        &[("run.duration", s.duration_s.to_string())],
-        &[
-            ("damper.gap", list(&s.restitution_gaps_m)),
-            ("damper.restitution", list(&s.restitutions)),
-            ("excitation.frequency", s.grid_freq.vary()),
-        ],
-        false,
-    )?;
-    let gap = col(name, &sw.table, "damper.gap")?;
-    let e = col(name, &sw.table, "damper.restitution")?;
-    let z = col(name, &sw.table, "amplitude_m")?;
     let mut curves: Vec<(String, Vec<f64>, Vec<f64>)> = Vec::new();
     let mut rows = Vec::new();
+    let mut commands = Vec::new();
     for &g in &s.restitution_gaps_m {
-        let idx: Vec<usize> = (0..gap.len()).filter(|&i| gap[i] == g).collect();
+        let sw = ctx.sweep_split(
+            &format!("impact_restitution_grid/gap{g}"),
+            IMPACT_B,
+            &[
+                ("run.duration", s.duration_s.to_string()),
+                ("damper.gap", g.to_string()),
+            ],
+            ("damper.restitution", &s.restitutions),
+            &[("excitation.frequency", s.grid_freq.vary())],
+            false,
+        )?;
         let (xs, zs) = resonance_amplitudes(
-            &idx.iter().map(|&i| e[i]).collect::<Vec<_>>(),
-            &idx.iter().map(|&i| z[i]).collect::<Vec<_>>(),
+            &col(name, &sw.table, "damper.restitution")?,
+            &col(name, &sw.table, "amplitude_m")?,
         );
         for (x, zz) in xs.iter().zip(&zs) {
             rows.push(vec![g, *x, *zz]);
         }
         curves.push((format!("gap = {g} m"), xs, zs));
+        commands.push(sw.command);
     }
     ctx.write_csv(name, &["gap_m", "restitution", "zres_m"], &rows)?;
     let series = curves
@@ -510,10 +506,10 @@ fn zres_vs_restitution(ctx: &Ctx, s: &Settings) -> Result<FigureRecord, StudyErr
                   version versus γ_n for several N is zres_vs_gamma_dem."
             .into(),
         spec_item: "Z_res versus γ_n, γ_s for several N".into(),
-        commands: vec![
-            sw.command.clone(),
-            "pdamp plot resonance sweep.csv --x damper.restitution -o zres_vs_restitution.png (one input per gap)".into(),
-        ],
+        commands: {
+            commands.push("pdamp plot resonance gap1/sweep.csv gap2/sweep.csv … --label … --x damper.restitution -o zres_vs_restitution.png".into());
+            commands
+        },
         reductions: s.reductions(&["duration", "restitutions", "grid"]),
         size_px: size,
     })
@@ -891,17 +887,15 @@ fn bifurcation(ctx: &Ctx, s: &Settings, sw: &SweepResult) -> Result<FigureRecord
 
 fn regime_map(ctx: &Ctx, s: &Settings) -> Result<FigureRecord, StudyError> {
     let name = "regime_map";
-    let sw = ctx.sweep(
+    let sw = ctx.sweep_split(
         "impact_regime_map_e0.8",
         IMPACT_B,
         &[
             ("damper.restitution", "0.8".into()),
             ("run.duration", s.regime_duration_s.to_string()),
         ],
-        &[
-            ("damper.gap", list(&s.map_gaps_m)),
-            ("excitation.frequency", s.map_freq.vary()),
-        ],
+        ("damper.gap", &s.map_gaps_m),
+        &[("excitation.frequency", s.map_freq.vary())],
         true,
     )?;
     let f = col(name, &sw.table, "frequency_hz")?;
