@@ -25,6 +25,17 @@ const GAMMA_N_B: f64 = 3660.0;
 const GAMMA_S_B: f64 = 10980.0;
 const E_B: f64 = 2.03e11;
 
+/// Names of the DEM figures (besides the DEM curve in `frf`).
+pub const NAMES: [&str; 7] = [
+    "energy_vs_frequency_dem",
+    "zres_vs_lz_dem",
+    "energy_vs_lz_dem",
+    "effective_dem",
+    "zres_vs_gamma_dem",
+    "bed_motion_dem",
+    "dem",
+];
+
 /// What the DEM figures produced.
 #[derive(Debug, Clone)]
 pub struct DemOutput {

@@ -84,6 +84,10 @@ pub struct ReproduceOptions {
     pub figure: FigureOptions,
     /// Skip the DEM figures even if the mode includes them.
     pub skip_dem: bool,
+    /// Make only these figures (names as in [`ReproduceReport::figures`]; a name also selects
+    /// `name_*`, e.g. `poincare` → `poincare_f10`, `bed_motion` → `bed_motion_dem`); empty:
+    /// all, and write `OUT/README.md`.
+    pub only: Vec<String>,
 }
 
 impl ReproduceOptions {
@@ -94,7 +98,18 @@ impl ReproduceOptions {
             out: out.into(),
             figure: FigureOptions::default(),
             skip_dem: false,
+            only: Vec::new(),
         }
+    }
+
+    /// Whether figure `name` is selected by [`ReproduceOptions::only`].
+    pub fn wants(&self, name: &str) -> bool {
+        self.only.is_empty()
+            || self.only.iter().any(|o| {
+                name == o
+                    || name.starts_with(&format!("{o}_"))
+                    || o.starts_with(&format!("{name}_"))
+            })
     }
 }
 
@@ -135,48 +150,85 @@ pub fn reproduce(
         progress,
     };
     let s = &opts.settings;
+    let want = |name: &str| opts.wants(name);
     let mut figures = Vec::new();
     let mut skipped = Vec::new();
+    let mut effective = Vec::new();
 
     // ---- impact model (SPEC §3) ----
-    let frf_e0 = impact_frf_sweep(&ctx, s, 0.0)?;
-    let frf_e8 = impact_frf_sweep(&ctx, s, 0.8)?;
-    let grid_e0 = impact_gap_grid(&ctx, s, 0.0)?;
-    let grid_e8 = impact_gap_grid(&ctx, s, 0.8)?;
-    let (rec, effective) = effective_figure(&ctx, s, &grid_e0)?;
-    figures.push(rec);
-    figures.push(zres_vs_gap(&ctx, s, &grid_e0, &grid_e8)?);
-    figures.push(energy_vs_gap(&ctx, s, &grid_e0, &grid_e8)?);
-    figures.push(zres_vs_restitution(&ctx, s)?);
-    figures.push(energy_vs_frequency(&ctx, s, &frf_e0)?);
-    figures.push(bed_motion_impact(&ctx, s)?);
-    for &f in &s.series_freqs_hz {
-        figures.extend(per_frequency(&ctx, s, f)?);
+    let need_frf = want("frf") || want("energy_vs_frequency");
+    let frf_e0 = need_frf
+        .then(|| impact_frf_sweep(&ctx, s, 0.0))
+        .transpose()?;
+    let frf_e8 = want("frf")
+        .then(|| impact_frf_sweep(&ctx, s, 0.8))
+        .transpose()?;
+    let need_grid = want("effective") || want("zres_vs_gap") || want("energy_vs_gap");
+    if need_grid {
+        let grid_e0 = impact_gap_grid(&ctx, s, 0.0)?;
+        let (rec, rows) = effective_figure(&ctx, s, &grid_e0)?;
+        effective = rows;
+        if want("effective") {
+            figures.push(rec);
+        }
+        if want("zres_vs_gap") || want("energy_vs_gap") {
+            let grid_e8 = impact_gap_grid(&ctx, s, 0.8)?;
+            if want("zres_vs_gap") {
+                figures.push(zres_vs_gap(&ctx, s, &grid_e0, &grid_e8)?);
+            }
+            if want("energy_vs_gap") {
+                figures.push(energy_vs_gap(&ctx, s, &grid_e0, &grid_e8)?);
+            }
+        }
     }
-    let regime = ctx.sweep(
-        "impact_regimes_e0.8",
-        IMPACT_B,
-        &[
-            ("damper.restitution", "0.8".into()),
-            ("run.duration", s.regime_duration_s.to_string()),
-        ],
-        &[("excitation.frequency", s.regime_freq.vary())],
-        true,
-    )?;
-    figures.push(regime_frf(&ctx, s, &regime)?);
-    figures.push(bifurcation(&ctx, s, &regime)?);
-    figures.push(regime_map(&ctx, s)?);
+    if want("zres_vs_restitution") {
+        figures.push(zres_vs_restitution(&ctx, s)?);
+    }
+    if let (true, Some(e0)) = (want("energy_vs_frequency"), &frf_e0) {
+        figures.push(energy_vs_frequency(&ctx, s, e0)?);
+    }
+    if want("bed_motion") {
+        figures.push(bed_motion_impact(&ctx, s)?);
+    }
+    if want("poincare") || want("spectrum") || want("reconstruction") {
+        for &f in &s.series_freqs_hz {
+            figures.extend(per_frequency(&ctx, s, f)?);
+        }
+    }
+    if want("regime_frf") || want("bifurcation") {
+        let regime = ctx.sweep(
+            "impact_regimes_e0.8",
+            IMPACT_B,
+            &[
+                ("damper.restitution", "0.8".into()),
+                ("run.duration", s.regime_duration_s.to_string()),
+            ],
+            &[("excitation.frequency", s.regime_freq.vary())],
+            true,
+        )?;
+        if want("regime_frf") {
+            figures.push(regime_frf(&ctx, s, &regime)?);
+        }
+        if want("bifurcation") {
+            figures.push(bifurcation(&ctx, s, &regime)?);
+        }
+    }
+    if want("regime_map") {
+        figures.push(regime_map(&ctx, s)?);
+    }
 
     // ---- DEM (SPEC §2) ----
     let mut dem_frf: Option<SweepResult> = None;
     let mut effective_dem = Vec::new();
-    match (&s.dem, opts.skip_dem) {
-        (None, _) => skipped.push(format!(
+    let dem_wanted = dem_figures::NAMES.iter().any(|n| want(n)) || want("frf");
+    match (&s.dem, opts.skip_dem, dem_wanted) {
+        (_, _, false) => {}
+        (None, _, _) => skipped.push(format!(
             "DEM figures: not part of {} mode (use --quick or --full)",
             s.mode.as_str()
         )),
-        (Some(_), true) => skipped.push("DEM figures: --no-dem".into()),
-        (Some(d), false) => match dem_figures::available() {
+        (Some(_), true, _) => skipped.push("DEM figures: --no-dem".into()),
+        (Some(d), false, _) => match dem_figures::available() {
             Err(why) => skipped.push(format!("DEM figures: {why}")),
             Ok(()) => {
                 let out = dem_figures::all(&ctx, s, d)?;
@@ -186,7 +238,9 @@ pub fn reproduce(
             }
         },
     }
-    figures.insert(0, frf_figure(&ctx, s, &frf_e0, &frf_e8, dem_frf.as_ref())?);
+    if let (Some(e0), Some(e8)) = (&frf_e0, &frf_e8) {
+        figures.insert(0, frf_figure(&ctx, s, e0, e8, dem_frf.as_ref())?);
+    }
     for why in &skipped {
         progress(&format!("skipped: {why}"));
     }
@@ -197,7 +251,9 @@ pub fn reproduce(
         skipped,
         elapsed_s: started.elapsed().as_secs_f64(),
     };
-    ctx.write_text("README.md", &super::readme::readme(opts, &report))?;
+    if opts.only.is_empty() {
+        ctx.write_text("README.md", &super::readme::readme(opts, &report))?;
+    }
     Ok(report)
 }
 

@@ -25,6 +25,11 @@ pub struct Args {
     /// rerunning reuses finished points).
     #[arg(long, default_value = "figures")]
     pub out: PathBuf,
+    /// Make only these figures (repeatable; e.g. `--only frf --only poincare`; a name also
+    /// selects its variants: `poincare` → `poincare_f10`, …). OUT/README.md is written only
+    /// for a complete run.
+    #[arg(long, value_name = "FIGURE")]
+    pub only: Vec<String>,
     /// Leave out the DEM figures (impact-model figures only).
     #[arg(long)]
     pub no_dem: bool,
@@ -47,6 +52,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     };
     let mut opts = ReproduceOptions::new(mode, &args.out);
     opts.skip_dem = args.no_dem;
+    opts.only = args.only;
     opts.figure.width = args.width;
     opts.figure.height = args.height;
     let started = std::time::Instant::now();
