@@ -146,7 +146,8 @@ pub struct RegimeThresholds {
     pub zero_one: f64,
     /// Kantz's scaling region must grow by at least this many e-folds (default 1).
     pub min_growth: f64,
-    /// Largest period reported, in forcing periods or samples (default 64).
+    /// Largest period reported in forcing periods (default 64); periods in samples (no forcing)
+    /// are not limited.
     pub max_period: usize,
 }
 
@@ -178,7 +179,8 @@ pub struct Verdict {
 /// # Formula
 /// Rules, first match wins:
 /// 1. Periodic: the section is n distinct points (period n forcing periods); without a
-///    section, an exact recurrence p, or a line spectrum (≥ `line_fraction` of the power) whose
+///    section, an exact recurrence p (replaced by the spectral period 1/f₀ when p is an
+///    integer multiple of it), or a line spectrum (≥ `line_fraction` of the power) whose
 ///    lines are all harmonics of f₀ (period 1/f₀ samples).
 /// 2. Quasi-periodic: the section is a closed curve, or a line spectrum that is not harmonic,
 ///    with K < `zero_one` (when available).
@@ -223,19 +225,37 @@ pub fn classify(e: &Evidence, t: &RegimeThresholds) -> Verdict {
         Some(SectionShape::Points(_) | SectionShape::ClosedCurve | SectionShape::Cloud)
     );
     if !section_usable {
+        let limit = match e.forcing_period_samples {
+            Some(_) => t.max_period as f64 + 0.5,
+            None => f64::INFINITY,
+        };
         if let Some(p) = e.recurrence_period_samples {
-            let period = in_forcing(p as f64);
-            if period <= t.max_period as f64 + 0.5 {
+            // The recurrence may be a multiple of the true period when the samples per period
+            // are not an integer (37.3 samples: exact recurrence after 373): prefer the
+            // spectral period when p is an integer multiple of it.
+            let p = match e.harmonic_period_samples {
+                Some(h)
+                    if h < p as f64 - 0.5 && {
+                        let ratio = p as f64 / h;
+                        (ratio - ratio.round()).abs() < 0.01
+                    } =>
+                {
+                    h
+                }
+                _ => p as f64,
+            };
+            let period = in_forcing(p);
+            if period <= limit {
                 return verdict(
                     Regime::Periodic,
                     Some(round_if_close(period)),
-                    format!("the series repeats exactly every {p} samples"),
+                    format!("the series repeats every {p} samples"),
                 );
             }
         }
         if let (true, Some(p)) = (line_spectrum, e.harmonic_period_samples) {
             let period = in_forcing(p);
-            if period <= t.max_period as f64 + 0.5 && k_regular {
+            if period <= limit && k_regular {
                 return verdict(
                     Regime::Periodic,
                     Some(round_if_close(period)),
@@ -306,10 +326,10 @@ pub fn classify(e: &Evidence, t: &RegimeThresholds) -> Verdict {
     )
 }
 
-/// Rounds to the nearest integer when within 1 % of it (periods of maps and strobed flows).
+/// Rounds to the nearest integer when within 0.1 % of it (periods of maps and strobed flows).
 fn round_if_close(p: f64) -> f64 {
     let r = p.round();
-    if r >= 1.0 && (p - r).abs() <= 0.01 * r {
+    if r >= 1.0 && (p - r).abs() <= 1e-3 * r {
         r
     } else {
         p

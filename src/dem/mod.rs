@@ -11,5 +11,5 @@ pub mod stability;
 pub mod world;
 
 pub use energy::{EnergyLedger, EnergyState};
-pub use run::{run_dem, DemObserver, DemRunConfig, DemSample, DemSummary, DtChoice};
+pub use run::{run_dem, DemObserver, DemRunConfig, DemSample, DemSummary, DtChoice, StrobeRow};
 pub use world::{BoxDrive, DemWorld, PrimarySystem};

@@ -98,11 +98,19 @@ impl Laws {
         let p = PairProperties::new(r_i, m_i, &self.grain, r_j, m_j, mat_j);
         match self.kind {
             ContactKind::HertzKk => {
-                let (gn, gs) = if wall { (self.wall_gamma_n, self.wall_gamma_s) } else { (self.gamma_n, self.gamma_s) };
+                let (gn, gs) = if wall {
+                    (self.wall_gamma_n, self.wall_gamma_s)
+                } else {
+                    (self.gamma_n, self.gamma_s)
+                };
                 [hertz_stiffness(p.e_star, p.r_star), gn, gs]
             }
             ContactKind::Linear => {
-                let e = if wall { self.wall_restitution } else { self.restitution };
+                let e = if wall {
+                    self.wall_restitution
+                } else {
+                    self.restitution
+                };
                 let l = LinearContactParams::select(&p, &self.grain, self.yield_strength, e)
                     .expect("validated linear parameters");
                 [l.k_n, l.c_n, l.c_s]
@@ -187,7 +195,11 @@ impl DemWorld {
     ) -> Result<Self, SceneError> {
         params.validate()?;
         if radius.len() != pos.len() || radius.is_empty() {
-            return Err(SceneError::invalid("damper.count", pos.len(), "positions and radii differ in length"));
+            return Err(SceneError::invalid(
+                "damper.count",
+                pos.len(),
+                "positions and radii differ in length",
+            ));
         }
         if !(dt > 0.0 && dt.is_finite()) {
             return Err(SceneError::invalid("run.dt", dt, "must be > 0 (seconds)"));
@@ -198,13 +210,19 @@ impl DemWorld {
             .map(|r| params.density * 4.0 / 3.0 * std::f64::consts::PI * r * r * r)
             .collect();
         let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
-        let inv_inertia = mass.iter().zip(&radius).map(|(m, r)| 1.0 / (0.4 * m * r * r)).collect();
+        let inv_inertia = mass
+            .iter()
+            .zip(&radius)
+            .map(|(m, r)| 1.0 / (0.4 * m * r * r))
+            .collect();
         let laws = Laws {
             kind: params.contact,
             clamp: !params.attractive_normal_force,
             tangential: params.friction > 0.0
                 && match params.contact {
-                    ContactKind::HertzKk => params.gamma_s > 0.0 || params.wall_gamma_s.unwrap_or(0.0) > 0.0,
+                    ContactKind::HertzKk => {
+                        params.gamma_s > 0.0 || params.wall_gamma_s.unwrap_or(0.0) > 0.0
+                    }
                     ContactKind::Linear => true,
                 },
             rotations: params.rotations,
@@ -218,7 +236,10 @@ impl DemWorld {
             wall_mu: params.wall_friction.unwrap_or(params.friction),
             yield_strength: params.yield_strength.unwrap_or(1.0),
             restitution: params.restitution.unwrap_or(1.0),
-            wall_restitution: params.wall_restitution.or(params.restitution).unwrap_or(1.0),
+            wall_restitution: params
+                .wall_restitution
+                .or(params.restitution)
+                .unwrap_or(1.0),
         };
         let r_max = radius.iter().cloned().fold(0.0, f64::max);
         let neighbors = NeighborList::new(params.r#box, r_max, params.skin(r_max));
@@ -237,7 +258,9 @@ impl DemWorld {
             mass,
             inv_mass,
             inv_inertia,
-            orientation: params.orientations.then(|| vec![UnitQuaternion::identity(); n]),
+            orientation: params
+                .orientations
+                .then(|| vec![UnitQuaternion::identity(); n]),
             box_size: params.r#box,
             box_z: 0.0,
             box_v: 0.0,
@@ -361,7 +384,16 @@ impl DemWorld {
         // half kick + drift of the grains, fused with the Verlet-list displacement check
         let (reference, ref_shift) = self.neighbors.reference();
         let shift = [0.0, 0.0, self.box_z - ref_shift[2]];
-        let max_d2 = kick_drift(&mut self.pos, &mut self.vel, &self.force, &self.inv_mass, h, dt, reference, shift);
+        let max_d2 = kick_drift(
+            &mut self.pos,
+            &mut self.vel,
+            &self.force,
+            &self.inv_mass,
+            h,
+            dt,
+            reference,
+            shift,
+        );
         if self.laws.rotations {
             half_kick(&mut self.omega, &self.torque, &self.inv_inertia, h);
         }
@@ -402,7 +434,8 @@ impl DemWorld {
         match self.drive.primary {
             Some(p) if self.drive_on => {
                 let (u, du) = self.drive.base(self.t);
-                (-p.damping_n_s_m * (self.box_v - du) - p.stiffness_n_m * (self.box_z - u) + self.grain_force_n)
+                (-p.damping_n_s_m * (self.box_v - du) - p.stiffness_n_m * (self.box_z - u)
+                    + self.grain_force_n)
                     / p.mass_kg
             }
             _ => 0.0,
@@ -425,7 +458,9 @@ impl DemWorld {
     /// Rebuilds the neighbour list if needed, then evaluates every force and torque.
     /// Returns the dissipated powers (collision, friction) (W).
     pub fn compute_forces(&mut self) -> (f64, f64) {
-        let rebuild = self.neighbors.needs_rebuild(&self.pos, [0.0, 0.0, self.box_z]);
+        let rebuild = self
+            .neighbors
+            .needs_rebuild(&self.pos, [0.0, 0.0, self.box_z]);
         self.forces(rebuild)
     }
 
@@ -436,7 +471,13 @@ impl DemWorld {
             self.pair_coef.clear();
             for &Pair { i, j } in &self.neighbors.pairs {
                 let (i, j) = (i as usize, j as usize);
-                let c = self.laws.coefficients(self.radius[i], self.mass[i], self.radius[j], self.mass[j], false);
+                let c = self.laws.coefficients(
+                    self.radius[i],
+                    self.mass[i],
+                    self.radius[j],
+                    self.mass[j],
+                    false,
+                );
                 self.pair_coef.push(c);
             }
         }
@@ -457,24 +498,50 @@ impl DemWorld {
         }
         let l = &self.laws;
         let out = match (l.kind, l.tangential, l.rotations, l.clamp) {
-            (ContactKind::HertzKk, true, true, true) => self.contacts::<HertzKernel, true, true, true>(),
-            (ContactKind::HertzKk, true, true, false) => self.contacts::<HertzKernel, true, true, false>(),
-            (ContactKind::HertzKk, true, false, true) => self.contacts::<HertzKernel, true, false, true>(),
-            (ContactKind::HertzKk, true, false, false) => self.contacts::<HertzKernel, true, false, false>(),
-            (ContactKind::HertzKk, false, _, true) => self.contacts::<HertzKernel, false, false, true>(),
-            (ContactKind::HertzKk, false, _, false) => self.contacts::<HertzKernel, false, false, false>(),
-            (ContactKind::Linear, true, true, true) => self.contacts::<LinearKernel, true, true, true>(),
-            (ContactKind::Linear, true, true, false) => self.contacts::<LinearKernel, true, true, false>(),
-            (ContactKind::Linear, true, false, true) => self.contacts::<LinearKernel, true, false, true>(),
-            (ContactKind::Linear, true, false, false) => self.contacts::<LinearKernel, true, false, false>(),
-            (ContactKind::Linear, false, _, true) => self.contacts::<LinearKernel, false, false, true>(),
-            (ContactKind::Linear, false, _, false) => self.contacts::<LinearKernel, false, false, false>(),
+            (ContactKind::HertzKk, true, true, true) => {
+                self.contacts::<HertzKernel, true, true, true>()
+            }
+            (ContactKind::HertzKk, true, true, false) => {
+                self.contacts::<HertzKernel, true, true, false>()
+            }
+            (ContactKind::HertzKk, true, false, true) => {
+                self.contacts::<HertzKernel, true, false, true>()
+            }
+            (ContactKind::HertzKk, true, false, false) => {
+                self.contacts::<HertzKernel, true, false, false>()
+            }
+            (ContactKind::HertzKk, false, _, true) => {
+                self.contacts::<HertzKernel, false, false, true>()
+            }
+            (ContactKind::HertzKk, false, _, false) => {
+                self.contacts::<HertzKernel, false, false, false>()
+            }
+            (ContactKind::Linear, true, true, true) => {
+                self.contacts::<LinearKernel, true, true, true>()
+            }
+            (ContactKind::Linear, true, true, false) => {
+                self.contacts::<LinearKernel, true, true, false>()
+            }
+            (ContactKind::Linear, true, false, true) => {
+                self.contacts::<LinearKernel, true, false, true>()
+            }
+            (ContactKind::Linear, true, false, false) => {
+                self.contacts::<LinearKernel, true, false, false>()
+            }
+            (ContactKind::Linear, false, _, true) => {
+                self.contacts::<LinearKernel, false, false, true>()
+            }
+            (ContactKind::Linear, false, _, false) => {
+                self.contacts::<LinearKernel, false, false, false>()
+            }
         };
         self.grain_force_n = out.0;
         (out.1, out.2)
     }
 
-    fn contacts<K: NormalKernel, const TANG: bool, const ROT: bool, const CLAMP: bool>(&mut self) -> LoopOut {
+    fn contacts<K: NormalKernel, const TANG: bool, const ROT: bool, const CLAMP: bool>(
+        &mut self,
+    ) -> LoopOut {
         let (pc, pf) = pair_loop::<K, TANG, ROT, CLAMP>(
             &self.pos,
             &self.vel,
@@ -521,7 +588,8 @@ impl DemWorld {
         }
         if let Some(p) = self.drive.primary {
             let (u, _) = self.base_now();
-            s.primary_j = 0.5 * p.mass_kg * self.box_v * self.box_v + 0.5 * p.stiffness_n_m * (self.box_z - u).powi(2);
+            s.primary_j = 0.5 * p.mass_kg * self.box_v * self.box_v
+                + 0.5 * p.stiffness_n_m * (self.box_z - u).powi(2);
         }
         s
     }
@@ -530,7 +598,14 @@ impl DemWorld {
     pub fn wall_overlaps(&self, i: usize) -> [f64; 6] {
         let (p, r, b) = (self.pos[i], self.radius[i], self.box_size);
         let z = p[2] - self.box_z;
-        [r - p[0], r - (b[0] - p[0]), r - p[1], r - (b[1] - p[1]), r - z, r - (b[2] - z)]
+        [
+            r - p[0],
+            r - (b[0] - p[0]),
+            r - p[1],
+            r - (b[1] - p[1]),
+            r - z,
+            r - (b[2] - z),
+        ]
     }
 
     /// Total linear momentum Σ m v (kg m/s).
@@ -579,7 +654,11 @@ fn norm(a: [f64; 3]) -> f64 {
 }
 #[inline(always)]
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 
 /// Grain–grain contacts over the Verlet list. Returns (collision power, friction power) (W).
@@ -622,7 +701,11 @@ fn pair_loop<K: NormalKernel, const TANG: bool, const ROT: bool, const CLAMP: bo
             let mut vs = [vr[0] - vrn * n[0], vr[1] - vrn * n[1], vr[2] - vrn * n[2]];
             if ROT {
                 let (wi, wj) = (omega[i], omega[j]);
-                let w = [ri * wi[0] + rj * wj[0], ri * wi[1] + rj * wj[1], ri * wi[2] + rj * wj[2]];
+                let w = [
+                    ri * wi[0] + rj * wj[0],
+                    ri * wi[1] + rj * wj[1],
+                    ri * wi[2] + rj * wj[2],
+                ];
                 let wn = cross(w, n);
                 vs = sub(vs, wn);
             }
@@ -658,7 +741,9 @@ fn pair_loop<K: NormalKernel, const TANG: bool, const ROT: bool, const CLAMP: bo
 /// Grain–wall contacts with the six planes of the box. Returns (F_gz, collision power,
 /// friction power).
 #[inline(never)]
-fn wall_loop<K: NormalKernel, const TANG: bool, const ROT: bool, const CLAMP: bool>(w: &mut DemWorld) -> LoopOut {
+fn wall_loop<K: NormalKernel, const TANG: bool, const ROT: bool, const CLAMP: bool>(
+    w: &mut DemWorld,
+) -> LoopOut {
     let b = w.box_size;
     let floor = w.box_z;
     let ceil = w.box_z + b[2];
@@ -669,7 +754,13 @@ fn wall_loop<K: NormalKernel, const TANG: bool, const ROT: bool, const CLAMP: bo
         let p = w.pos[i];
         let r = w.radius[i];
         // cheap reject: far from every wall
-        if p[0] > r && p[0] < b[0] - r && p[1] > r && p[1] < b[1] - r && p[2] > floor + r && p[2] < ceil - r {
+        if p[0] > r
+            && p[0] < b[0] - r
+            && p[1] > r
+            && p[1] < b[1] - r
+            && p[2] > floor + r
+            && p[2] < ceil - r
+        {
             continue;
         }
         let c = w.wall_coef[i];

@@ -50,7 +50,12 @@ pub fn kick_drift(
 ) -> f64 {
     let mut worst = 0.0f64;
     let tracked = reference.len() == x.len();
-    for (k, ((x, v), (f, &im))) in x.iter_mut().zip(v.iter_mut()).zip(f.iter().zip(inv_m)).enumerate() {
+    for (k, ((x, v), (f, &im))) in x
+        .iter_mut()
+        .zip(v.iter_mut())
+        .zip(f.iter().zip(inv_m))
+        .enumerate()
+    {
         let s = h * im;
         v[0] += s * f[0];
         v[1] += s * f[1];
@@ -60,7 +65,11 @@ pub fn kick_drift(
         x[2] += dt * v[2];
         if tracked {
             let r = reference[k];
-            let d = [x[0] - r[0] - shift[0], x[1] - r[1] - shift[1], x[2] - r[2] - shift[2]];
+            let d = [
+                x[0] - r[0] - shift[0],
+                x[1] - r[1] - shift[1],
+                x[2] - r[2] - shift[2],
+            ];
             worst = worst.max(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
         }
     }

@@ -190,7 +190,11 @@ fn positive(field: &str, v: f64, unit: &str) -> Result<(), SceneError> {
     if v > 0.0 && v.is_finite() {
         Ok(())
     } else {
-        Err(SceneError::invalid(field, v, format!("must be > 0 ({unit})")))
+        Err(SceneError::invalid(
+            field,
+            v,
+            format!("must be > 0 ({unit})"),
+        ))
     }
 }
 
@@ -198,7 +202,11 @@ fn non_negative(field: &str, v: f64, unit: &str) -> Result<(), SceneError> {
     if v >= 0.0 && v.is_finite() {
         Ok(())
     } else {
-        Err(SceneError::invalid(field, v, format!("must be ≥ 0 ({unit})")))
+        Err(SceneError::invalid(
+            field,
+            v,
+            format!("must be ≥ 0 ({unit})"),
+        ))
     }
 }
 
@@ -206,7 +214,11 @@ fn poisson_ok(field: &str, v: f64) -> Result<(), SceneError> {
     if (0.0..0.5).contains(&v) {
         Ok(())
     } else {
-        Err(SceneError::invalid(field, v, "must be in [0, 0.5) (Poisson ratio)"))
+        Err(SceneError::invalid(
+            field,
+            v,
+            "must be in [0, 0.5) (Poisson ratio)",
+        ))
     }
 }
 
@@ -272,7 +284,9 @@ impl DemParams {
             None => match (self.radius, self.radius_min, self.radius_max) {
                 (Some(_), None, None) => RadiusDistributionKind::Fixed,
                 (None, Some(_), Some(_)) => RadiusDistributionKind::Uniform,
-                (None, None, None) if self.radius_table.is_some() => RadiusDistributionKind::Discrete,
+                (None, None, None) if self.radius_table.is_some() => {
+                    RadiusDistributionKind::Discrete
+                }
                 _ => {
                     return Err(SceneError::Missing {
                         field: "damper.radius".into(),
@@ -292,11 +306,20 @@ impl DemParams {
             Ok(x)
         };
         let d = match kind {
-            RadiusDistributionKind::Fixed => RadiusDistribution::Fixed(need(self.radius, "radius")?),
+            RadiusDistributionKind::Fixed => {
+                RadiusDistribution::Fixed(need(self.radius, "radius")?)
+            }
             RadiusDistributionKind::Uniform => {
-                let (min, max) = (need(self.radius_min, "radius_min")?, need(self.radius_max, "radius_max")?);
+                let (min, max) = (
+                    need(self.radius_min, "radius_min")?,
+                    need(self.radius_max, "radius_max")?,
+                );
                 if max < min {
-                    return Err(SceneError::invalid("damper.radius_max", max, "must be ≥ radius_min"));
+                    return Err(SceneError::invalid(
+                        "damper.radius_max",
+                        max,
+                        "must be ≥ radius_min",
+                    ));
                 }
                 RadiusDistribution::Uniform { min, max }
             }
@@ -307,13 +330,24 @@ impl DemParams {
                     hint: "standard deviation of the normal radius distribution (m)".into(),
                 })?;
                 non_negative("damper.radius_std", std, "metres")?;
-                let min = self.radius_min.unwrap_or((mean - 3.0 * std).max(0.05 * mean));
+                let min = self
+                    .radius_min
+                    .unwrap_or((mean - 3.0 * std).max(0.05 * mean));
                 let max = self.radius_max.unwrap_or(mean + 3.0 * std);
                 positive("damper.radius_min", min, "metres")?;
                 if max < min {
-                    return Err(SceneError::invalid("damper.radius_max", max, "must be ≥ radius_min"));
+                    return Err(SceneError::invalid(
+                        "damper.radius_max",
+                        max,
+                        "must be ≥ radius_min",
+                    ));
                 }
-                RadiusDistribution::Normal { mean, std, min, max }
+                RadiusDistribution::Normal {
+                    mean,
+                    std,
+                    min,
+                    max,
+                }
             }
             RadiusDistributionKind::Discrete | RadiusDistributionKind::Empirical => {
                 let t = self.radius_table.as_ref().filter(|t| !t.is_empty()).ok_or_else(|| {
@@ -324,15 +358,26 @@ impl DemParams {
                 })?;
                 for row in t {
                     positive("damper.radius_table", row[0], "radius, metres")?;
-                    non_negative("damper.radius_table", row[1], "weight or cumulative fraction")?;
+                    non_negative(
+                        "damper.radius_table",
+                        row[1],
+                        "weight or cumulative fraction",
+                    )?;
                 }
                 let radii: Vec<f64> = t.iter().map(|r| r[0]).collect();
                 let w: Vec<f64> = t.iter().map(|r| r[1]).collect();
                 if kind == RadiusDistributionKind::Discrete {
                     if w.iter().sum::<f64>() <= 0.0 {
-                        return Err(SceneError::invalid("damper.radius_table", "weights", "weights must not all be 0"));
+                        return Err(SceneError::invalid(
+                            "damper.radius_table",
+                            "weights",
+                            "weights must not all be 0",
+                        ));
                     }
-                    RadiusDistribution::Discrete { values: radii, weights: w }
+                    RadiusDistribution::Discrete {
+                        values: radii,
+                        weights: w,
+                    }
                 } else {
                     let ok = t.len() >= 2
                         && radii.windows(2).all(|p| p[1] > p[0])
@@ -356,7 +401,10 @@ impl DemParams {
 
     /// Grain material.
     pub fn grain_material(&self) -> Material {
-        Material { youngs_modulus: self.youngs_modulus, poisson: self.poisson }
+        Material {
+            youngs_modulus: self.youngs_modulus,
+            poisson: self.poisson,
+        }
     }
 
     /// Wall material (defaults to the grains').
@@ -380,7 +428,14 @@ impl DemParams {
     /// (largest diameter above the smallest box side, or solid volume above 58 % of the box,
     /// about a random close packing).
     pub fn validate(&self) -> Result<(), SceneError> {
-        for (k, v) in ["damper.box[0] (Lx)", "damper.box[1] (Ly)", "damper.box[2] (Lz)"].iter().zip(self.r#box) {
+        for (k, v) in [
+            "damper.box[0] (Lx)",
+            "damper.box[1] (Ly)",
+            "damper.box[2] (Lz)",
+        ]
+        .iter()
+        .zip(self.r#box)
+        {
             positive(k, v, "metres")?;
         }
         if self.count == 0 {
@@ -410,12 +465,20 @@ impl DemParams {
         if self.contact == ContactKind::Linear {
             let e = self.restitution.ok_or_else(|| SceneError::Missing {
                 field: "damper.restitution".into(),
-                hint: "contact = \"linear\" needs the coefficient of restitution e in (0, 1]".into(),
+                hint: "contact = \"linear\" needs the coefficient of restitution e in (0, 1]"
+                    .into(),
             })?;
-            for (k, e) in [("damper.restitution", Some(e)), ("damper.wall_restitution", self.wall_restitution)] {
+            for (k, e) in [
+                ("damper.restitution", Some(e)),
+                ("damper.wall_restitution", self.wall_restitution),
+            ] {
                 if let Some(e) = e {
                     if !(e > 0.0 && e <= 1.0) {
-                        return Err(SceneError::invalid(k, e, "must be in (0, 1] (coefficient of restitution)"));
+                        return Err(SceneError::invalid(
+                            k,
+                            e,
+                            "must be in (0, 1] (coefficient of restitution)",
+                        ));
                     }
                 }
             }
@@ -441,7 +504,10 @@ impl DemParams {
             return Err(SceneError::invalid(
                 "damper.radius",
                 rmax,
-                format!("largest diameter {:.4e} m does not fit the smallest box side {side:.4e} m", 2.0 * rmax),
+                format!(
+                    "largest diameter {:.4e} m does not fit the smallest box side {side:.4e} m",
+                    2.0 * rmax
+                ),
             ));
         }
         let v_grains = self.count as f64 * 4.0 / 3.0 * std::f64::consts::PI * rmax.powi(3);
@@ -475,13 +541,25 @@ mod tests {
         assert!(e.contains("damper.radius") && e.contains("> 0"), "{e}");
         let mut p = DemParams::thesis_b();
         p.poisson = 0.5;
-        assert!(p.validate().unwrap_err().to_string().contains("damper.poisson"));
+        assert!(p
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("damper.poisson"));
         let mut p = DemParams::thesis_b();
         p.count = 2000;
-        assert!(p.validate().unwrap_err().to_string().contains("damper.count"));
+        assert!(p
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("damper.count"));
         let mut p = DemParams::thesis_b();
         p.contact = ContactKind::Linear;
-        assert!(p.validate().unwrap_err().to_string().contains("damper.restitution"));
+        assert!(p
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("damper.restitution"));
     }
 
     #[test]

@@ -19,11 +19,19 @@ use pdamp::scene::dem::DemParams;
 use std::hint::black_box;
 
 fn drive() -> BoxDrive {
-    BoxDrive { primary: None, amplitude_m: 4.5e-3, frequency_hz: 15.0 }
+    BoxDrive {
+        primary: None,
+        amplitude_m: 4.5e-3,
+        frequency_hz: 15.0,
+    }
 }
 
 fn vibrated_world(n: usize, soft: f64) -> DemWorld {
-    let mut p = if soft > 1.0 { DemParams::thesis_b_softened(soft) } else { DemParams::thesis_b() };
+    let mut p = if soft > 1.0 {
+        DemParams::thesis_b_softened(soft)
+    } else {
+        DemParams::thesis_b()
+    };
     let widen = ((n as f64) / 250.0).sqrt();
     p.r#box[0] *= widen;
     p.r#box[1] *= widen;
@@ -43,7 +51,12 @@ fn vibrated_world(n: usize, soft: f64) -> DemWorld {
 fn bench_step(c: &mut Criterion) {
     let mut g = c.benchmark_group("dem/step");
     g.sample_size(10);
-    for (name, n, soft) in [("250_steel", 250, 1.0), ("250_soft1000", 250, 1000.0), ("1000_soft1000", 1000, 1000.0), ("4000_soft1000", 4000, 1000.0)] {
+    for (name, n, soft) in [
+        ("250_steel", 250, 1.0),
+        ("250_soft1000", 250, 1000.0),
+        ("1000_soft1000", 1000, 1000.0),
+        ("4000_soft1000", 4000, 1000.0),
+    ] {
         let mut w = vibrated_world(n, soft);
         let batch = 200_000 / n;
         g.throughput(Throughput::Elements((n * batch) as u64));
@@ -64,14 +77,23 @@ fn bench_neighbor(c: &mut Criterion) {
         let w = vibrated_world(n, 1000.0);
         let mut nl = NeighborList::new(w.box_size, 0.003, 0.0009);
         g.throughput(Throughput::Elements(n as u64));
-        g.bench_function(BenchmarkId::from_parameter(n), |b| b.iter(|| nl.rebuild(black_box(&w.pos), &w.radius, [0.0, 0.0, w.box_z])));
+        g.bench_function(BenchmarkId::from_parameter(n), |b| {
+            b.iter(|| nl.rebuild(black_box(&w.pos), &w.radius, [0.0, 0.0, w.box_z]))
+        });
     }
     g.finish();
 }
 
 fn bench_contact(c: &mut Criterion) {
     c.bench_function("contact/hertz_kuwabara_kono", |b| {
-        b.iter(|| hertz_normal_force(black_box(5.7e9), black_box(1e-6), black_box(0.3), black_box(3660.0)))
+        b.iter(|| {
+            hertz_normal_force(
+                black_box(5.7e9),
+                black_box(1e-6),
+                black_box(0.3),
+                black_box(3660.0),
+            )
+        })
     });
 }
 
