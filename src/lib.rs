@@ -36,6 +36,7 @@ pub mod observe;
 pub mod packing;
 pub mod plot;
 pub mod scene;
+pub mod study;
 pub mod sweep;
 pub mod systems;
 pub mod units;
