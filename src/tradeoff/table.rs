@@ -9,7 +9,7 @@ use super::ladder::Axis;
 use super::study::{RunRow, SettingRow, Study};
 
 /// Header of `tradeoff.csv`.
-pub const RUN_COLUMNS: &str = "axis,setting,value,frequency_hz,status,wall_time_s,steps,dt_s,amplitude_m,\
+pub const RUN_COLUMNS: &str = "axis,setting,value,frequency_hz,status,wall_time_s,total_wall_time_s,steps,dt_s,amplitude_m,\
 amplitude_rel_error,dissipation_j_per_cycle,dissipation_rel_error,regime,regime_reference,regime_match,\
 mle_per_s,mle_abs_error_per_s";
 
@@ -38,6 +38,7 @@ fn run_line(r: &RunRow) -> String {
         fmt_num(r.frequency_hz),
         quote(&r.status),
         fmt_num(r.wall_time_s),
+        fmt_num(r.total_wall_time_s),
         r.steps.to_string(),
         opt(r.dt_s),
         opt(r.amplitude_m),

@@ -86,7 +86,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         format!("reference_softening = {}", opts.ladder.reference_softening),
         format!("reference_dt_fraction = {}", opts.ladder.reference_dt_fraction),
         format!("duration_s = {}", opts.ladder.duration_s),
-        "wall times: per run, measured inside the single-threaded run (bed building and settling included), summed over the frequencies; machine-dependent".into(),
+        "wall_time_s: driven run only (bed building and settling excluded; see total_wall_time_s in tradeoff.csv), measured inside each single-threaded run, summed over the frequencies; machine- and load-dependent".into(),
         "errors: largest over the frequencies of |x - x_ref| / x_ref; M_ef, C_ef fitted with (2.1.21) to the 3 points".into(),
     ];
     let write = |name: &str, text: String| -> anyhow::Result<()> {
