@@ -81,10 +81,10 @@ fn henon_is_chaotic() {
     let x = henon_x(10_000);
     let rep = analyze(&x, None, None);
     assert_eq!(rep.regime, Regime::Chaotic);
-    // λ = 0.419 per iteration (SPEC §9, Sprott); 15 % band: the automatic dimension/radius
-    // choices are not tuned for Hénon.
+    // λ = 0.419 per iteration (SPEC §9, Sprott); SPEC §9's 10 % band for data-based estimates
+    // with 1e4 samples (measured 0.410 with the automatic choices m = 2, τ = 1).
     let mle = rep.mle_per_sample.unwrap();
-    assert!((mle - 0.419).abs() < 0.15 * 0.419, "{mle}");
+    assert!((mle - 0.419).abs() < 0.10 * 0.419, "{mle}");
 }
 
 #[test]
@@ -93,11 +93,12 @@ fn lorenz_x_is_chaotic() {
     let x = lorenz_x(20_000, dt);
     let rep = analyze(&x, Some(dt), None);
     assert_eq!(rep.regime, Regime::Chaotic);
-    // λ₁ = 0.9056 per time unit (SPEC §9). Positive and within a factor 2 here: the automatic
-    // scaling region on 20 000 oversampled samples is a coarse estimate (the Kantz tests
-    // check the exponent itself).
+    // λ₁ = 0.9056 per time unit (SPEC §9). The automatic scaling region on 20 000 oversampled
+    // samples overestimates it (measured 1.13, +25 %: the fitted window Δn ≈ 57..279 still
+    // holds the faster initial separation); ±35 % keeps the sign and order of magnitude
+    // honest. The Kantz tests check the exponent with tuned settings.
     let mle = rep.mle_per_time.unwrap();
-    assert!(mle > 0.45 && mle < 1.8, "{mle}");
+    assert!((mle - 0.9056).abs() < 0.35 * 0.9056, "{mle}");
 }
 
 #[test]
@@ -188,4 +189,53 @@ fn zero_one_test_thresholds() {
     // Deterministic: the same seed gives the same K bit for bit.
     let k2 = zero_one_test(&x, &ZeroOneOptions::default()).unwrap().k;
     assert_eq!(k, k2);
+}
+
+#[test]
+fn pathological_series_never_panic() {
+    // Robustness contract of analyze_series (used by the simulators and sweeps): odd inputs
+    // give a verdict or a clear error, never a panic and never a NaN in the report.
+    let mut rng = ChaCha8Rng::seed_from_u64(9);
+    let normal = Normal::new(0.0, 1.0).unwrap();
+    let noise: Vec<f64> = (0..3000).map(|_| normal.sample(&mut rng)).collect();
+    let cases: Vec<(&str, Vec<f64>)> = vec![
+        ("64 samples", noise[..64].to_vec()),
+        ("ramp", (0..3000).map(|n| n as f64).collect()),
+        (
+            "step",
+            (0..3000)
+                .map(|n| if n < 1500 { 0.0 } else { 1.0 })
+                .collect(),
+        ),
+        (
+            "single spike",
+            (0..3000)
+                .map(|n| if n == 1234 { 1.0 } else { 0.0 })
+                .collect(),
+        ),
+        ("telegraph", noise.iter().map(|v| v.signum()).collect()),
+        ("huge", noise.iter().map(|v| v * 1e300).collect()),
+        ("tiny", noise.iter().map(|v| v * 1e-300).collect()),
+        ("offset", noise.iter().map(|v| 1e9 + v).collect()),
+    ];
+    for (name, x) in cases {
+        match analyze_series(&x, &AnalyzeOptions::default()) {
+            Ok(r) => {
+                let json = serde_json::to_string(&r).unwrap();
+                // serde_json writes NaN/inf as null; none of the numbers may be NaN.
+                assert!(
+                    r.mle_per_sample.is_none_or(f64::is_finite),
+                    "{name}: {json}"
+                );
+                assert!(r.zero_one_k.is_none_or(f64::is_finite), "{name}: {json}");
+                assert!(r.line_power_fraction.is_finite(), "{name}: {json}");
+                assert!(
+                    r.period.is_none_or(|p| p.is_finite() && p > 0.0),
+                    "{name}: {json}"
+                );
+                eprintln!("{name}: {} ({})", r.regime, r.reason);
+            }
+            Err(e) => eprintln!("{name}: error {e}"),
+        }
+    }
 }

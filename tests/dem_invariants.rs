@@ -158,3 +158,56 @@ fn friction_and_damping_conserve_momenta_and_close_the_ledger() {
         .iter()
         .any(|q| q.angle() > 0.1));
 }
+
+#[test]
+fn too_large_time_step_is_reported_as_unstable() {
+    // negative control of the stability check: dt = 2 t_s (100× the automatic step) lets two
+    // steel spheres overlap deeply in one step; the stiff repulsion then creates energy.
+    let mut p = DemParams::thesis_b();
+    p.r#box = [0.1, 0.1, 0.1];
+    p.count = 2;
+    p.gamma_n = 0.0;
+    let r = 0.003;
+    let still = BoxDrive {
+        primary: None,
+        amplitude_m: 0.0,
+        frequency_hz: 0.0,
+    };
+    let pos = vec![[0.05 - r - 1e-5, 0.05, 0.05], [0.05 + r + 1e-5, 0.05, 0.05]];
+    let mut w = DemWorld::new(&p, still, 4e-5, vec![r; 2], pos).unwrap();
+    w.gravity = 0.0;
+    w.set_velocities(&[[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]], &[[0.0; 3]; 2]);
+    w.refresh();
+    let e0 = w.energy_state().total_j();
+    let mut verdict = Ok(());
+    for _ in 0..50 {
+        w.step();
+        let e = w.energy_state().total_j();
+        verdict = pdamp::dem::stability::check(&w, e - e0, (e - e0).abs() / e0);
+        if verdict.is_err() {
+            break;
+        }
+    }
+    let msg = verdict
+        .expect_err("a blown-up collision must be reported")
+        .to_string();
+    assert!(msg.contains("time step"), "{msg}");
+    // the same collision with the automatic step is stable and conserves energy to 1e-4
+    let mut w = DemWorld::new(
+        &p,
+        still,
+        2e-7,
+        vec![r; 2],
+        vec![[0.05 - r - 1e-5, 0.05, 0.05], [0.05 + r + 1e-5, 0.05, 0.05]],
+    )
+    .unwrap();
+    w.gravity = 0.0;
+    w.set_velocities(&[[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]], &[[0.0; 3]; 2]);
+    w.refresh();
+    for _ in 0..2000 {
+        w.step();
+    }
+    let e = w.energy_state().total_j();
+    assert!(pdamp::dem::stability::check(&w, e - e0, (e - e0).abs() / e0).is_ok());
+    assert!(((e - e0) / e0).abs() < 1e-4);
+}

@@ -68,7 +68,7 @@ pub fn recurrence_period(x: &[f64], max_period: usize, rel_tol: f64) -> Option<u
             (l.min(v), h.max(v))
         });
     let range = hi - lo;
-    if !(range > 0.0) {
+    if range.is_nan() || range <= 0.0 {
         return None;
     }
     let tol = rel_tol * range;
@@ -182,11 +182,13 @@ pub struct Verdict {
 ///    section, an exact recurrence p (replaced by the spectral period 1/f₀ when p is an
 ///    integer multiple of it), or a line spectrum (≥ `line_fraction` of the power) whose
 ///    lines are all harmonics of f₀ (period 1/f₀ samples).
-/// 2. Quasi-periodic: the section is a closed curve, or a line spectrum that is not harmonic,
+/// 2. Quasi-periodic: the section is a closed curve, or a line spectrum of ≥ 2 lines that is
+///    not harmonic,
 ///    with K < `zero_one` (when available).
 /// 3. Chaotic: K > `zero_one`, a Kantz scaling region growing ≥ `min_growth` e-folds with a
 ///    positive slope, and FNN converged (when available).
-/// 4. Stochastic: K > `zero_one` and (no Kantz scaling region, or FNN not converged).
+/// 4. Stochastic: K > `zero_one` and (Kantz computed without a scaling region, or FNN not
+///    converged).
 /// 5. Otherwise undetermined.
 ///
 /// # Parameters
@@ -276,7 +278,12 @@ pub fn classify(e: &Evidence, t: &RegimeThresholds) -> Verdict {
             "the stroboscopic section is a closed curve (invariant circle)".into(),
         );
     }
-    if !section_usable && line_spectrum && e.harmonic_period_samples.is_none() && k_regular {
+    if !section_usable
+        && line_spectrum
+        && e.line_count >= 2
+        && e.harmonic_period_samples.is_none()
+        && k_regular
+    {
         return verdict(
             Regime::QuasiPeriodic,
             None,
@@ -304,7 +311,8 @@ pub fn classify(e: &Evidence, t: &RegimeThresholds) -> Verdict {
             ),
         );
     }
-    if k_irregular && (!scaling || !deterministic) {
+    let no_divergence = e.mle_per_sample.is_some() && !scaling;
+    if k_irregular && (no_divergence || !deterministic) {
         let why = if !deterministic {
             "false nearest neighbours do not vanish (no low-dimensional determinism)"
         } else {

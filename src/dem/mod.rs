@@ -6,6 +6,7 @@
 
 pub mod energy;
 pub mod run;
+pub mod scene_run;
 pub mod snapshot;
 pub mod stability;
 pub mod world;

@@ -163,6 +163,10 @@ pub struct DemSummary {
     pub wall_time_s: f64,
     /// Grains × steps / wall time of the driven run (particle-steps/s).
     pub particle_steps_per_s: f64,
+    /// Grains × steps / CPU time of the driven run (particle-steps per CPU-second; Linux
+    /// `/proc/thread-self/stat`, 10 ms resolution; `None` elsewhere). On a loaded machine
+    /// this is the fairer single-core figure.
+    pub particle_steps_per_cpu_s: Option<f64>,
     /// Time step (s).
     pub dt_s: f64,
     /// Shortest Hertz contact time at the design impact speed (s).
@@ -192,6 +196,12 @@ pub struct DemSummary {
     /// Whole-run ledger (J).
     #[serde(skip)]
     pub ledger: EnergyLedger,
+    /// Stored mechanical energy when the drive started (J).
+    #[serde(skip)]
+    pub energy_start_j: f64,
+    /// Stored mechanical energy at the end (J).
+    #[serde(skip)]
+    pub energy_end_j: f64,
     /// Stroboscopic points of the steady state (one per forcing period).
     #[serde(skip)]
     pub strobe: Vec<StrobeRow>,
@@ -258,6 +268,16 @@ pub fn settle(world: &mut DemWorld, max_time_s: f64) -> (f64, u64) {
     (t, steps)
 }
 
+/// CPU time of the calling thread (s), from `/proc/thread-self/stat` (utime + stime, in
+/// clock ticks of 1/100 s); `None` where unavailable.
+fn thread_cpu_time_s() -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/thread-self/stat").ok()?;
+    let f: Vec<&str> = s.rsplit(')').next()?.split_whitespace().collect();
+    let utime: f64 = f.get(11)?.parse().ok()?;
+    let stime: f64 = f.get(12)?.parse().ok()?;
+    Some((utime + stime) / 100.0)
+}
+
 fn sample_of(w: &DemWorld, e0: &super::energy::EnergyState) -> DemSample {
     let (zcm, lo, hi) = w.z_stats();
     let (u, _) = w.base_now();
@@ -302,7 +322,11 @@ pub fn run_dem(
         DtChoice::Auto => None,
         DtChoice::Seconds(s) => Some(s),
     };
-    let (dt, ts) = choose_dt(params, &drive, explicit, cfg.dt_fraction)?;
+    let (mut dt, ts) = choose_dt(params, &drive, explicit, cfg.dt_fraction)?;
+    if explicit.is_none() && cfg.sample_interval_s > dt && cfg.sample_interval_s.is_finite() {
+        // automatic step: shrink it slightly so that samples fall on exact multiples of dt
+        dt = cfg.sample_interval_s / (cfg.sample_interval_s / dt).ceil();
+    }
     for (k, v) in [
         ("run.duration", cfg.duration_s),
         ("run.sample_interval", cfg.sample_interval_s),
@@ -361,6 +385,7 @@ pub fn run_dem(
         obs.snapshot(&world)?;
     }
     let clock = Instant::now();
+    let cpu0 = thread_cpu_time_s();
     let mut aside = 0.0;
     for k in 1..=n_steps {
         world.step();
@@ -412,6 +437,10 @@ pub fn run_dem(
         }
     }
     let wall = (clock.elapsed().as_secs_f64() - aside).max(1e-9);
+    let cpu = match (cpu0, thread_cpu_time_s()) {
+        (Some(a), Some(b)) if b - a - aside > 0.05 => Some(b - a - aside),
+        _ => None,
+    };
     let st = world.energy_state();
     let (_, rel) = balance(&st, &e0, &world.ledger);
     let per_cycle = |f: fn(&EnergyLedger) -> f64| -> Option<f64> {
@@ -429,6 +458,7 @@ pub fn run_dem(
         steps: n_steps,
         wall_time_s: wall,
         particle_steps_per_s: world.len() as f64 * n_steps as f64 / wall,
+        particle_steps_per_cpu_s: cpu.map(|c| world.len() as f64 * n_steps as f64 / c),
         dt_s: dt,
         contact_time_s: ts,
         settle_time_s: settle_t,
@@ -443,6 +473,8 @@ pub fn run_dem(
         box_z_max_m: zmax,
         box_z_min_m: zmin,
         ledger: world.ledger,
+        energy_start_j: e0.total_j(),
+        energy_end_j: st.total_j(),
         strobe,
     })
 }

@@ -299,9 +299,9 @@ impl ImpactWorld {
                 gap: p.gap,
                 e: p.restitution,
             }),
-            Damper::Dem(_) => {
+            Damper::Dem(_) | Damper::Auto(_) => {
                 return Err(SimError::Unavailable(
-                    "damper.kind = \"dem\" is not handled by the impact model".into(),
+                    "damper.kind = \"dem\" / \"auto\" is not handled by the impact model".into(),
                 ))
             }
         };

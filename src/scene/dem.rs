@@ -22,6 +22,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::contact::material::Material;
+use crate::contact::{NormalLaw, TangentialLaw};
 use crate::error::SceneError;
 use crate::packing::RadiusDistribution;
 
@@ -167,6 +168,9 @@ pub struct DemParams {
     /// Interval between particle snapshots (s); none when absent.
     #[serde(default)]
     pub snapshot_interval: Option<f64>,
+    /// Directory of the snapshots (default `snapshots`, relative to the current directory).
+    #[serde(default)]
+    pub snapshot_dir: Option<String>,
     /// Snapshot files: `"csv"`, `"vtk"` or `"both"` (default).
     #[serde(default)]
     pub snapshot_format: SnapshotFormat,
@@ -256,6 +260,7 @@ impl DemParams {
             rotations: true,
             orientations: false,
             snapshot_interval: None,
+            snapshot_dir: None,
             snapshot_format: SnapshotFormat::Both,
             neighbor_skin: None,
             settle_time: None,
@@ -412,6 +417,58 @@ impl DemParams {
         Material {
             youngs_modulus: self.wall_youngs_modulus.unwrap_or(self.youngs_modulus),
             poisson: self.wall_poisson.unwrap_or(self.poisson),
+        }
+    }
+
+    /// Normal contact law of grain–grain (`wall = false`) or grain–wall contacts.
+    pub fn normal_law(&self, wall: bool) -> NormalLaw {
+        match self.contact {
+            ContactKind::HertzKk => NormalLaw::HertzKuwabaraKono {
+                gamma_n: if wall {
+                    self.wall_gamma_n.unwrap_or(self.gamma_n)
+                } else {
+                    self.gamma_n
+                },
+            },
+            ContactKind::Linear => NormalLaw::LinearSpringDashpot {
+                restitution: if wall {
+                    self.wall_restitution.or(self.restitution).unwrap_or(1.0)
+                } else {
+                    self.restitution.unwrap_or(1.0)
+                },
+                yield_strength: self.yield_strength.unwrap_or(1.0),
+            },
+        }
+    }
+
+    /// Tangential contact law of grain–grain (`wall = false`) or grain–wall contacts
+    /// ([`TangentialLaw::None`] when μ = 0 or, for Hertz, γ_s = 0).
+    pub fn tangential_law(&self, wall: bool) -> TangentialLaw {
+        let mu = if wall {
+            self.wall_friction.unwrap_or(self.friction)
+        } else {
+            self.friction
+        };
+        if mu <= 0.0 {
+            return TangentialLaw::None;
+        }
+        match self.contact {
+            ContactKind::HertzKk => {
+                let gamma_s = if wall {
+                    self.wall_gamma_s.unwrap_or(self.gamma_s)
+                } else {
+                    self.gamma_s
+                };
+                if gamma_s > 0.0 {
+                    TangentialLaw::CoulombViscous {
+                        gamma_s,
+                        friction: mu,
+                    }
+                } else {
+                    TangentialLaw::None
+                }
+            }
+            ContactKind::Linear => TangentialLaw::LinearDashpotCoulomb { friction: mu },
         }
     }
 

@@ -24,6 +24,7 @@ impl Scene {
                 initial_velocity: 0.0,
             }),
             run: Run::with_duration(13.12),
+            outputs: Default::default(),
         }
     }
 

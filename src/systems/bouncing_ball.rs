@@ -86,6 +86,7 @@ pub fn scene(gamma: f64, e: f64, frequency: f64, n: u32, periods: f64) -> Scene 
             periods: Some(periods),
             ..Run::with_duration(1.0)
         },
+        outputs: Default::default(),
     }
 }
 
