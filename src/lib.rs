@@ -18,6 +18,7 @@
 //!   Poincaré sections, Kantz's Lyapunov exponent, regime classification, FRF fits (SPEC §4).
 //! - [`systems`]: logistic, Hénon, Lorenz, Rössler, bouncing ball — literature references.
 //! - [`plot`]: headless PNG figures (SPEC §7).
+//! - [`tradeoff`]: speed against accuracy of the models and settings; `kind = "auto"`.
 //! - [`io`]: series and CSV input/output, atomic writes.
 //! - [`cli`]: the `pdamp` command line (thin layer over the library).
 #![warn(missing_docs)]
@@ -36,6 +37,8 @@ pub mod observe;
 pub mod packing;
 pub mod plot;
 pub mod scene;
+pub mod study;
 pub mod sweep;
 pub mod systems;
+pub mod tradeoff;
 pub mod units;

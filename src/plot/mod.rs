@@ -9,6 +9,7 @@ pub mod effective;
 pub mod energy;
 pub mod frf;
 pub mod lines;
+pub mod pareto;
 pub mod poincare;
 pub mod reconstruction;
 pub mod regime_frf;

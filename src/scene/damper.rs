@@ -6,7 +6,10 @@ use super::{non_negative, positive};
 use crate::error::SceneError;
 use serde::{Deserialize, Serialize};
 
-/// The damper, selected by `kind = "none" | "impact" | "dem"` in the `[damper]` table.
+/// The damper, selected by `kind = "none" | "impact" | "dem" | "auto"` in the `[damper]` table.
+// DemParams is large next to the other variants; a scene is built once per run, so the size
+// does not matter and the payload stays unboxed (the shared contract `Dem(DemParams)`).
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 #[serde(tag = "kind", rename_all = "lowercase")]
 pub enum Damper {
@@ -17,6 +20,10 @@ pub enum Damper {
     Impact(ImpactParams),
     /// A box of spheres simulated with the discrete element method (SPEC §2).
     Dem(DemParams),
+    /// A box of spheres described as for `dem`, simulated with the cheapest model and settings
+    /// that meet the scene's `[outputs]` (chosen by [`crate::tradeoff::auto::choose`] from the
+    /// measured speed/accuracy table).
+    Auto(DemParams),
 }
 
 impl Damper {
@@ -26,6 +33,7 @@ impl Damper {
             Damper::None => "none",
             Damper::Impact(_) => "impact",
             Damper::Dem(_) => "dem",
+            Damper::Auto(_) => "auto",
         }
     }
 
@@ -38,7 +46,7 @@ impl Damper {
             Damper::None => Ok(()),
             Damper::Impact(p) => p.validate(),
             // DemParams' validation is owned by the DEM model (src/scene/dem.rs)
-            Damper::Dem(d) => d.validate(),
+            Damper::Dem(d) | Damper::Auto(d) => d.validate(),
         }
     }
 }

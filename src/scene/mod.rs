@@ -31,6 +31,7 @@
 pub mod damper;
 pub mod dem;
 pub mod excitation;
+pub mod outputs;
 pub mod overrides;
 pub mod presets;
 pub mod primary;
@@ -38,6 +39,7 @@ pub mod run;
 
 pub use damper::{Damper, ImpactParams};
 pub use excitation::Excitation;
+pub use outputs::Outputs;
 pub use overrides::{parse_assignment, SceneSource};
 pub use primary::Primary;
 pub use run::{DtSpec, Run};
@@ -66,6 +68,10 @@ pub struct Scene {
     pub damper: Damper,
     /// Duration, steady-state window, sampling and time-step settings.
     pub run: Run,
+    /// What the run must deliver and the accepted error (`[outputs]`, optional); read by
+    /// `[damper] kind = "auto"` (see [`outputs::Outputs`]).
+    #[serde(default)]
+    pub outputs: Outputs,
 }
 
 fn default_gravity() -> f64 {
@@ -119,7 +125,8 @@ impl Scene {
         self.excitation.validate()?;
         self.damper.validate()?;
         self.run.validate()?;
-        if self.primary.is_none() && matches!(self.damper, Damper::Dem(_)) {
+        self.outputs.validate()?;
+        if self.primary.is_none() && matches!(self.damper, Damper::Dem(_) | Damper::Auto(_)) {
             return Err(SceneError::Missing {
                 field: "primary".into(),
                 hint: "the DEM damper needs a [primary] table (mass, stiffness, damping)".into(),

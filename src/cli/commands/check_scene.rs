@@ -54,6 +54,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             p.mass, p.gap, p.restitution
         ),
         Damper::Dem(d) => println!("damper: dem, {} grains, box {:?} m", d.count, d.r#box),
+        Damper::Auto(_) => println!("damper: {}", crate::tradeoff::auto::describe(&crate::tradeoff::choose(&scene)?)),
     }
     Ok(())
 }

@@ -1,10 +1,174 @@
-//! `pdamp tradeoff` (to be written by the issue that owns it).
+//! `pdamp tradeoff SCENE [--out DIR] [--quick]`: run each cheaper setting of a DEM scene
+//! against the most accurate affordable reference at three frequencies (below, at and above
+//! resonance) and write `tradeoff.csv`, `tradeoff_settings.csv` and Pareto plots (error versus
+//! wall time).
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+
+use crate::plot::pareto::{ParetoFigure, ParetoPoint};
+use crate::plot::{render, FigureOptions};
+use crate::scene::Damper;
+use crate::tradeoff::measure::Rig;
+use crate::tradeoff::study::{run_study, Study, StudyOptions};
+use crate::tradeoff::table::{runs_csv, settings_csv};
+use crate::tradeoff::LadderOptions;
 
 /// Arguments of `pdamp tradeoff`.
 #[derive(Debug, clap::Args)]
-pub struct Args {}
+pub struct Args {
+    /// Scene file with a DEM damper (`kind = "dem"` or `"auto"`) and a `[primary]`; its
+    /// excitation frequency is replaced by the study's frequencies.
+    pub scene: PathBuf,
+    /// Output directory (created): tradeoff.csv (one row per run), tradeoff_settings.csv
+    /// (one row per setting, with provenance header), tradeoff_*.png Pareto plots.
+    #[arg(long, default_value = "tradeoff_out")]
+    pub out: PathBuf,
+    /// Override a scene key, dotted (as in `simulate`). Repeatable.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Quick study: no setting costlier than the reference (no real steel, no t_s/200, no
+    /// larger N) and 0.75 s runs instead of 1.5 s.
+    #[arg(long)]
+    pub quick: bool,
+    /// Frequencies (Hz), comma-separated. Default: 0.7, 1 and 1.3 × √(K/(M + m_p))/2π.
+    #[arg(long, value_delimiter = ',', value_name = "HZ")]
+    pub frequencies: Vec<f64>,
+    /// Drive duration of every run (s). Default 1.5 (0.75 with --quick).
+    #[arg(long, value_name = "S")]
+    pub duration: Option<f64>,
+    /// Young's-modulus divisor of the reference (–): the "most accurate affordable" setting.
+    /// Default 100 (real steel, divisor 1, costs ~6× more and is measured as a rung).
+    #[arg(long, default_value_t = 100.0, value_name = "FACTOR")]
+    pub reference_softening: f64,
+    /// Time step of the reference as a fraction of the contact duration (–). Default 0.01.
+    #[arg(long, default_value_t = 0.01, value_name = "FRACTION")]
+    pub reference_dt_fraction: f64,
+    /// Worker threads; each run is single-threaded so its wall time is fair. Default: all
+    /// cores (RAYON_NUM_THREADS).
+    #[arg(long)]
+    pub threads: Option<usize>,
+}
 
 /// Run `pdamp tradeoff`.
-pub fn run(_args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("`tradeoff` is not available yet")
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let (_, _, scene) = super::simulate::load_scene(&args.scene, &args.set)?;
+    let params = match &scene.damper {
+        Damper::Dem(p) | Damper::Auto(p) => p.clone(),
+        other => anyhow::bail!(
+            "{}: damper.kind = \"{}\": the trade-off study needs a DEM scene (kind = \"dem\" or \"auto\"), \
+             e.g. data/scenes/thesis_b.toml",
+            args.scene.display(),
+            other.kind()
+        ),
+    };
+    let rig = Rig::of_scene(&scene)?;
+    let opts = StudyOptions {
+        ladder: LadderOptions {
+            reference_softening: args.reference_softening,
+            reference_dt_fraction: args.reference_dt_fraction,
+            duration_s: args.duration.unwrap_or(if args.quick { 0.75 } else { 1.5 }),
+            steady_fraction: 0.5,
+            quick: args.quick,
+        },
+        frequencies_hz: args.frequencies.clone(),
+        threads: args.threads,
+        ..StudyOptions::default()
+    };
+    std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
+    let study = run_study(&params, &rig, &opts, &|line| eprintln!("{line}"))?;
+    let header = vec![
+        "pdamp tradeoff: speed against accuracy, one row per setting (errors against the reference row)".to_string(),
+        format!("generator: pdamp {} `pdamp tradeoff {}`", env!("CARGO_PKG_VERSION"), std::env::args().skip(2).collect::<Vec<_>>().join(" ")),
+        format!("date: {}", today()),
+        format!("scene: {}", args.scene.display()),
+        format!("reference_softening = {}", opts.ladder.reference_softening),
+        format!("reference_dt_fraction = {}", opts.ladder.reference_dt_fraction),
+        format!("duration_s = {}", opts.ladder.duration_s),
+        "wall_time_s: driven run only (bed building and settling excluded; see total_wall_time_s in tradeoff.csv), measured inside each single-threaded run, summed over the frequencies; machine- and load-dependent".into(),
+        "errors: largest over the frequencies of |x - x_ref| / x_ref; M_ef, C_ef fitted with (2.1.21) to the 3 points".into(),
+    ];
+    let write = |name: &str, text: String| -> anyhow::Result<()> {
+        crate::sweep::runner::atomic_write(&args.out.join(name), text.as_bytes())?;
+        Ok(())
+    };
+    write("tradeoff.csv", runs_csv(&study))?;
+    write("tradeoff_settings.csv", settings_csv(&study, &header))?;
+    plot_all(&study, &args.out)?;
+    for s in &study.settings {
+        println!(
+            "{:<16} {:<30} wall {:>8.2} s  speed-up {:>6.2}  Z err {:>9}  diss err {:>9}  C_ef err {:>9}  regimes {}/{}{}",
+            s.axis.as_str(),
+            s.setting,
+            s.wall_time_s,
+            s.speedup,
+            pct(s.amplitude_max_rel_error),
+            pct(s.dissipation_max_rel_error),
+            pct(s.c_ef_rel_error),
+            s.regime_matches,
+            s.runs,
+            if s.pareto_amplitude { "  (Pareto)" } else { "" }
+        );
+    }
+    println!("wrote {}", args.out.display());
+    Ok(())
+}
+
+fn pct(e: Option<f64>) -> String {
+    e.map_or("n/a".into(), |e| format!("{:.2} %", 100.0 * e))
+}
+
+/// The Pareto plots: Z, dissipation, C_ef and Lyapunov-exponent errors against wall time.
+fn plot_all(study: &Study, out: &Path) -> anyhow::Result<()> {
+    type Get = fn(&crate::tradeoff::study::SettingRow) -> Option<f64>;
+    let figs: [(&str, &str, Get); 4] = [
+        ("tradeoff_amplitude.png", "largest relative error of Z (–)", |s| s.amplitude_max_rel_error),
+        ("tradeoff_dissipation.png", "largest relative error of the grains' dissipation per cycle (–)", |s| s.dissipation_max_rel_error),
+        ("tradeoff_effective.png", "relative error of C_ef (–)", |s| s.c_ef_rel_error),
+        ("tradeoff_lyapunov.png", "largest |λ − λ_ref| (1/s)", |s| s.mle_max_abs_error_per_s),
+    ];
+    let ref_wall = study.settings.iter().find(|s| s.axis == crate::tradeoff::Axis::Reference).map(|s| s.wall_time_s);
+    for (file, label, get) in figs {
+        let rows: Vec<(&crate::tradeoff::study::SettingRow, f64)> = study
+            .settings
+            .iter()
+            .filter(|s| s.axis != crate::tradeoff::Axis::Reference && s.wall_time_s > 0.0 && s.wall_time_s.is_finite())
+            .filter_map(|s| get(s).filter(|e| e.is_finite()).map(|e| (s, e)))
+            .collect();
+        if rows.is_empty() {
+            continue;
+        }
+        let front = crate::tradeoff::pareto::pareto_front(&rows.iter().map(|(s, e)| (s.wall_time_s, *e)).collect::<Vec<_>>());
+        let points = rows
+            .iter()
+            .zip(front)
+            .map(|((s, e), f)| ParetoPoint { label: s.setting.clone(), group: s.axis.as_str().into(), wall_time_s: s.wall_time_s, error: *e, on_front: f })
+            .collect();
+        let fig = ParetoFigure {
+            points,
+            y_label: label.into(),
+            error_floor: 1e-4,
+            reference_wall_time_s: ref_wall,
+            title: format!("Speed against accuracy, {} Hz", study.frequencies_hz.iter().map(|f| format!("{f}")).collect::<Vec<_>>().join(" / ")),
+        };
+        let opts = FigureOptions { width: 1400, height: 1000, title: None };
+        render(&fig, &out.join(file), &opts).with_context(|| format!("drawing {file}"))?;
+    }
+    Ok(())
+}
+
+/// Today's date (UTC) as YYYY-MM-DD, from the system clock (civil-from-days, H. Hinnant).
+fn today() -> String {
+    let secs = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_secs());
+    let z = (secs / 86_400) as i64 + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    format!("{y:04}-{m:02}-{d:02}")
 }
