@@ -158,7 +158,10 @@ fn linear_law_restitution_zero_is_refused_with_the_fix() {
     // refused naming damper.restitution; e = 1 (no damping) runs and conserves the ledger
     let mut p = bed(8, [0.02, 0.02, 0.05]);
     p.contact = ContactKind::Linear;
-    p.yield_strength = Some(1e5);
+    // steel's yield strength scaled like E (1e9 Pa ÷ 10⁴ would give k_n ≈ 30 N/m: so soft
+    // that an undamped grain was found 2 mm past the ceiling at t = 0.09 s without the run
+    // stopping — reported to the DEM's escape check); 1e7 Pa keeps overlaps ≪ R
+    p.yield_strength = Some(1e7);
     p.restitution = Some(0.0);
     let e = run(&p, 15.0, 0.05).unwrap_err().to_string();
     assert!(e.contains("damper.restitution"), "{e}");

@@ -3,8 +3,9 @@
 //! (`data/reference/tradeoff_scene_b.csv`, built into the binary), and say which and why.
 //!
 //! # Rules
-//! A measured setting is eligible when all its runs finished, its largest relative errors of
-//! Z and of the grains' dissipation per cycle are ≤ `outputs.tolerance`, and it can deliver
+//! A measured setting is eligible when all its runs finished, its largest relative error of
+//! Z (and, with `energies_by_mechanism`, of the grains' dissipation per cycle) is ≤
+//! `outputs.tolerance`, and it can deliver
 //! the outputs:
 //! - grain outputs (`grain_snapshots`, `orientations`, `energies_by_mechanism`) exclude the
 //!   one-particle model;
@@ -115,7 +116,9 @@ pub fn delivers(s: &MeasuredSetting, o: &Outputs) -> bool {
 /// was measured without the analysis, then only the errors count).
 pub fn accurate_enough(s: &MeasuredSetting, o: &Outputs, regime_known: bool) -> bool {
     let within = |e: Option<f64>| e.is_some_and(|e| e <= o.tolerance);
-    let dissipation_ok = s.dissipation_max_rel_error.is_none_or(|e| e <= o.tolerance);
+    // the dissipation error counts only when its split is requested: over short runs it is
+    // dominated by cycle-to-cycle scatter (the reference's own steady-window rows show ~10 %)
+    let dissipation_ok = !o.energies_by_mechanism || s.dissipation_max_rel_error.is_some_and(|e| e <= o.tolerance);
     let regime_ok = !o.zcm_series || !regime_known || s.regime_matches == s.runs;
     s.complete && within(s.amplitude_max_rel_error) && dissipation_ok && regime_ok
 }
@@ -144,6 +147,7 @@ pub fn choose_with(scene: &Scene, table: &[MeasuredSetting], reference: &LadderO
     let ref_wall = ref_row.map_or(f64::NAN, |r| r.wall_time_s);
     let mut eligible: Vec<&MeasuredSetting> = table
         .iter()
+        .filter(|s| s.axis != Axis::Reference)
         .filter(|s| delivers(s, o) && accurate_enough(s, o, regime_known) && s.wall_time_s.is_finite())
         .collect();
     eligible.sort_by(|a, b| a.wall_time_s.total_cmp(&b.wall_time_s));
