@@ -1,42 +1,27 @@
-//! Writes `figures/frf.png` (+ `figures/frf.csv`): a synthetic damped FRF of scene B (SPEC §6)
-//! with the (2.1.21) reference curves for M and M + m_p (SPEC §7, first figure).
+//! Writes `figures/frf*.png` (+ the CSV of the plotted data next to each): the primary's frequency response Z(f) with the one-particle impact model (e = 0 and 0.8) and, when the DEM model is available, the granular bed, against the reference curves (2.1.21) for M and M + m_p.
 //!
-//! Replace the synthetic curve by a real sweep with
-//! `pdamp plot frf DIR/sweep.csv -o frf.png --mass 2.37 --particle-mass 0.227 --stiffness 21500 --damping 7.6 --base-amplitude 4.5e-3`.
+//! SPEC §7: "Frequency response Z(f) with the reference curves for M and M + m_p; the one-particle model's FRF against the granular one". Scene B (Sánchez 2012 §3.2). Runs the same pipeline as
+//! `pdamp reproduce --quick --only frf` (sweeps cached under `figures/data/`, so a rerun is
+//! fast); pass `--smoke` for a seconds-long run, `--full` for the source's parameters.
+//!
+//! Run: `cargo run --release --example fig_frf [-- --smoke]`
 
-use pdamp::analysis::frf_fit::sdof_amplitude;
-use pdamp::plot::frf::{FrfFigure, FrfReference};
-use pdamp::plot::{render, FigureOptions, Series};
+use pdamp::study::{reproduce, Mode, ReproduceOptions};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let (m, mp, k, c, u) = (2.37, 0.227, 21500.0, 7.6, 4.5e-3);
-    let f: Vec<f64> = (1..=60).map(|i| 0.5 * i as f64).collect();
-    // stand-in for a granular damper: M_ef between M and M + m_p, C_ef ≈ 3 C
-    let z: Vec<f64> = f
-        .iter()
-        .map(|&f| sdof_amplitude(f, m + 0.12, 3.0 * c, k, u))
-        .collect();
-    std::fs::create_dir_all("figures")?;
-    let mut csv = String::from("frequency_hz,amplitude_m\n");
-    for (f, z) in f.iter().zip(&z) {
-        csv += &format!("{f},{z}\n");
-    }
-    std::fs::write("figures/frf.csv", csv)?;
-    let fig = FrfFigure {
-        series: vec![Series {
-            label: "synthetic damped FRF",
-            x: &f,
-            y: &z,
-        }],
-        reference: Some(FrfReference {
-            mass_kg: m,
-            particle_mass_kg: Some(mp),
-            stiffness_n_per_m: k,
-            damping_ns_per_m: c,
-            base_amplitude_m: u,
-        }),
+    let args: Vec<String> = std::env::args().collect();
+    let mode = if args.iter().any(|a| a == "--smoke") {
+        Mode::Smoke
+    } else if args.iter().any(|a| a == "--full") {
+        Mode::Full
+    } else {
+        Mode::Quick
     };
-    render(&fig, "figures/frf.png".as_ref(), &FigureOptions::default())?;
-    println!("wrote figures/frf.png");
+    let mut opts = ReproduceOptions::new(mode, "figures");
+    opts.only = vec!["frf".into()];
+    let report = reproduce(&opts, &|msg| eprintln!("{msg}"))?;
+    for f in &report.figures {
+        println!("wrote figures/{}.png and figures/{}.csv", f.name, f.name);
+    }
     Ok(())
 }

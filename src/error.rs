@@ -173,3 +173,38 @@ impl PlotError {
         }
     }
 }
+
+/// A study (a pipeline of sweeps, fits and figures, e.g. `pdamp reproduce`) that had to stop:
+/// names the step and wraps the cause.
+#[derive(Debug, Error)]
+pub enum StudyError {
+    /// A step of the study failed; `step` names it (e.g. `frf: sweep of the impact model`).
+    #[error("{step}: {message}")]
+    Step {
+        /// The figure or stage, e.g. `effective`.
+        step: String,
+        /// The cause and, where known, the fix.
+        message: String,
+    },
+    /// Output directory or file not writable.
+    #[error("{path}: {message}")]
+    Output {
+        /// The path.
+        path: String,
+        /// The cause.
+        message: String,
+    },
+    /// The computed numbers contradict the expected qualitative behaviour (SPEC §1, §3).
+    #[error("qualitative check failed: {0}")]
+    Check(String),
+}
+
+impl StudyError {
+    /// Shorthand for [`StudyError::Step`].
+    pub fn step(step: impl Into<String>, message: impl ToString) -> Self {
+        StudyError::Step {
+            step: step.into(),
+            message: message.to_string(),
+        }
+    }
+}

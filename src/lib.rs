@@ -37,6 +37,7 @@ pub mod observe;
 pub mod packing;
 pub mod plot;
 pub mod scene;
+pub mod study;
 pub mod sweep;
 pub mod systems;
 pub mod tradeoff;

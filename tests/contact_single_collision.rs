@@ -7,12 +7,18 @@
 //! file runs in well under a second in release mode.
 
 use pdamp::contact::material::{Material, PairProperties};
-use pdamp::contact::restitution::{hertz_contact_time, kuwabara_kono_restitution, linear_restitution};
+use pdamp::contact::restitution::{
+    hertz_contact_time, kuwabara_kono_restitution, linear_restitution,
+};
 use pdamp::contact::{hertz_stiffness, LinearContactParams};
 use pdamp::dem::{BoxDrive, DemWorld};
 use pdamp::scene::dem::{ContactKind, DemParams};
 
-const STILL: BoxDrive = BoxDrive { primary: None, amplitude_m: 0.0, frequency_hz: 0.0 };
+const STILL: BoxDrive = BoxDrive {
+    primary: None,
+    amplitude_m: 0.0,
+    frequency_hz: 0.0,
+};
 
 fn params(gamma_n: f64) -> DemParams {
     let mut p = DemParams::thesis_b();
@@ -67,7 +73,10 @@ fn sphere_wall(p: &DemParams, v: f64, dt: f64) -> (f64, f64) {
 }
 
 fn steel() -> Material {
-    Material { youngs_modulus: 2.03e11, poisson: 0.28 }
+    Material {
+        youngs_modulus: 2.03e11,
+        poisson: 0.28,
+    }
 }
 
 fn mass() -> f64 {
@@ -89,14 +98,26 @@ fn kuwabara_kono_restitution_matches_mueller_poeschel() {
             let dt = hertz_contact_time(pair.m_star, pair.r_star, pair.e_star, v) / 2000.0;
             let (e, _) = two_sphere(&p, v, dt);
             let want = kuwabara_kono_restitution(kp, gamma_n, pair.m_star, v);
-            eprintln!("pair gamma_n={gamma_n} v={v}: e={e:.5} closed form {want:.5} ({:+.3} %)", 100.0 * (e / want - 1.0));
+            eprintln!(
+                "pair gamma_n={gamma_n} v={v}: e={e:.5} closed form {want:.5} ({:+.3} %)",
+                100.0 * (e / want - 1.0)
+            );
             // 1 % (issue's tolerance; formula error ≤ ~0.5 % at e ≥ 0.5, time-step error ~1e-4)
-            assert!((e / want - 1.0).abs() < 0.01, "pair γ_n={gamma_n} v={v}: e={e} want {want}");
+            assert!(
+                (e / want - 1.0).abs() < 0.01,
+                "pair γ_n={gamma_n} v={v}: e={e} want {want}"
+            );
             let dtw = hertz_contact_time(wall.m_star, wall.r_star, wall.e_star, v) / 2000.0;
             let (ew, _) = sphere_wall(&p, v, dtw);
             let want_w = kuwabara_kono_restitution(kw, gamma_n, wall.m_star, v);
-            eprintln!("wall gamma_n={gamma_n} v={v}: e={ew:.5} closed form {want_w:.5} ({:+.3} %)", 100.0 * (ew / want_w - 1.0));
-            assert!((ew / want_w - 1.0).abs() < 0.01, "wall γ_n={gamma_n} v={v}: e={ew} want {want_w}");
+            eprintln!(
+                "wall gamma_n={gamma_n} v={v}: e={ew:.5} closed form {want_w:.5} ({:+.3} %)",
+                100.0 * (ew / want_w - 1.0)
+            );
+            assert!(
+                (ew / want_w - 1.0).abs() < 0.01,
+                "wall γ_n={gamma_n} v={v}: e={ew} want {want_w}"
+            );
         }
     }
     // negative control: restitution falls with speed (a constant e would be the linear law)
@@ -114,15 +135,26 @@ fn elastic_hertz_contact_time() {
     let wall = PairProperties::new(0.003, m, &steel(), f64::INFINITY, f64::INFINITY, &steel());
     for v in [0.05, 0.5, 2.0] {
         // SPEC §9: t_c = 2.868 (m*²/(R* E*² v))^{1/5}
-        let want = 2.868 * (pair.m_star.powi(2) / (pair.r_star * pair.e_star.powi(2) * v)).powf(0.2);
+        let want =
+            2.868 * (pair.m_star.powi(2) / (pair.r_star * pair.e_star.powi(2) * v)).powf(0.2);
         let (e, tc) = two_sphere(&p, v, want / 4000.0);
-        eprintln!("v={v}: t_c={tc:.5e} Hertz {want:.5e} ({:+.3} %)", 100.0 * (tc / want - 1.0));
+        eprintln!(
+            "v={v}: t_c={tc:.5e} Hertz {want:.5e} ({:+.3} %)",
+            100.0 * (tc / want - 1.0)
+        );
         // 0.2 %: constant 2.868 vs exact 2.86827 (0.01 %) + step counting (1/4000)
-        assert!((tc / want - 1.0).abs() < 2e-3, "v={v}: t_c={tc} want {want}");
+        assert!(
+            (tc / want - 1.0).abs() < 2e-3,
+            "v={v}: t_c={tc} want {want}"
+        );
         assert!((e - 1.0).abs() < 1e-6, "elastic: e = {e}");
-        let want_w = 2.868 * (wall.m_star.powi(2) / (wall.r_star * wall.e_star.powi(2) * v)).powf(0.2);
+        let want_w =
+            2.868 * (wall.m_star.powi(2) / (wall.r_star * wall.e_star.powi(2) * v)).powf(0.2);
         let (_, tw) = sphere_wall(&p, v, want_w / 4000.0);
-        assert!((tw / want_w - 1.0).abs() < 2e-3, "wall v={v}: t_c={tw} want {want_w}");
+        assert!(
+            (tw / want_w - 1.0).abs() < 2e-3,
+            "wall v={v}: t_c={tw} want {want_w}"
+        );
     }
 }
 

@@ -16,7 +16,11 @@ fn sliding_sphere_decelerates_at_mu_g_and_rolls_at_five_sevenths() {
     p.r#box = [2.0, 0.1, 0.1];
     p.count = 1;
     let r = 0.003;
-    let still = BoxDrive { primary: None, amplitude_m: 0.0, frequency_hz: 0.0 };
+    let still = BoxDrive {
+        primary: None,
+        amplitude_m: 0.0,
+        frequency_hz: 0.0,
+    };
     let dt = 2e-7;
     let mut w = DemWorld::new(&p, still, dt, vec![r], vec![[0.05, 0.05, r]]).unwrap();
     // rest on the floor first (static overlap (mg/k)^{2/3} ≈ 7 nm), damped by γ_n
@@ -46,15 +50,26 @@ fn sliding_sphere_decelerates_at_mu_g_and_rolls_at_five_sevenths() {
     let slope = (n * stv - st * sv) / (n * stt - st * st);
     // deceleration μg = 2.94 m/s²: 0.5 % (Coulomb branch exactly μF_n; F_n fluctuates by the
     // vertical contact oscillation only)
-    assert!((-slope / (mu * G) - 1.0).abs() < 5e-3, "deceleration {} vs μg {}", -slope, mu * G);
+    assert!(
+        (-slope / (mu * G) - 1.0).abs() < 5e-3,
+        "deceleration {} vs μg {}",
+        -slope,
+        mu * G
+    );
     for _ in 0..(0.5 * t_star / dt) as usize {
         w.step();
     }
     let v = w.vel[0][0];
     let wr = w.omega[0][1] * r; // rolling in +x: contact point v − R ω_y = 0
-    // rolling speed 5/7 v0 = 0.714286 m/s: 0.5 % (viscous tail of the slip ~1e-3 m/s)
-    assert!((v / (5.0 / 7.0 * v0) - 1.0).abs() < 5e-3, "rolling speed {v}");
-    assert!((v - wr).abs() < 1e-3 * v0, "not rolling without slip: v = {v}, ωR = {wr}");
+                                // rolling speed 5/7 v0 = 0.714286 m/s: 0.5 % (viscous tail of the slip ~1e-3 m/s)
+    assert!(
+        (v / (5.0 / 7.0 * v0) - 1.0).abs() < 5e-3,
+        "rolling speed {v}"
+    );
+    assert!(
+        (v - wr).abs() < 1e-3 * v0,
+        "not rolling without slip: v = {v}, ωR = {wr}"
+    );
     // negative control: without friction the sphere keeps sliding at v0
     let mut p0 = p.clone();
     p0.friction = 0.0;

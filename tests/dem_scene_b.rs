@@ -14,28 +14,48 @@ use pdamp::scene::dem::{DemParams, PackingKind};
 
 fn drive() -> BoxDrive {
     BoxDrive {
-        primary: Some(PrimarySystem { mass_kg: 2.37, stiffness_n_m: 21500.0, damping_n_s_m: 7.6 }),
+        primary: Some(PrimarySystem {
+            mass_kg: 2.37,
+            stiffness_n_m: 21500.0,
+            damping_n_s_m: 7.6,
+        }),
         amplitude_m: 4.5e-3,
         frequency_hz: 15.0,
     }
 }
 
 fn check_run(p: &DemParams, duration: f64) -> pdamp::dem::DemSummary {
-    let cfg = DemRunConfig { duration_s: duration, sample_interval_s: 1e-3, ..Default::default() };
+    let cfg = DemRunConfig {
+        duration_s: duration,
+        sample_interval_s: 1e-3,
+        ..Default::default()
+    };
     let mut samples: Vec<DemSample> = Vec::new();
     let s = run_dem(p, drive(), &cfg, &mut samples).expect("stable run");
     eprintln!("{}", serde_json::to_string_pretty(&s).unwrap());
     // no grain ever leaves the box: every sampled grain centre between floor and ceiling
     for x in &samples {
-        assert!(x.grain_zmin_m > x.floor_z_m && x.grain_zmax_m < x.ceiling_z_m, "grain outside at t = {}", x.time_s);
+        assert!(
+            x.grain_zmin_m > x.floor_z_m && x.grain_zmax_m < x.ceiling_z_m,
+            "grain outside at t = {}",
+            x.time_s
+        );
     }
     // the ledger balances within 1 % (issue's criterion)
-    assert!(s.energy_balance_relative_error < 0.01, "balance error {}", s.energy_balance_relative_error);
+    assert!(
+        s.energy_balance_relative_error < 0.01,
+        "balance error {}",
+        s.energy_balance_relative_error
+    );
     // the damper works: collisions and friction dissipate, the base does positive work
     let last = samples.last().unwrap();
     assert!(last.e_collision_j > 0.0 && last.e_friction_j > 0.0 && last.e_base_work_j > 0.0);
     // random packing band (Scott & Kilgour 1969: RLP ≈ 0.55–0.60, RCP ≈ 0.64)
-    assert!((0.55..=0.64).contains(&s.volume_fraction), "settled volume fraction {}", s.volume_fraction);
+    assert!(
+        (0.55..=0.64).contains(&s.volume_fraction),
+        "settled volume fraction {}",
+        s.volume_fraction
+    );
     s
 }
 

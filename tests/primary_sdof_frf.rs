@@ -76,17 +76,10 @@ fn closed_form_matches_2_1_21_over_frequencies_and_damping() {
 }
 
 /// RK4 integration of M z'' + C z' + K z = C u' + K u (2.1.2), independent of the closed form.
-fn rk4(
-    m: f64,
-    k: f64,
-    c: f64,
-    u: f64,
-    w: f64,
-    z0: f64,
-    v0: f64,
-    dt: f64,
-    n: usize,
-) -> Vec<(f64, f64)> {
+/// `sys` = (M, K, C, U, Ω), `init` = (z0, v0); `n` steps of `dt`.
+fn rk4(sys: (f64, f64, f64, f64, f64), init: (f64, f64), dt: f64, n: usize) -> Vec<(f64, f64)> {
+    let (m, k, c, u, w) = sys;
+    let (z0, v0) = init;
     let acc = |t: f64, z: f64, v: f64| {
         let (s, co) = (w * t).sin_cos();
         (k * (u * co - z) + c * (-u * w * s - v)) / m
@@ -133,13 +126,14 @@ fn closed_form_matches_independent_rk4_in_every_damping_regime() {
         let p = scene.primary.as_ref().unwrap();
         // RK4 with 1e-6 s steps: global error ~ (ω dt)^4 ≈ (190 × 1e-6)^4 × t … ≪ 1e-9 m
         let traj = rk4(
-            p.mass,
-            p.stiffness,
-            p.damping_n_s_m(),
-            scene.excitation.amplitude,
-            scene.excitation.omega_rad_s(),
-            0.002,
-            -0.05,
+            (
+                p.mass,
+                p.stiffness,
+                p.damping_n_s_m(),
+                scene.excitation.amplitude,
+                scene.excitation.omega_rad_s(),
+            ),
+            (0.002, -0.05),
             1e-6,
             1_000_000,
         );

@@ -23,7 +23,15 @@ periods = 60
 
 fn sweep(scene: &Path, out: &Path, threads: &str, vary: &str) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_pdamp"))
-        .args(["sweep", scene.to_str().unwrap(), "--out", out.to_str().unwrap(), "--no-analysis", "--vary", vary])
+        .args([
+            "sweep",
+            scene.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--no-analysis",
+            "--vary",
+            vary,
+        ])
         .env("RAYON_NUM_THREADS", threads)
         .output()
         .unwrap()
@@ -56,13 +64,19 @@ fn lost_points_are_recomputed_and_files_are_identical() {
     let again = sweep(&scene, &out, "1", VARY);
     assert!(again.status.success());
     let msg = String::from_utf8_lossy(&again.stdout);
-    assert!(msg.contains("4 computed") && msg.contains("11 already done"), "{msg}");
+    assert!(
+        msg.contains("4 computed") && msg.contains("11 already done"),
+        "{msg}"
+    );
     assert_eq!(read(&out.join("sweep.csv")), csv);
     assert_eq!(read(&out.join("strobe.csv")), strobe);
 
     // a complete sweep reruns as a no-op
     let msg = String::from_utf8_lossy(&sweep(&scene, &out, "2", VARY).stdout).into_owned();
-    assert!(msg.contains("0 computed") && msg.contains("15 already done"), "{msg}");
+    assert!(
+        msg.contains("0 computed") && msg.contains("15 already done"),
+        "{msg}"
+    );
 
     // a different sweep into the same directory is refused instead of mixing results
     let other = sweep(&scene, &out, "2", "excitation.frequency=2:30:4");
@@ -80,7 +94,15 @@ fn killed_sweep_resumes_to_the_same_files() {
 
     let out = dir.path().join("out");
     let mut child = Command::new(env!("CARGO_BIN_EXE_pdamp"))
-        .args(["sweep", scene.to_str().unwrap(), "--out", out.to_str().unwrap(), "--no-analysis", "--vary", VARY])
+        .args([
+            "sweep",
+            scene.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--no-analysis",
+            "--vary",
+            VARY,
+        ])
         .env("RAYON_NUM_THREADS", "1")
         .stdout(std::process::Stdio::null())
         .spawn()
@@ -88,7 +110,9 @@ fn killed_sweep_resumes_to_the_same_files() {
     // kill once a few points are done (or when it has finished anyway)
     let t0 = std::time::Instant::now();
     loop {
-        let done = std::fs::read_dir(out.join("points")).map(|d| d.count()).unwrap_or(0);
+        let done = std::fs::read_dir(out.join("points"))
+            .map(|d| d.count())
+            .unwrap_or(0);
         if done >= 3 || t0.elapsed().as_secs() > 60 || child.try_wait().unwrap().is_some() {
             break;
         }
@@ -97,6 +121,12 @@ fn killed_sweep_resumes_to_the_same_files() {
     let _ = child.kill();
     let _ = child.wait();
     assert!(sweep(&scene, &out, "2", VARY).status.success());
-    assert_eq!(read(&out.join("sweep.csv")), read(&reference.join("sweep.csv")));
-    assert_eq!(read(&out.join("strobe.csv")), read(&reference.join("strobe.csv")));
+    assert_eq!(
+        read(&out.join("sweep.csv")),
+        read(&reference.join("sweep.csv"))
+    );
+    assert_eq!(
+        read(&out.join("strobe.csv")),
+        read(&reference.join("strobe.csv"))
+    );
 }

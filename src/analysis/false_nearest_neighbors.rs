@@ -143,8 +143,12 @@ pub fn false_nearest_neighbors(
         max_dist: sigma / opts.ratio,
         range: rescaled.range,
     };
+    // nearest neighbour of each reference in the previous dimension: its distance in the next
+    // dimension bounds the new nearest-neighbour distance from above (max norm), which
+    // shrinks the kd-tree search radius
+    let mut prev: Vec<u32> = vec![NONE; setup.n_ref];
     (opts.m_min..=opts.m_max)
-        .map(|m| fnn_in_dimension(&setup, m))
+        .map(|m| fnn_in_dimension(&setup, m, &mut prev))
         .collect()
 }
 
@@ -239,11 +243,14 @@ impl Tally {
     }
 }
 
-fn fnn_in_dimension(setup: &Setup, m: usize) -> Result<FnnPoint, AnalysisError> {
+/// Marks "no neighbour found" in the previous-dimension list.
+const NONE: u32 = u32::MAX;
+
+fn fnn_in_dimension(setup: &Setup, m: usize, prev: &mut [u32]) -> Result<FnnPoint, AnalysisError> {
     macro_rules! dispatch {
         ($($k:literal),*) => {
             match m {
-                $($k => fnn_k::<$k>(setup),)*
+                $($k => fnn_k::<$k>(setup, prev),)*
                 _ => Err(AnalysisError::bad("m", m, format!("1..={MAX_DIMENSION}"))),
             }
         };
@@ -251,7 +258,7 @@ fn fnn_in_dimension(setup: &Setup, m: usize) -> Result<FnnPoint, AnalysisError> 
     dispatch!(1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12)
 }
 
-fn fnn_k<const K: usize>(setup: &Setup) -> Result<FnnPoint, AnalysisError> {
+fn fnn_k<const K: usize>(setup: &Setup, prev: &mut [u32]) -> Result<FnnPoint, AnalysisError> {
     let tau = setup.tau;
     let s = setup.s;
     let point = |i: usize| -> [f64; K] { std::array::from_fn(|k| s[i + k * tau]) };
@@ -261,9 +268,22 @@ fn fnn_k<const K: usize>(setup: &Setup) -> Result<FnnPoint, AnalysisError> {
     let mut tally = Tally::default();
     // Enough candidates to step over the Theiler window and the point itself.
     let k_start = (2 * setup.theiler + 2).min(setup.n_cand).max(1);
-    for n in 0..setup.n_ref {
+    for (n, prev_n) in prev.iter_mut().enumerate().take(setup.n_ref) {
         let q = point(n);
-        if let Some((j, dist)) = nearest_valid(&tree, &q, n, setup, k_start) {
+        let bound = match *prev_n {
+            NONE => setup.max_dist,
+            j => {
+                let pj = point(j as usize);
+                let d = q
+                    .iter()
+                    .zip(&pj)
+                    .fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
+                d.min(setup.max_dist)
+            }
+        };
+        *prev_n = NONE;
+        if let Some((j, dist)) = nearest_valid(&tree, &q, n, setup, k_start, bound) {
+            *prev_n = j as u32;
             if dist <= setup.max_dist {
                 tally.add(setup, K, n, j, dist);
             }
@@ -272,21 +292,22 @@ fn fnn_k<const K: usize>(setup: &Setup) -> Result<FnnPoint, AnalysisError> {
     Ok(tally.finish(K, setup.range))
 }
 
-/// Nearest candidate j of reference n with |n − j| > w and distance in (0, max_dist]
-/// (max norm). Grows k until one is found or all candidates within `max_dist` are exhausted.
+/// Nearest candidate j of reference n with |n − j| > w and distance in (0, bound]
+/// (max norm). Grows k until one is found or all candidates within `bound` are exhausted.
 fn nearest_valid<const K: usize>(
     tree: &ImmutableKdTree<f64, K>,
     q: &[f64; K],
     n: usize,
     setup: &Setup,
     k_start: usize,
+    bound: f64,
 ) -> Option<(usize, f64)> {
     let mut k = k_start;
     loop {
         let found = tree
             .query(q)
             .nearest_n::<Chebyshev<f64>>(NonZero::new(k)?)
-            .within(setup.max_dist)
+            .within(bound)
             .execute();
         let exhausted = found.len() < k;
         if let Some(hit) = found

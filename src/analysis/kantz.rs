@@ -439,18 +439,15 @@ fn reference(job: &Job, i: usize, sc: &mut Scratch, totals: &mut Totals) {
             let acc = &mut sc.acc[row..row + len];
             let cnt = &mut sc.cnt[row..row + len];
             if tisean {
+                // branch-free (vectorises): a zero distance adds 0 to the sum and 0 to the count
                 for ((a, c), &dv) in acc.iter_mut().zip(cnt.iter_mut()).zip(&sc.d[..len]) {
-                    if dv > 0.0 {
-                        *a += dv;
-                        *c += 1;
-                    }
+                    *a += dv;
+                    *c += u32::from(dv > 0.0);
                 }
             } else {
                 for ((a, c), &dv) in acc.iter_mut().zip(cnt.iter_mut()).zip(&sc.d[..len]) {
-                    if dv > 0.0 {
-                        *a += dv.sqrt();
-                        *c += 1;
-                    }
+                    *a += dv.sqrt();
+                    *c += u32::from(dv > 0.0);
                 }
             }
         }

@@ -6,6 +6,7 @@
 //! ([`validate_series`]), rescaling to [0, 1] as TISEAN does ([`rescale_unit`]) and the Theiler
 //! window test ([`outside_theiler_window`]).
 
+pub mod analyze;
 pub mod embedding;
 pub mod false_nearest_neighbors;
 pub mod frf_fit;

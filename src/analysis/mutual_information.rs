@@ -68,11 +68,12 @@ pub struct MutualInformation {
 /// # Example
 /// ```
 /// use pdamp::analysis::{mutual_information, MutualInformationOptions};
-/// let x: Vec<f64> = (0..2000).map(|n| (0.05 * n as f64).sin()).collect();
-/// let mi = mutual_information(&x, &MutualInformationOptions { bins: 16, max_lag: 60 }).unwrap();
-/// // a sine of period 2π/0.05 ≈ 126 samples: first minimum near a quarter period (≈ 31)
+/// use pdamp::systems::lorenz::lorenz_x;
+/// let x = lorenz_x(10_000, 0.01);
+/// let mi = mutual_information(&x, &MutualInformationOptions { bins: 16, max_lag: 50 }).unwrap();
+/// // Lorenz x at dt = 0.01: first minimum at 0.15–0.2 time units
 /// let tau = mi.first_minimum.unwrap();
-/// assert!((25..=40).contains(&tau));
+/// assert!((15..=20).contains(&tau));
 /// ```
 pub fn mutual_information(
     x: &[f64],

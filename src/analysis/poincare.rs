@@ -74,7 +74,7 @@ pub fn period_in_samples(forcing_hz: f64, dt_s: f64) -> Result<f64, AnalysisErro
 /// Returns x at the fractional sample index `t` (0 ≤ t ≤ len − 1), or `None` outside.
 pub fn sample_at(x: &[f64], t: f64, interp: Interpolation) -> Option<f64> {
     let n = x.len();
-    if n == 0 || !(t >= 0.0) || t > (n - 1) as f64 {
+    if n == 0 || t.is_nan() || t < 0.0 || t > (n - 1) as f64 {
         return None;
     }
     let i = (t.floor() as usize).min(n.saturating_sub(2));
@@ -337,7 +337,7 @@ pub fn count_distinct_points(
             count: *c,
         })
         .collect();
-    clusters.sort_by(|a, b| b.count.cmp(&a.count));
+    clusters.sort_by_key(|c| std::cmp::Reverse(c.count));
     let n_distinct = if overflow || points.is_empty() {
         None
     } else {

@@ -68,7 +68,7 @@ pub fn recurrence_period(x: &[f64], max_period: usize, rel_tol: f64) -> Option<u
             (l.min(v), h.max(v))
         });
     let range = hi - lo;
-    if !(range > 0.0) {
+    if range.is_nan() || range <= 0.0 {
         return None;
     }
     let tol = rel_tol * range;
@@ -146,7 +146,8 @@ pub struct RegimeThresholds {
     pub zero_one: f64,
     /// Kantz's scaling region must grow by at least this many e-folds (default 1).
     pub min_growth: f64,
-    /// Largest period reported, in forcing periods or samples (default 64).
+    /// Largest period reported in forcing periods (default 64); periods in samples (no forcing)
+    /// are not limited.
     pub max_period: usize,
 }
 
@@ -178,13 +179,16 @@ pub struct Verdict {
 /// # Formula
 /// Rules, first match wins:
 /// 1. Periodic: the section is n distinct points (period n forcing periods); without a
-///    section, an exact recurrence p, or a line spectrum (≥ `line_fraction` of the power) whose
+///    section, an exact recurrence p (replaced by the spectral period 1/f₀ when p is an
+///    integer multiple of it), or a line spectrum (≥ `line_fraction` of the power) whose
 ///    lines are all harmonics of f₀ (period 1/f₀ samples).
-/// 2. Quasi-periodic: the section is a closed curve, or a line spectrum that is not harmonic,
+/// 2. Quasi-periodic: the section is a closed curve, or a line spectrum of ≥ 2 lines that is
+///    not harmonic,
 ///    with K < `zero_one` (when available).
 /// 3. Chaotic: K > `zero_one`, a Kantz scaling region growing ≥ `min_growth` e-folds with a
 ///    positive slope, and FNN converged (when available).
-/// 4. Stochastic: K > `zero_one` and (no Kantz scaling region, or FNN not converged).
+/// 4. Stochastic: K > `zero_one` and (Kantz computed without a scaling region, or FNN not
+///    converged).
 /// 5. Otherwise undetermined.
 ///
 /// # Parameters
@@ -223,19 +227,37 @@ pub fn classify(e: &Evidence, t: &RegimeThresholds) -> Verdict {
         Some(SectionShape::Points(_) | SectionShape::ClosedCurve | SectionShape::Cloud)
     );
     if !section_usable {
+        let limit = match e.forcing_period_samples {
+            Some(_) => t.max_period as f64 + 0.5,
+            None => f64::INFINITY,
+        };
         if let Some(p) = e.recurrence_period_samples {
-            let period = in_forcing(p as f64);
-            if period <= t.max_period as f64 + 0.5 {
+            // The recurrence may be a multiple of the true period when the samples per period
+            // are not an integer (37.3 samples: exact recurrence after 373): prefer the
+            // spectral period when p is an integer multiple of it.
+            let p = match e.harmonic_period_samples {
+                Some(h)
+                    if h < p as f64 - 0.5 && {
+                        let ratio = p as f64 / h;
+                        (ratio - ratio.round()).abs() < 0.01
+                    } =>
+                {
+                    h
+                }
+                _ => p as f64,
+            };
+            let period = in_forcing(p);
+            if period <= limit {
                 return verdict(
                     Regime::Periodic,
                     Some(round_if_close(period)),
-                    format!("the series repeats exactly every {p} samples"),
+                    format!("the series repeats every {p} samples"),
                 );
             }
         }
         if let (true, Some(p)) = (line_spectrum, e.harmonic_period_samples) {
             let period = in_forcing(p);
-            if period <= t.max_period as f64 + 0.5 && k_regular {
+            if period <= limit && k_regular {
                 return verdict(
                     Regime::Periodic,
                     Some(round_if_close(period)),
@@ -256,7 +278,12 @@ pub fn classify(e: &Evidence, t: &RegimeThresholds) -> Verdict {
             "the stroboscopic section is a closed curve (invariant circle)".into(),
         );
     }
-    if !section_usable && line_spectrum && e.harmonic_period_samples.is_none() && k_regular {
+    if !section_usable
+        && line_spectrum
+        && e.line_count >= 2
+        && e.harmonic_period_samples.is_none()
+        && k_regular
+    {
         return verdict(
             Regime::QuasiPeriodic,
             None,
@@ -284,7 +311,8 @@ pub fn classify(e: &Evidence, t: &RegimeThresholds) -> Verdict {
             ),
         );
     }
-    if k_irregular && (!scaling || !deterministic) {
+    let no_divergence = e.mle_per_sample.is_some() && !scaling;
+    if k_irregular && (no_divergence || !deterministic) {
         let why = if !deterministic {
             "false nearest neighbours do not vanish (no low-dimensional determinism)"
         } else {
@@ -306,10 +334,10 @@ pub fn classify(e: &Evidence, t: &RegimeThresholds) -> Verdict {
     )
 }
 
-/// Rounds to the nearest integer when within 1 % of it (periods of maps and strobed flows).
+/// Rounds to the nearest integer when within 0.1 % of it (periods of maps and strobed flows).
 fn round_if_close(p: f64) -> f64 {
     let r = p.round();
-    if r >= 1.0 && (p - r).abs() <= 0.01 * r {
+    if r >= 1.0 && (p - r).abs() <= 1e-3 * r {
         r
     } else {
         p

@@ -257,7 +257,7 @@ pub fn power_spectrum(x: &[f64], opts: &SpectrumOptions) -> Result<Spectrum, Ana
         .enumerate()
         .map(|(k, c)| {
             let m2 = c.norm_sqr();
-            let one_sided = if k == 0 || (n % 2 == 0 && k == last) {
+            let one_sided = if k == 0 || (n.is_multiple_of(2) && k == last) {
                 1.0
             } else {
                 2.0
@@ -443,6 +443,9 @@ pub fn line_power_fraction(s: &Spectrum, lines: &[SpectralLine]) -> f64 {
         .filter(|(_, &c)| c)
         .map(|(p, _)| p)
         .sum();
+    if in_lines <= 0.0 {
+        return 0.0; // also avoids −0.0 (the empty f64 sum)
+    }
     (in_lines / total).clamp(0.0, 1.0)
 }
 

@@ -111,7 +111,10 @@ mod tests {
 
     #[test]
     fn work_equivalence_at_yield() {
-        let steel = Material { youngs_modulus: 2.03e11, poisson: 0.28 };
+        let steel = Material {
+            youngs_modulus: 2.03e11,
+            poisson: 0.28,
+        };
         let pair = PairProperties::new(0.003, 1e-3, &steel, 0.003, 1e-3, &steel);
         let p = LinearContactParams::select(&pair, &steel, 1.0e9, 0.8).unwrap();
         // ½ k δ² equals the Hertz work (8/15) E* √R* δ^{5/2} at δ_y (definition, exact)

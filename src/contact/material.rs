@@ -81,7 +81,10 @@ mod tests {
 
     #[test]
     fn same_material_pair_halves_modulus_and_radius() {
-        let steel = Material { youngs_modulus: 2.03e11, poisson: 0.28 };
+        let steel = Material {
+            youngs_modulus: 2.03e11,
+            poisson: 0.28,
+        };
         let p = PairProperties::new(0.003, 1e-3, &steel, 0.003, 1e-3, &steel);
         // E* = E / (2 (1 − ν²)) for identical materials (exact)
         assert!((p.e_star - 2.03e11 / (2.0 * (1.0 - 0.28f64.powi(2)))).abs() < 1.0);

@@ -70,6 +70,14 @@ pub enum TangentialLaw {
         /// Coulomb friction coefficient μ (–).
         friction: f64,
     },
+    /// Tangential part of the linear law: F_s = −min(c_s |v_s|, μ |F_n|) v_s/|v_s| with c_s
+    /// from the seed paper's damping ratio and k_s = γ k_n. The tangential spring k_s is not
+    /// integrated (history-free, like the thesis's law); k_s is reported by
+    /// [`LinearContactParams`].
+    LinearDashpotCoulomb {
+        /// Coulomb friction coefficient μ (–).
+        friction: f64,
+    },
 }
 
 /// Whether the total normal force may turn attractive near the end of a contact.

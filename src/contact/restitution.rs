@@ -97,7 +97,7 @@ mod tests {
     fn linear_round_trip() {
         for e in [0.2, 0.5, 0.9] {
             let z = linear_damping_ratio(e);
-            let (k, m) = (1e5, 1e-3);
+            let (k, m) = (1e5f64, 1e-3f64);
             let c = 2.0 * z * (k * m).sqrt();
             assert!((linear_restitution(k, c, m) - e).abs() < 1e-12);
         }
@@ -106,7 +106,7 @@ mod tests {
     #[test]
     fn hertz_time_matches_spec_constant() {
         // 2.868 (m*²/(R* E*² v))^{1/5} (SPEC §9) vs the exact constant: agree to 0.01 %
-        let (m, r, e, v) = (4.5e-4, 1.5e-3, 1.1e11, 0.5);
+        let (m, r, e, v) = (4.5e-4f64, 1.5e-3f64, 1.1e11f64, 0.5f64);
         let spec = 2.868 * (m * m / (r * e * e * v)).powf(0.2);
         assert!((hertz_contact_time(m, r, e, v) / spec - 1.0).abs() < 1e-4);
     }

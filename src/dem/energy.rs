@@ -51,6 +51,10 @@ impl EnergyState {
 pub fn balance(now: &EnergyState, start: &EnergyState, ledger: &EnergyLedger) -> (f64, f64) {
     let de = now.total_j() - start.total_j();
     let r = de - ledger.base_work_j + ledger.dissipated_j();
-    let scale = ledger.base_work_j.abs().max(ledger.dissipated_j()).max(de.abs());
+    let scale = ledger
+        .base_work_j
+        .abs()
+        .max(ledger.dissipated_j())
+        .max(de.abs());
     (r, if scale > 0.0 { r.abs() / scale } else { 0.0 })
 }

@@ -6,10 +6,11 @@
 
 pub mod energy;
 pub mod run;
+pub mod scene_run;
 pub mod snapshot;
 pub mod stability;
 pub mod world;
 
 pub use energy::{EnergyLedger, EnergyState};
-pub use run::{run_dem, DemObserver, DemRunConfig, DemSample, DemSummary, DtChoice};
+pub use run::{run_dem, DemObserver, DemRunConfig, DemSample, DemSummary, DtChoice, StrobeRow};
 pub use world::{BoxDrive, DemWorld, PrimarySystem};

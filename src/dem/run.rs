@@ -37,11 +37,26 @@ pub struct DemRunConfig {
     pub dt: DtChoice,
     /// dt / t_s with `DtChoice::Auto` (default 1/50).
     pub dt_fraction: f64,
+    /// Send samples to the observer (false: summary only).
+    pub samples: bool,
+    /// No samples before this time (s).
+    pub sample_from_s: f64,
+    /// Gravitational acceleration g (m/s², along −z).
+    pub gravity_m_s2: f64,
 }
 
 impl Default for DemRunConfig {
     fn default() -> Self {
-        DemRunConfig { duration_s: 1.0, sample_interval_s: 1e-3, steady_fraction: 0.1, dt: DtChoice::Auto, dt_fraction: DEFAULT_DT_FRACTION }
+        DemRunConfig {
+            duration_s: 1.0,
+            sample_interval_s: 1e-3,
+            steady_fraction: 0.1,
+            dt: DtChoice::Auto,
+            dt_fraction: DEFAULT_DT_FRACTION,
+            samples: true,
+            sample_from_s: 0.0,
+            gravity_m_s2: G,
+        }
     }
 }
 
@@ -92,15 +107,39 @@ pub struct DemSample {
 /// Receives samples and (optionally) particle snapshots of a run.
 pub trait DemObserver {
     /// One sample at `sample_interval`.
-    fn sample(&mut self, s: &DemSample);
+    ///
+    /// # Errors
+    /// Output errors, which stop the run.
+    fn sample(&mut self, s: &DemSample) -> Result<(), SimError>;
     /// A particle snapshot at `damper.snapshot_interval` (default: ignored).
-    fn snapshot(&mut self, _world: &DemWorld) {}
+    ///
+    /// # Errors
+    /// Output errors, which stop the run.
+    fn snapshot(&mut self, _world: &DemWorld) -> Result<(), SimError> {
+        Ok(())
+    }
+    /// Progress: simulated time `t_s` of `duration_s`, about every forcing period.
+    fn progress(&mut self, _t_s: f64, _duration_s: f64) {}
 }
 
 impl DemObserver for Vec<DemSample> {
-    fn sample(&mut self, s: &DemSample) {
+    fn sample(&mut self, s: &DemSample) -> Result<(), SimError> {
         self.push(*s);
+        Ok(())
     }
+}
+
+/// One stroboscopic point: the state at the start of a forcing period in the steady state.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct StrobeRow {
+    /// Forcing period index (t = cycle / f).
+    pub cycle: u64,
+    /// Time (s).
+    pub time_s: f64,
+    /// Grains' centre of mass z_cm (m).
+    pub grain_z_m: f64,
+    /// Box position (m).
+    pub box_z_m: f64,
 }
 
 /// Summary of a DEM run (`summary.json` keys).
@@ -124,6 +163,10 @@ pub struct DemSummary {
     pub wall_time_s: f64,
     /// Grains × steps / wall time of the driven run (particle-steps/s).
     pub particle_steps_per_s: f64,
+    /// Grains × steps / CPU time of the driven run (particle-steps per CPU-second; Linux
+    /// `/proc/thread-self/stat`, 10 ms resolution; `None` elsewhere). On a loaded machine
+    /// this is the fairer single-core figure.
+    pub particle_steps_per_cpu_s: Option<f64>,
     /// Time step (s).
     pub dt_s: f64,
     /// Shortest Hertz contact time at the design impact speed (s).
@@ -144,6 +187,24 @@ pub struct DemSummary {
     pub volume_fraction: f64,
     /// Forcing frequency (Hz).
     pub frequency_hz: f64,
+    /// Start of the steady-state window (s).
+    pub steady_start_s: f64,
+    /// Largest box position in the steady state (m).
+    pub box_z_max_m: f64,
+    /// Smallest box position in the steady state (m).
+    pub box_z_min_m: f64,
+    /// Whole-run ledger (J).
+    #[serde(skip)]
+    pub ledger: EnergyLedger,
+    /// Stored mechanical energy when the drive started (J).
+    #[serde(skip)]
+    pub energy_start_j: f64,
+    /// Stored mechanical energy at the end (J).
+    #[serde(skip)]
+    pub energy_end_j: f64,
+    /// Stroboscopic points of the steady state (one per forcing period).
+    #[serde(skip)]
+    pub strobe: Vec<StrobeRow>,
 }
 
 /// Builds the initial bed of `params` (radii, lattice or advancing front) at rest, with the
@@ -151,17 +212,29 @@ pub struct DemSummary {
 ///
 /// # Errors
 /// Scene errors (invalid parameters, grains that do not fit).
-pub fn initial_world(params: &DemParams, drive: BoxDrive, dt: f64, box_z: f64) -> Result<DemWorld, SceneError> {
+pub fn initial_world(
+    params: &DemParams,
+    drive: BoxDrive,
+    dt: f64,
+    box_z: f64,
+) -> Result<DemWorld, SceneError> {
     params.validate()?;
     let dist = params.radius_distribution()?;
     let radii = dist.sample_n(params.count, params.seed);
     let r_max = dist.r_max();
     let pos = match params.packing {
-        PackingKind::Lattice => fcc_lattice(params.r#box, params.count, r_max, 0.05, params.seed ^ 0x5eed)?,
+        PackingKind::Lattice => fcc_lattice(
+            params.r#box,
+            params.count,
+            r_max,
+            0.05,
+            params.seed ^ 0x5eed,
+        )?,
         PackingKind::AdvancingFront => advancing_front_packing(params.r#box, &radii)?,
     };
     let mut w = DemWorld::new(params, drive, dt, radii, pos)?;
     w.shift_box_to(box_z);
+    w.refresh();
     Ok(w)
 }
 
@@ -179,8 +252,12 @@ pub fn settle(world: &mut DemWorld, max_time_s: f64) -> (f64, u64) {
         world.step();
         t += world.dt;
         steps += 1;
-        if steps % check_every == 0 && t > 0.05 {
-            let mean_v = world.vel.iter().map(|v| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()).sum::<f64>()
+        if steps.is_multiple_of(check_every) && t > 0.05 {
+            let mean_v = world
+                .vel
+                .iter()
+                .map(|v| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt())
+                .sum::<f64>()
                 / world.len() as f64;
             if mean_v < 1e-3 {
                 break;
@@ -189,6 +266,16 @@ pub fn settle(world: &mut DemWorld, max_time_s: f64) -> (f64, u64) {
     }
     world.settle_drag = 0.0;
     (t, steps)
+}
+
+/// CPU time of the calling thread (s), from `/proc/thread-self/stat` (utime + stime, in
+/// clock ticks of 1/100 s); `None` where unavailable.
+fn thread_cpu_time_s() -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/thread-self/stat").ok()?;
+    let f: Vec<&str> = s.rsplit(')').next()?.split_whitespace().collect();
+    let utime: f64 = f.get(11)?.parse().ok()?;
+    let stime: f64 = f.get(12)?.parse().ok()?;
+    Some((utime + stime) / 100.0)
 }
 
 fn sample_of(w: &DemWorld, e0: &super::energy::EnergyState) -> DemSample {
@@ -235,45 +322,71 @@ pub fn run_dem(
         DtChoice::Auto => None,
         DtChoice::Seconds(s) => Some(s),
     };
-    let (dt, ts) = choose_dt(params, &drive, explicit, cfg.dt_fraction)?;
-    for (k, v) in [("run.duration", cfg.duration_s), ("run.sample_interval", cfg.sample_interval_s)] {
+    let (mut dt, ts) = choose_dt(params, &drive, explicit, cfg.dt_fraction)?;
+    if explicit.is_none() && cfg.sample_interval_s > dt && cfg.sample_interval_s.is_finite() {
+        // automatic step: shrink it slightly so that samples fall on exact multiples of dt
+        dt = cfg.sample_interval_s / (cfg.sample_interval_s / dt).ceil();
+    }
+    for (k, v) in [
+        ("run.duration", cfg.duration_s),
+        ("run.sample_interval", cfg.sample_interval_s),
+    ] {
         if !(v > 0.0 && v.is_finite()) {
             return Err(SceneError::invalid(k, v, "must be > 0 (seconds)").into());
         }
     }
     if !(cfg.steady_fraction > 0.0 && cfg.steady_fraction <= 1.0) {
-        return Err(SceneError::invalid("run.steady_fraction", cfg.steady_fraction, "must be in (0, 1]").into());
+        return Err(SceneError::invalid(
+            "run.steady_fraction",
+            cfg.steady_fraction,
+            "must be in (0, 1]",
+        )
+        .into());
     }
     // box held at its start position: u(0) for a kinematic box, the static equilibrium with
     // the grains' weight for a primary
     let mut world = initial_world(params, drive, dt, 0.0)?;
+    world.gravity = cfg.gravity_m_s2;
     let m_p: f64 = world.mass.iter().sum();
     let z_hold = match drive.primary {
-        Some(p) => -m_p * G / p.stiffness_n_m,
+        Some(p) => -m_p * cfg.gravity_m_s2 / p.stiffness_n_m,
         None => drive.base(0.0).0,
     };
     world.shift_box_to(z_hold);
     let (settle_t, settle_steps) = settle(&mut world, params.settle_time.unwrap_or(1.0));
     let (zcm, _, _) = world.z_stats();
     let bed_height_m = 2.0 * (zcm - world.box_z);
-    let phi = volume_fraction(&world.radius, world.box_size[0] * world.box_size[1] * bed_height_m);
+    let phi = volume_fraction(
+        &world.radius,
+        world.box_size[0] * world.box_size[1] * bed_height_m,
+    );
     world.start_drive();
     let e0 = world.energy_state();
     let builds0 = world.neighbor_builds();
 
     let n_steps = (cfg.duration_s / dt).ceil() as u64;
     let per_sample = ((cfg.sample_interval_s / dt).round() as u64).max(1);
-    let per_snap = params.snapshot_interval.map(|s| ((s / dt).round() as u64).max(1));
+    let per_snap = params
+        .snapshot_interval
+        .map(|s| ((s / dt).round() as u64).max(1));
     let steady_from = ((1.0 - cfg.steady_fraction) * n_steps as f64).floor() as u64;
+    let steady_start_s = steady_from as f64 * dt;
+    let per_progress = ((1.0 / drive.frequency_hz.max(1e-3)) / dt).round().max(1.0) as u64;
     let abs_floor = 1e-3 * m_p * G * world.radius[0];
     let mut steady_ledger: Option<(f64, EnergyLedger)> = None;
     let (mut zmin, mut zmax) = (f64::INFINITY, f64::NEG_INFINITY);
-    obs.sample(&sample_of(&world, &e0));
+    let mut strobe = Vec::new();
+    let mut last_cycle = -1i64;
+    let sample_now = |w: &DemWorld| cfg.samples && w.t >= cfg.sample_from_s - 0.5 * dt;
+    if sample_now(&world) {
+        obs.sample(&sample_of(&world, &e0))?;
+    }
     if per_snap.is_some() {
-        obs.snapshot(&world);
+        obs.snapshot(&world)?;
     }
     let clock = Instant::now();
-    let mut check_time = 0.0;
+    let cpu0 = thread_cpu_time_s();
+    let mut aside = 0.0;
     for k in 1..=n_steps {
         world.step();
         if k >= steady_from {
@@ -282,25 +395,52 @@ pub fn run_dem(
             }
             zmin = zmin.min(world.box_z);
             zmax = zmax.max(world.box_z);
-        }
-        if k % per_sample == 0 || k == n_steps {
-            let c0 = Instant::now();
-            let s = sample_of(&world, &e0);
-            let rel = s.e_balance_residual_j.abs()
-                / (world.ledger.base_work_j.abs().max(world.ledger.dissipated_j()).max(abs_floor));
-            check(&world, s.e_balance_residual_j - abs_floor, rel)?;
-            obs.sample(&s);
-            check_time += c0.elapsed().as_secs_f64();
-        }
-        if let Some(ps) = per_snap {
-            if k % ps == 0 {
-                let c0 = Instant::now();
-                obs.snapshot(&world);
-                check_time += c0.elapsed().as_secs_f64();
+            let cycle = (world.t * drive.frequency_hz).floor() as i64;
+            if cycle != last_cycle && drive.frequency_hz > 0.0 {
+                if last_cycle >= 0 {
+                    let (z, _, _) = world.z_stats();
+                    strobe.push(StrobeRow {
+                        cycle: cycle as u64,
+                        time_s: world.t,
+                        grain_z_m: z,
+                        box_z_m: world.box_z,
+                    });
+                }
+                last_cycle = cycle;
             }
         }
+        let do_sample = k % per_sample == 0 || k == n_steps;
+        let do_snap = per_snap.is_some_and(|ps| k % ps == 0);
+        if do_sample || do_snap || k % per_progress == 0 {
+            let c0 = Instant::now();
+            if do_sample {
+                let s = sample_of(&world, &e0);
+                let rel = s.e_balance_residual_j.abs()
+                    / (world
+                        .ledger
+                        .base_work_j
+                        .abs()
+                        .max(world.ledger.dissipated_j())
+                        .max(abs_floor));
+                check(&world, s.e_balance_residual_j - abs_floor, rel)?;
+                if sample_now(&world) {
+                    obs.sample(&s)?;
+                }
+            }
+            if do_snap {
+                obs.snapshot(&world)?;
+            }
+            if k % per_progress == 0 {
+                obs.progress(world.t, cfg.duration_s);
+            }
+            aside += c0.elapsed().as_secs_f64();
+        }
     }
-    let wall = (clock.elapsed().as_secs_f64() - check_time).max(1e-9);
+    let wall = (clock.elapsed().as_secs_f64() - aside).max(1e-9);
+    let cpu = match (cpu0, thread_cpu_time_s()) {
+        (Some(a), Some(b)) if b - a - aside > 0.05 => Some(b - a - aside),
+        _ => None,
+    };
     let st = world.energy_state();
     let (_, rel) = balance(&st, &e0, &world.ledger);
     let per_cycle = |f: fn(&EnergyLedger) -> f64| -> Option<f64> {
@@ -318,6 +458,7 @@ pub fn run_dem(
         steps: n_steps,
         wall_time_s: wall,
         particle_steps_per_s: world.len() as f64 * n_steps as f64 / wall,
+        particle_steps_per_cpu_s: cpu.map(|c| world.len() as f64 * n_steps as f64 / c),
         dt_s: dt,
         contact_time_s: ts,
         settle_time_s: settle_t,
@@ -328,5 +469,12 @@ pub fn run_dem(
         bed_height_m,
         volume_fraction: phi,
         frequency_hz: drive.frequency_hz,
+        steady_start_s,
+        box_z_max_m: zmax,
+        box_z_min_m: zmin,
+        ledger: world.ledger,
+        energy_start_j: e0.total_j(),
+        energy_end_j: st.total_j(),
+        strobe,
     })
 }

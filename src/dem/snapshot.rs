@@ -12,7 +12,10 @@ use super::world::DemWorld;
 /// I/O errors.
 pub fn write_csv(world: &DemWorld, path: &Path) -> std::io::Result<()> {
     let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
-    write!(f, "id,x_m,y_m,z_m,vx_m_s,vy_m_s,vz_m_s,wx_rad_s,wy_rad_s,wz_rad_s,radius_m")?;
+    write!(
+        f,
+        "id,x_m,y_m,z_m,vx_m_s,vy_m_s,vz_m_s,wx_rad_s,wy_rad_s,wz_rad_s,radius_m"
+    )?;
     if world.orientation.is_some() {
         write!(f, ",qw,qx,qy,qz")?;
     }
@@ -51,7 +54,10 @@ pub fn write_vtk(world: &DemWorld, path: &Path) -> std::io::Result<()> {
     for i in 0..n {
         writeln!(f, "1 {i}")?;
     }
-    writeln!(f, "POINT_DATA {n}\nSCALARS radius double 1\nLOOKUP_TABLE default")?;
+    writeln!(
+        f,
+        "POINT_DATA {n}\nSCALARS radius double 1\nLOOKUP_TABLE default"
+    )?;
     for r in &world.radius {
         writeln!(f, "{r}")?;
     }

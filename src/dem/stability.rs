@@ -28,23 +28,27 @@ pub fn impact_speed(drive: &BoxDrive, lz: f64) -> f64 {
 ///
 /// # Errors
 /// Invalid scene parameters.
-pub fn contact_time(params: &DemParams, dist: &RadiusDistribution, v: f64) -> Result<f64, SceneError> {
+pub fn contact_time(
+    params: &DemParams,
+    dist: &RadiusDistribution,
+    v: f64,
+) -> Result<f64, SceneError> {
     let r = dist.r_min();
     let m = params.density * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
     let (g, w) = (params.grain_material(), params.wall_material());
     let pp = PairProperties::new(r, m, &g, r, m, &g);
     let pw = PairProperties::new(r, m, &g, f64::INFINITY, f64::INFINITY, &w);
     Ok(match params.contact {
-        ContactKind::HertzKk => {
-            hertz_contact_time(pp.m_star, pp.r_star, pp.e_star, v).min(hertz_contact_time(pw.m_star, pw.r_star, pw.e_star, v))
-        }
+        ContactKind::HertzKk => hertz_contact_time(pp.m_star, pp.r_star, pp.e_star, v)
+            .min(hertz_contact_time(pw.m_star, pw.r_star, pw.e_star, v)),
         ContactKind::Linear => {
             let y = params.yield_strength.unwrap_or(1.0);
             let e = params.restitution.unwrap_or(1.0);
             let ew = params.wall_restitution.unwrap_or(e);
             let lp = LinearContactParams::select(&pp, &g, y, e)?;
             let lw = LinearContactParams::select(&pw, &g, y, ew)?;
-            linear_contact_time(lp.k_n, lp.c_n, pp.m_star).min(linear_contact_time(lw.k_n, lw.c_n, pw.m_star))
+            linear_contact_time(lp.k_n, lp.c_n, pp.m_star)
+                .min(linear_contact_time(lw.k_n, lw.c_n, pw.m_star))
         }
     })
 }
@@ -75,7 +79,11 @@ pub fn choose_dt(
         }
         Some(dt) => {
             if !(dt > 0.0 && dt.is_finite()) {
-                return Err(SceneError::invalid("run.dt", dt, "must be > 0 (seconds) or \"auto\""));
+                return Err(SceneError::invalid(
+                    "run.dt",
+                    dt,
+                    "must be > 0 (seconds) or \"auto\"",
+                ));
             }
             if dt > MAX_DT_FRACTION * ts {
                 return Err(SceneError::invalid(
@@ -158,12 +166,18 @@ mod tests {
     #[test]
     fn explicit_dt_above_limit_is_rejected_with_the_limit() {
         let p = DemParams::thesis_b();
-        let d = BoxDrive { primary: None, amplitude_m: 4.5e-3, frequency_hz: 15.0 };
+        let d = BoxDrive {
+            primary: None,
+            amplitude_m: 4.5e-3,
+            frequency_hz: 15.0,
+        };
         let (dt, ts) = choose_dt(&p, &d, None, DEFAULT_DT_FRACTION).unwrap();
         assert!((dt - ts / 50.0).abs() < 1e-20);
         // steel, R = 3 mm, v ≈ 1.55 m/s (free fall over 0.1225 m): t_s ≈ 1.5e-5 s
         assert!(ts > 5e-6 && ts < 5e-5, "{ts}");
-        let e = choose_dt(&p, &d, Some(1e-4), DEFAULT_DT_FRACTION).unwrap_err().to_string();
+        let e = choose_dt(&p, &d, Some(1e-4), DEFAULT_DT_FRACTION)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("run.dt") && e.contains("t_s/20"), "{e}");
         assert!(choose_dt(&p, &d, Some(ts / 30.0), DEFAULT_DT_FRACTION).is_ok());
     }

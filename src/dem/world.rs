@@ -5,10 +5,11 @@ use nalgebra::UnitQuaternion;
 use crate::contact::linear_spring_dashpot::LinearContactParams;
 use crate::contact::material::{Material, PairProperties};
 use crate::contact::{coulomb_viscous_force, hertz_stiffness};
+use crate::contact::{AttractionPolicy, NormalLaw, TangentialLaw};
 use crate::error::SceneError;
-use crate::integrate::{advance_orientation, half_kick, kick_drift};
+use crate::integrate::{advance_orientation, half_kick, half_kick_predict, kick_drift};
 use crate::neighbor::{NeighborList, Pair};
-use crate::scene::dem::{ContactKind, DemParams};
+use crate::scene::dem::DemParams;
 use crate::units::{G, TWO_PI};
 
 use super::energy::{EnergyLedger, EnergyState};
@@ -71,43 +72,63 @@ impl NormalKernel for LinearKernel {
     }
 }
 
-/// Contact coefficients per grain type (resolved from [`DemParams`]).
+/// Contact laws of the scene (grain–grain and grain–wall), resolved from [`DemParams`].
 #[derive(Debug, Clone)]
 struct Laws {
-    kind: ContactKind,
-    clamp: bool,
-    tangential: bool,
+    normal: NormalLaw,
+    wall_normal: NormalLaw,
+    tangential: TangentialLaw,
+    wall_tangential: TangentialLaw,
+    attraction: AttractionPolicy,
     rotations: bool,
     grain: Material,
     wall: Material,
-    gamma_n: f64,
-    gamma_s: f64,
-    mu: f64,
-    wall_gamma_n: f64,
-    wall_gamma_s: f64,
-    wall_mu: f64,
-    yield_strength: f64,
-    restitution: f64,
-    wall_restitution: f64,
 }
 
 impl Laws {
+    fn any_tangential(&self) -> bool {
+        self.tangential != TangentialLaw::None || self.wall_tangential != TangentialLaw::None
+    }
+
+    fn friction(&self, wall: bool) -> f64 {
+        match if wall {
+            self.wall_tangential
+        } else {
+            self.tangential
+        } {
+            TangentialLaw::None => 0.0,
+            TangentialLaw::CoulombViscous { friction, .. }
+            | TangentialLaw::LinearDashpotCoulomb { friction } => friction,
+        }
+    }
+
     /// (k_n, normal damping, tangential damping) of a pair or grain–wall contact.
     fn coefficients(&self, r_i: f64, m_i: f64, r_j: f64, m_j: f64, wall: bool) -> [f64; 3] {
-        let mat_j = if wall { &self.wall } else { &self.grain };
+        let (mat_j, normal, tangential) = if wall {
+            (&self.wall, self.wall_normal, self.wall_tangential)
+        } else {
+            (&self.grain, self.normal, self.tangential)
+        };
         let p = PairProperties::new(r_i, m_i, &self.grain, r_j, m_j, mat_j);
-        match self.kind {
-            ContactKind::HertzKk => {
-                let (gn, gs) = if wall { (self.wall_gamma_n, self.wall_gamma_s) } else { (self.gamma_n, self.gamma_s) };
-                [hertz_stiffness(p.e_star, p.r_star), gn, gs]
+        let (k, c, c_lin_s) = match normal {
+            NormalLaw::HertzKuwabaraKono { gamma_n } => {
+                (hertz_stiffness(p.e_star, p.r_star), gamma_n, 0.0)
             }
-            ContactKind::Linear => {
-                let e = if wall { self.wall_restitution } else { self.restitution };
-                let l = LinearContactParams::select(&p, &self.grain, self.yield_strength, e)
+            NormalLaw::LinearSpringDashpot {
+                restitution,
+                yield_strength,
+            } => {
+                let l = LinearContactParams::select(&p, &self.grain, yield_strength, restitution)
                     .expect("validated linear parameters");
-                [l.k_n, l.c_n, l.c_s]
+                (l.k_n, l.c_n, l.c_s)
             }
-        }
+        };
+        let cs = match tangential {
+            TangentialLaw::None => 0.0,
+            TangentialLaw::CoulombViscous { gamma_s, .. } => gamma_s,
+            TangentialLaw::LinearDashpotCoulomb { .. } => c_lin_s,
+        };
+        [k, c, cs]
     }
 }
 
@@ -132,6 +153,9 @@ pub struct DemWorld {
     pub force: Vec<[f64; 3]>,
     /// Torques on grains (N m).
     pub torque: Vec<[f64; 3]>,
+    vel_pred: Vec<[f64; 3]>,
+    omega_pred: Vec<[f64; 3]>,
+    box_v_pred: f64,
     /// Radii (m).
     pub radius: Vec<f64>,
     /// Masses (kg).
@@ -187,7 +211,11 @@ impl DemWorld {
     ) -> Result<Self, SceneError> {
         params.validate()?;
         if radius.len() != pos.len() || radius.is_empty() {
-            return Err(SceneError::invalid("damper.count", pos.len(), "positions and radii differ in length"));
+            return Err(SceneError::invalid(
+                "damper.count",
+                pos.len(),
+                "positions and radii differ in length",
+            ));
         }
         if !(dt > 0.0 && dt.is_finite()) {
             return Err(SceneError::invalid("run.dt", dt, "must be > 0 (seconds)"));
@@ -198,27 +226,24 @@ impl DemWorld {
             .map(|r| params.density * 4.0 / 3.0 * std::f64::consts::PI * r * r * r)
             .collect();
         let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
-        let inv_inertia = mass.iter().zip(&radius).map(|(m, r)| 1.0 / (0.4 * m * r * r)).collect();
+        let inv_inertia = mass
+            .iter()
+            .zip(&radius)
+            .map(|(m, r)| 1.0 / (0.4 * m * r * r))
+            .collect();
         let laws = Laws {
-            kind: params.contact,
-            clamp: !params.attractive_normal_force,
-            tangential: params.friction > 0.0
-                && match params.contact {
-                    ContactKind::HertzKk => params.gamma_s > 0.0 || params.wall_gamma_s.unwrap_or(0.0) > 0.0,
-                    ContactKind::Linear => true,
-                },
+            normal: params.normal_law(false),
+            wall_normal: params.normal_law(true),
+            tangential: params.tangential_law(false),
+            wall_tangential: params.tangential_law(true),
+            attraction: if params.attractive_normal_force {
+                AttractionPolicy::Allow
+            } else {
+                AttractionPolicy::Clamp
+            },
             rotations: params.rotations,
             grain: params.grain_material(),
             wall: params.wall_material(),
-            gamma_n: params.gamma_n,
-            gamma_s: params.gamma_s,
-            mu: params.friction,
-            wall_gamma_n: params.wall_gamma_n.unwrap_or(params.gamma_n),
-            wall_gamma_s: params.wall_gamma_s.unwrap_or(params.gamma_s),
-            wall_mu: params.wall_friction.unwrap_or(params.friction),
-            yield_strength: params.yield_strength.unwrap_or(1.0),
-            restitution: params.restitution.unwrap_or(1.0),
-            wall_restitution: params.wall_restitution.or(params.restitution).unwrap_or(1.0),
         };
         let r_max = radius.iter().cloned().fold(0.0, f64::max);
         let neighbors = NeighborList::new(params.r#box, r_max, params.skin(r_max));
@@ -232,12 +257,17 @@ impl DemWorld {
             omega: vec![[0.0; 3]; n],
             force: vec![[0.0; 3]; n],
             torque: vec![[0.0; 3]; n],
+            vel_pred: vec![[0.0; 3]; n],
+            omega_pred: vec![[0.0; 3]; n],
+            box_v_pred: 0.0,
             pos,
             radius,
             mass,
             inv_mass,
             inv_inertia,
-            orientation: params.orientations.then(|| vec![UnitQuaternion::identity(); n]),
+            orientation: params
+                .orientations
+                .then(|| vec![UnitQuaternion::identity(); n]),
             box_size: params.r#box,
             box_z: 0.0,
             box_v: 0.0,
@@ -336,7 +366,9 @@ impl DemWorld {
     /// 3. neighbour search: the Verlet list is rebuilt on the cell grid only when a grain has
     ///    moved more than skin/2 relative to the box;
     /// 4. contact forces: gravity, grain–grain contacts (once per pair, Newton's third law),
-    ///    grain–wall contacts, their torques and F_gz (2.2.8–2.2.15);
+    ///    grain–wall contacts, their torques and F_gz (2.2.8–2.2.15); velocity-dependent terms
+    ///    use the predicted full-step velocity v(t+dt/2) + (dt/2) F(t)/m, so that damping and
+    ///    its ledger entry are second-order accurate (with v(t+dt/2) the ledger misses O(dt));
     /// 5. box equation (2.1.22): M z'' = −C(z' − u') − K(z − u) + F_gz;
     /// 6. second half kick;
     /// 7. energy ledger: collision and friction dissipation, viscous loss in C, base work.
@@ -361,10 +393,31 @@ impl DemWorld {
         // half kick + drift of the grains, fused with the Verlet-list displacement check
         let (reference, ref_shift) = self.neighbors.reference();
         let shift = [0.0, 0.0, self.box_z - ref_shift[2]];
-        let max_d2 = kick_drift(&mut self.pos, &mut self.vel, &self.force, &self.inv_mass, h, dt, reference, shift);
+        let max_d2 = kick_drift(
+            &mut self.pos,
+            &mut self.vel,
+            &mut self.vel_pred,
+            &self.force,
+            &self.inv_mass,
+            h,
+            dt,
+            reference,
+            shift,
+        );
         if self.laws.rotations {
-            half_kick(&mut self.omega, &self.torque, &self.inv_inertia, h);
+            half_kick_predict(
+                &mut self.omega,
+                &mut self.omega_pred,
+                &self.torque,
+                &self.inv_inertia,
+                h,
+            );
         }
+        self.box_v_pred = if primary_free {
+            self.box_v + h * self.box_a
+        } else {
+            self.box_v
+        };
         if let Some(q) = self.orientation.as_mut() {
             for (q, w) in q.iter_mut().zip(&self.omega) {
                 advance_orientation(q, *w, dt);
@@ -402,7 +455,8 @@ impl DemWorld {
         match self.drive.primary {
             Some(p) if self.drive_on => {
                 let (u, du) = self.drive.base(self.t);
-                (-p.damping_n_s_m * (self.box_v - du) - p.stiffness_n_m * (self.box_z - u) + self.grain_force_n)
+                (-p.damping_n_s_m * (self.box_v_pred - du) - p.stiffness_n_m * (self.box_z - u)
+                    + self.grain_force_n)
                     / p.mass_kg
             }
             _ => 0.0,
@@ -425,7 +479,12 @@ impl DemWorld {
     /// Rebuilds the neighbour list if needed, then evaluates every force and torque.
     /// Returns the dissipated powers (collision, friction) (W).
     pub fn compute_forces(&mut self) -> (f64, f64) {
-        let rebuild = self.neighbors.needs_rebuild(&self.pos, [0.0, 0.0, self.box_z]);
+        self.vel_pred.copy_from_slice(&self.vel);
+        self.omega_pred.copy_from_slice(&self.omega);
+        self.box_v_pred = self.box_v;
+        let rebuild = self
+            .neighbors
+            .needs_rebuild(&self.pos, [0.0, 0.0, self.box_z]);
         self.forces(rebuild)
     }
 
@@ -436,7 +495,13 @@ impl DemWorld {
             self.pair_coef.clear();
             for &Pair { i, j } in &self.neighbors.pairs {
                 let (i, j) = (i as usize, j as usize);
-                let c = self.laws.coefficients(self.radius[i], self.mass[i], self.radius[j], self.mass[j], false);
+                let c = self.laws.coefficients(
+                    self.radius[i],
+                    self.mass[i],
+                    self.radius[j],
+                    self.mass[j],
+                    false,
+                );
                 self.pair_coef.push(c);
             }
         }
@@ -455,34 +520,40 @@ impl DemWorld {
                 f[2] += s * v[2];
             }
         }
+        // the enums are matched once per step; each arm runs a monomorphised loop without
+        // per-pair branches on the law, friction, rotations or the attraction policy
         let l = &self.laws;
-        let out = match (l.kind, l.tangential, l.rotations, l.clamp) {
-            (ContactKind::HertzKk, true, true, true) => self.contacts::<HertzKernel, true, true, true>(),
-            (ContactKind::HertzKk, true, true, false) => self.contacts::<HertzKernel, true, true, false>(),
-            (ContactKind::HertzKk, true, false, true) => self.contacts::<HertzKernel, true, false, true>(),
-            (ContactKind::HertzKk, true, false, false) => self.contacts::<HertzKernel, true, false, false>(),
-            (ContactKind::HertzKk, false, _, true) => self.contacts::<HertzKernel, false, false, true>(),
-            (ContactKind::HertzKk, false, _, false) => self.contacts::<HertzKernel, false, false, false>(),
-            (ContactKind::Linear, true, true, true) => self.contacts::<LinearKernel, true, true, true>(),
-            (ContactKind::Linear, true, true, false) => self.contacts::<LinearKernel, true, true, false>(),
-            (ContactKind::Linear, true, false, true) => self.contacts::<LinearKernel, true, false, true>(),
-            (ContactKind::Linear, true, false, false) => self.contacts::<LinearKernel, true, false, false>(),
-            (ContactKind::Linear, false, _, true) => self.contacts::<LinearKernel, false, false, true>(),
-            (ContactKind::Linear, false, _, false) => self.contacts::<LinearKernel, false, false, false>(),
+        let hertz = matches!(l.normal, NormalLaw::HertzKuwabaraKono { .. });
+        let clamp = l.attraction == AttractionPolicy::Clamp;
+        let out = match (hertz, l.any_tangential(), l.rotations, clamp) {
+            (true, true, true, true) => self.contacts::<HertzKernel, true, true, true>(),
+            (true, true, true, false) => self.contacts::<HertzKernel, true, true, false>(),
+            (true, true, false, true) => self.contacts::<HertzKernel, true, false, true>(),
+            (true, true, false, false) => self.contacts::<HertzKernel, true, false, false>(),
+            (true, false, _, true) => self.contacts::<HertzKernel, false, false, true>(),
+            (true, false, _, false) => self.contacts::<HertzKernel, false, false, false>(),
+            (false, true, true, true) => self.contacts::<LinearKernel, true, true, true>(),
+            (false, true, true, false) => self.contacts::<LinearKernel, true, true, false>(),
+            (false, true, false, true) => self.contacts::<LinearKernel, true, false, true>(),
+            (false, true, false, false) => self.contacts::<LinearKernel, true, false, false>(),
+            (false, false, _, true) => self.contacts::<LinearKernel, false, false, true>(),
+            (false, false, _, false) => self.contacts::<LinearKernel, false, false, false>(),
         };
         self.grain_force_n = out.0;
         (out.1, out.2)
     }
 
-    fn contacts<K: NormalKernel, const TANG: bool, const ROT: bool, const CLAMP: bool>(&mut self) -> LoopOut {
+    fn contacts<K: NormalKernel, const TANG: bool, const ROT: bool, const CLAMP: bool>(
+        &mut self,
+    ) -> LoopOut {
         let (pc, pf) = pair_loop::<K, TANG, ROT, CLAMP>(
             &self.pos,
-            &self.vel,
-            &self.omega,
+            &self.vel_pred,
+            &self.omega_pred,
             &self.radius,
             &self.neighbors.pairs,
             &self.pair_coef,
-            (self.laws.mu, self.laws.wall_mu),
+            (self.laws.friction(false), self.laws.friction(true)),
             &mut self.force,
             &mut self.torque,
         );
@@ -500,9 +571,9 @@ impl DemWorld {
             s.rotational_j += 0.5 / self.inv_inertia[i] * (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
             s.potential_j += self.mass[i] * self.gravity * self.pos[i][2];
         }
-        let elastic = |k: f64, z: f64| match self.laws.kind {
-            ContactKind::HertzKk => 0.4 * k * z * z * z.sqrt(),
-            ContactKind::Linear => 0.5 * k * z * z,
+        let elastic = |k: f64, z: f64| match self.laws.normal {
+            NormalLaw::HertzKuwabaraKono { .. } => 0.4 * k * z * z * z.sqrt(),
+            NormalLaw::LinearSpringDashpot { .. } => 0.5 * k * z * z,
         };
         for (p, c) in self.neighbors.pairs.iter().zip(&self.pair_coef) {
             let (i, j) = (p.i as usize, p.j as usize);
@@ -521,7 +592,8 @@ impl DemWorld {
         }
         if let Some(p) = self.drive.primary {
             let (u, _) = self.base_now();
-            s.primary_j = 0.5 * p.mass_kg * self.box_v * self.box_v + 0.5 * p.stiffness_n_m * (self.box_z - u).powi(2);
+            s.primary_j = 0.5 * p.mass_kg * self.box_v * self.box_v
+                + 0.5 * p.stiffness_n_m * (self.box_z - u).powi(2);
         }
         s
     }
@@ -530,7 +602,14 @@ impl DemWorld {
     pub fn wall_overlaps(&self, i: usize) -> [f64; 6] {
         let (p, r, b) = (self.pos[i], self.radius[i], self.box_size);
         let z = p[2] - self.box_z;
-        [r - p[0], r - (b[0] - p[0]), r - p[1], r - (b[1] - p[1]), r - z, r - (b[2] - z)]
+        [
+            r - p[0],
+            r - (b[0] - p[0]),
+            r - p[1],
+            r - (b[1] - p[1]),
+            r - z,
+            r - (b[2] - z),
+        ]
     }
 
     /// Total linear momentum Σ m v (kg m/s).
@@ -579,7 +658,11 @@ fn norm(a: [f64; 3]) -> f64 {
 }
 #[inline(always)]
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 
 /// Grain–grain contacts over the Verlet list. Returns (collision power, friction power) (W).
@@ -622,7 +705,11 @@ fn pair_loop<K: NormalKernel, const TANG: bool, const ROT: bool, const CLAMP: bo
             let mut vs = [vr[0] - vrn * n[0], vr[1] - vrn * n[1], vr[2] - vrn * n[2]];
             if ROT {
                 let (wi, wj) = (omega[i], omega[j]);
-                let w = [ri * wi[0] + rj * wj[0], ri * wi[1] + rj * wj[1], ri * wi[2] + rj * wj[2]];
+                let w = [
+                    ri * wi[0] + rj * wj[0],
+                    ri * wi[1] + rj * wj[1],
+                    ri * wi[2] + rj * wj[2],
+                ];
                 let wn = cross(w, n);
                 vs = sub(vs, wn);
             }
@@ -658,23 +745,31 @@ fn pair_loop<K: NormalKernel, const TANG: bool, const ROT: bool, const CLAMP: bo
 /// Grain–wall contacts with the six planes of the box. Returns (F_gz, collision power,
 /// friction power).
 #[inline(never)]
-fn wall_loop<K: NormalKernel, const TANG: bool, const ROT: bool, const CLAMP: bool>(w: &mut DemWorld) -> LoopOut {
+fn wall_loop<K: NormalKernel, const TANG: bool, const ROT: bool, const CLAMP: bool>(
+    w: &mut DemWorld,
+) -> LoopOut {
     let b = w.box_size;
     let floor = w.box_z;
     let ceil = w.box_z + b[2];
-    let vw = w.box_v;
-    let mu = w.laws.wall_mu;
+    let vw = w.box_v_pred;
+    let mu = w.laws.friction(true);
     let (mut fgz, mut p_coll, mut p_fric) = (0.0, 0.0, 0.0);
     for i in 0..w.pos.len() {
         let p = w.pos[i];
         let r = w.radius[i];
         // cheap reject: far from every wall
-        if p[0] > r && p[0] < b[0] - r && p[1] > r && p[1] < b[1] - r && p[2] > floor + r && p[2] < ceil - r {
+        if p[0] > r
+            && p[0] < b[0] - r
+            && p[1] > r
+            && p[1] < b[1] - r
+            && p[2] > floor + r
+            && p[2] < ceil - r
+        {
             continue;
         }
         let c = w.wall_coef[i];
-        let vr = [w.vel[i][0], w.vel[i][1], w.vel[i][2] - vw];
-        let om = w.omega[i];
+        let vr = [w.vel_pred[i][0], w.vel_pred[i][1], w.vel_pred[i][2] - vw];
+        let om = w.omega_pred[i];
         let cands: [(f64, usize, f64); 6] = [
             (r - p[0], 0, 1.0),
             (r - (b[0] - p[0]), 0, -1.0),

@@ -90,6 +90,9 @@ pub fn brent<F: FnMut(f64) -> f64>(mut f: F, a: f64, b: f64, fa: f64, fb: f64) -
         fb = f(b);
     }
     // b is the best estimate, c the other side of the bracket
+    if fb == 0.0 {
+        return (b, b);
+    }
     let (pos, neg) = if (fb >= 0.0) == a0_sign_pos {
         (b, c)
     } else {

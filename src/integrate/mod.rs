@@ -5,4 +5,4 @@ pub mod quaternion;
 pub mod velocity_verlet;
 
 pub use quaternion::advance_orientation;
-pub use velocity_verlet::{drift, half_kick, kick_drift};
+pub use velocity_verlet::{drift, half_kick, half_kick_predict, kick_drift};

@@ -36,11 +36,14 @@ pub fn drift(x: &mut [[f64; 3]], v: &[[f64; 3]], dt: f64) {
 
 /// Fused half kick + drift: v ← v + h f inv_m; x ← x + dt v, returning the largest squared
 /// displacement |x − x_ref − shift|² (m²) for the Verlet-list validity check, in one pass.
+/// Also writes the predicted full-step velocity v_pred = v(t + dt/2) + h f(t)/m (an O(dt²)
+/// estimate of v(t + dt)) used by the velocity-dependent (dissipative) contact forces.
 #[allow(clippy::too_many_arguments)]
 #[inline]
 pub fn kick_drift(
     x: &mut [[f64; 3]],
     v: &mut [[f64; 3]],
+    v_pred: &mut [[f64; 3]],
     f: &[[f64; 3]],
     inv_m: &[f64],
     h: f64,
@@ -50,17 +53,28 @@ pub fn kick_drift(
 ) -> f64 {
     let mut worst = 0.0f64;
     let tracked = reference.len() == x.len();
-    for (k, ((x, v), (f, &im))) in x.iter_mut().zip(v.iter_mut()).zip(f.iter().zip(inv_m)).enumerate() {
+    for (k, (((x, v), vp), (f, &im))) in x
+        .iter_mut()
+        .zip(v.iter_mut())
+        .zip(v_pred.iter_mut())
+        .zip(f.iter().zip(inv_m))
+        .enumerate()
+    {
         let s = h * im;
         v[0] += s * f[0];
         v[1] += s * f[1];
         v[2] += s * f[2];
+        *vp = [v[0] + s * f[0], v[1] + s * f[1], v[2] + s * f[2]];
         x[0] += dt * v[0];
         x[1] += dt * v[1];
         x[2] += dt * v[2];
         if tracked {
             let r = reference[k];
-            let d = [x[0] - r[0] - shift[0], x[1] - r[1] - shift[1], x[2] - r[2] - shift[2]];
+            let d = [
+                x[0] - r[0] - shift[0],
+                x[1] - r[1] - shift[1],
+                x[2] - r[2] - shift[2],
+            ];
             worst = worst.max(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
         }
     }
@@ -68,6 +82,24 @@ pub fn kick_drift(
         worst
     } else {
         f64::INFINITY
+    }
+}
+
+/// Half kick of ω with the predicted full-step value, as in [`kick_drift`].
+#[inline]
+pub fn half_kick_predict(
+    v: &mut [[f64; 3]],
+    v_pred: &mut [[f64; 3]],
+    f: &[[f64; 3]],
+    inv_m: &[f64],
+    h: f64,
+) {
+    for ((v, vp), (f, &im)) in v.iter_mut().zip(v_pred.iter_mut()).zip(f.iter().zip(inv_m)) {
+        let s = h * im;
+        v[0] += s * f[0];
+        v[1] += s * f[1];
+        v[2] += s * f[2];
+        *vp = [v[0] + s * f[0], v[1] + s * f[1], v[2] + s * f[2]];
     }
 }
 

@@ -140,9 +140,25 @@ impl Sdof {
         (zp + y, vp + w)
     }
 
-    /// e^{−aτ}·(C(τ), S(τ)), robust for every damping ratio.
+    /// State (z, z') from precomputed pieces: `basis` = [`Sdof::homogeneous_basis`] at
+    /// τ = t − t0 and (sin Ωt, cos Ωt). Same result as [`Sdof::eval`]; lets a caller reuse
+    /// trigonometric values across equal-length segments.
     #[inline]
-    fn homogeneous_basis(&self, tau: f64) -> (f64, f64) {
+    pub fn eval_parts(&self, an: &Anchor, basis: (f64, f64), sin_cos_wt: (f64, f64)) -> (f64, f64) {
+        let (ce, se) = basis;
+        let (s, c) = sin_cos_wt;
+        let y = an.y0 * ce + (an.w0 + self.a * an.y0) * se;
+        let w = an.w0 * ce - (self.a * an.w0 + self.w0sq * an.y0) * se;
+        let u = self.base_amplitude;
+        let zp = u * (self.hr * c - self.hi * s) + self.zs;
+        let vp = -u * self.omega * (self.hr * s + self.hi * c);
+        (zp + y, vp + w)
+    }
+
+    /// e^{−aτ}·(C(τ), S(τ)): the homogeneous basis at τ (see the type's formula), robust for
+    /// every damping ratio.
+    #[inline]
+    pub fn homogeneous_basis(&self, tau: f64) -> (f64, f64) {
         let q = self.q;
         let x = q * tau * tau;
         let decay = (-self.a * tau).exp();
@@ -206,8 +222,8 @@ mod tests {
     #[test]
     fn closed_form_satisfies_ode_all_damping_regimes() {
         for xi in [0.0, 0.01, 0.999_999, 1.0, 1.000_001, 3.0] {
-            let (m, k) = (2.0, 800.0);
-            let c = 2.0 * xi * (k * m as f64).sqrt();
+            let (m, k): (f64, f64) = (2.0, 800.0);
+            let c = 2.0 * xi * (k * m).sqrt();
             let sd = Sdof::new(m, k, c, 0.01, 13.0, -1.5);
             let an = sd.anchor(0.3, 0.002, -0.1);
             for t in [0.31, 0.5, 1.7] {

@@ -132,9 +132,8 @@ impl NeighborList {
         self.cell_of.resize(n, 0);
         self.cell_items.resize(n, 0);
         self.cell_count.iter_mut().for_each(|c| *c = 0);
-        for i in 0..n {
-            let p = [pos[i][0] - shift[0], pos[i][1] - shift[1], pos[i][2] - shift[2]];
-            let c = self.cell_index(p);
+        for (i, q) in pos.iter().enumerate() {
+            let c = self.cell_index([q[0] - shift[0], q[1] - shift[1], q[2] - shift[2]]);
             self.cell_of[i] = c as u32;
             self.cell_count[c] += 1;
         }
@@ -175,7 +174,10 @@ impl NeighborList {
                             continue;
                         }
                         let c2 = (z * ny + y) * nx + x;
-                        let (b0, b1) = (self.cell_start[c2] as usize, self.cell_start[c2 + 1] as usize);
+                        let (b0, b1) = (
+                            self.cell_start[c2] as usize,
+                            self.cell_start[c2 + 1] as usize,
+                        );
                         let same = c2 == c;
                         for a in a0..a1 {
                             let i = self.cell_items[a] as usize;
@@ -186,7 +188,10 @@ impl NeighborList {
                                 let d = [pi[0] - pos[j][0], pi[1] - pos[j][1], pi[2] - pos[j][2]];
                                 let cut = ri + radius[j] + skin;
                                 if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < cut * cut {
-                                    self.pairs.push(Pair { i: i as u32, j: j as u32 });
+                                    self.pairs.push(Pair {
+                                        i: i as u32,
+                                        j: j as u32,
+                                    });
                                 }
                             }
                         }
@@ -229,21 +234,32 @@ mod tests {
         // pseudo-random cloud (LCG, fixed) in a 3×2×5 cm box
         let mut s = 12345u64;
         let mut rnd = || {
-            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (s >> 11) as f64 / (1u64 << 53) as f64
         };
         let bx = [0.03, 0.02, 0.05];
         let n = 400;
-        let pos: Vec<[f64; 3]> = (0..n).map(|_| [rnd() * bx[0], rnd() * bx[1], 0.01 + rnd() * bx[2]]).collect();
+        let pos: Vec<[f64; 3]> = (0..n)
+            .map(|_| [rnd() * bx[0], rnd() * bx[1], 0.01 + rnd() * bx[2]])
+            .collect();
         let rad: Vec<f64> = (0..n).map(|_| 0.001 + 0.001 * rnd()).collect();
         let mut nl = NeighborList::new(bx, 0.002, 0.0005);
         nl.rebuild(&pos, &rad, [0.0, 0.0, 0.01]);
-        let mut got: Vec<(u32, u32)> = nl.pairs.iter().map(|p| (p.i.min(p.j), p.i.max(p.j))).collect();
+        let mut got: Vec<(u32, u32)> = nl
+            .pairs
+            .iter()
+            .map(|p| (p.i.min(p.j), p.i.max(p.j)))
+            .collect();
         got.sort();
         let mut want = vec![];
         for i in 0..n {
             for j in i + 1..n {
-                let d: f64 = (0..3).map(|k| (pos[i][k] - pos[j][k]).powi(2)).sum::<f64>().sqrt();
+                let d: f64 = (0..3)
+                    .map(|k| (pos[i][k] - pos[j][k]).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
                 if d < rad[i] + rad[j] + 0.0005 {
                     want.push((i as u32, j as u32));
                 }

@@ -28,7 +28,11 @@ use crate::error::SceneError;
 /// Volume fraction Σ (4/3)π r³ / V (–). Scaling every radius by λ multiplies it by λ³
 /// (the paper's eq. 6 for porous media).
 pub fn volume_fraction(radii: &[f64], volume_m3: f64) -> f64 {
-    radii.iter().map(|r| 4.0 / 3.0 * std::f64::consts::PI * r * r * r).sum::<f64>() / volume_m3
+    radii
+        .iter()
+        .map(|r| 4.0 / 3.0 * std::f64::consts::PI * r * r * r)
+        .sum::<f64>()
+        / volume_m3
 }
 
 #[derive(Clone, Copy)]
@@ -55,7 +59,11 @@ struct Grid {
 impl Grid {
     fn new(box_m: [f64; 3], cell: f64) -> Self {
         let dims = [0, 1, 2].map(|d| ((box_m[d] / cell).ceil() as usize).max(1));
-        Grid { inv: 1.0 / cell, dims, cells: vec![Vec::new(); dims[0] * dims[1] * dims[2]] }
+        Grid {
+            inv: 1.0 / cell,
+            dims,
+            cells: vec![Vec::new(); dims[0] * dims[1] * dims[2]],
+        }
     }
     fn coord(&self, p: [f64; 3]) -> [usize; 3] {
         [0, 1, 2].map(|d| ((p[d] * self.inv).floor().max(0.0) as usize).min(self.dims[d] - 1))
@@ -95,7 +103,11 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 
 /// Points at distances ρ1, ρ2, ρ3 from c1, c2, c3 (trilateration; 0 or 2 solutions).
@@ -128,7 +140,12 @@ fn three_spheres(c: [[f64; 3]; 3], rho: [f64; 3]) -> Option<[[f64; 3]; 2]> {
 }
 
 /// Points at distances ρ1, ρ2 from c1, c2 lying on the plane p[axis] = at.
-fn two_spheres_plane(c: [[f64; 3]; 2], rho: [f64; 2], axis: usize, at: f64) -> Option<[[f64; 3]; 2]> {
+fn two_spheres_plane(
+    c: [[f64; 3]; 2],
+    rho: [f64; 2],
+    axis: usize,
+    at: f64,
+) -> Option<[[f64; 3]; 2]> {
     let mut q = c;
     let mut s = [0.0; 2];
     for k in 0..2 {
@@ -156,7 +173,14 @@ fn two_spheres_plane(c: [[f64; 3]; 2], rho: [f64; 2], axis: usize, at: f64) -> O
 }
 
 /// Points at distance ρ from c on the line p[a1] = at1, p[a2] = at2.
-fn sphere_two_planes(c: [f64; 3], rho: f64, a1: usize, at1: f64, a2: usize, at2: f64) -> Option<[[f64; 3]; 2]> {
+fn sphere_two_planes(
+    c: [f64; 3],
+    rho: f64,
+    a1: usize,
+    at1: f64,
+    a2: usize,
+    at2: f64,
+) -> Option<[[f64; 3]; 2]> {
     let free = 3 - a1 - a2;
     let d2 = (c[a1] - at1).powi(2) + (c[a2] - at2).powi(2);
     let s2 = rho * rho - d2;
@@ -204,7 +228,10 @@ impl Ord for FrontItem {
 /// let c = pdamp::packing::advancing_front_packing([0.03, 0.03, 0.1], &r).unwrap();
 /// assert_eq!(c.len(), 50);
 /// ```
-pub fn advancing_front_packing(box_m: [f64; 3], radii: &[f64]) -> Result<Vec<[f64; 3]>, SceneError> {
+pub fn advancing_front_packing(
+    box_m: [f64; 3],
+    radii: &[f64],
+) -> Result<Vec<[f64; 3]>, SceneError> {
     let n = radii.len();
     if n == 0 {
         return Ok(Vec::new());
@@ -213,11 +240,31 @@ pub fn advancing_front_packing(box_m: [f64; 3], radii: &[f64]) -> Result<Vec<[f6
     let mut grid = Grid::new(box_m, 2.0 * r_max);
     let mut centres: Vec<[f64; 3]> = Vec::with_capacity(n);
     let planes = [
-        Plane { axis: 0, sign: 1.0, at: 0.0 },
-        Plane { axis: 0, sign: -1.0, at: box_m[0] },
-        Plane { axis: 1, sign: 1.0, at: 0.0 },
-        Plane { axis: 1, sign: -1.0, at: box_m[1] },
-        Plane { axis: 2, sign: 1.0, at: 0.0 },
+        Plane {
+            axis: 0,
+            sign: 1.0,
+            at: 0.0,
+        },
+        Plane {
+            axis: 0,
+            sign: -1.0,
+            at: box_m[0],
+        },
+        Plane {
+            axis: 1,
+            sign: 1.0,
+            at: 0.0,
+        },
+        Plane {
+            axis: 1,
+            sign: -1.0,
+            at: box_m[1],
+        },
+        Plane {
+            axis: 2,
+            sign: 1.0,
+            at: 0.0,
+        },
     ];
     let tol = 1e-9 * r_max;
     let fits = |p: [f64; 3], r: f64, centres: &[[f64; 3]], grid: &Grid| -> bool {
@@ -253,7 +300,9 @@ pub fn advancing_front_packing(box_m: [f64; 3], radii: &[f64]) -> Result<Vec<[f6
     }
     if next == 2 && n > 2 {
         let r2 = radii[2];
-        if let Some([p, _]) = two_spheres_plane([centres[0], centres[1]], [r0 + r2, radii[1] + r2], 2, r2) {
+        if let Some([p, _]) =
+            two_spheres_plane([centres[0], centres[1]], [r0 + r2, radii[1] + r2], 2, r2)
+        {
             if fits(p, r2, &centres, &grid) {
                 centres.push(p);
                 grid.insert(p, 2);
@@ -285,7 +334,10 @@ pub fn advancing_front_packing(box_m: [f64; 3], radii: &[f64]) -> Result<Vec<[f6
             }
             true
         });
-        let walls: Vec<&Plane> = planes.iter().filter(|w| w.dist(pc) < pr + 2.0 * r).collect();
+        let walls: Vec<&Plane> = planes
+            .iter()
+            .filter(|w| w.dist(pc) < pr + 2.0 * r)
+            .collect();
         let mut best: Option<[f64; 3]> = None;
         let consider = |cands: Option<[[f64; 3]; 2]>, best: &mut Option<[f64; 3]>| {
             if let Some(cs) = cands {
@@ -305,14 +357,20 @@ pub fn advancing_front_packing(box_m: [f64; 3], radii: &[f64]) -> Result<Vec<[f6
             }
             for w in &walls {
                 let at = w.at + w.sign * r;
-                consider(two_spheres_plane([pc, ca], [rho_p, ra], w.axis, at), &mut best);
+                consider(
+                    two_spheres_plane([pc, ca], [rho_p, ra], w.axis, at),
+                    &mut best,
+                );
             }
         }
         for (k, w1) in walls.iter().enumerate() {
             for w2 in &walls[k + 1..] {
                 if w1.axis != w2.axis {
                     let (a1, a2) = (w1.at + w1.sign * r, w2.at + w2.sign * r);
-                    consider(sphere_two_planes(pc, rho_p, w1.axis, a1, w2.axis, a2), &mut best);
+                    consider(
+                        sphere_two_planes(pc, rho_p, w1.axis, a1, w2.axis, a2),
+                        &mut best,
+                    );
                 }
             }
         }
@@ -340,8 +398,8 @@ mod tests {
         let c = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 1.7, 0.0]];
         let s = three_spheres(c, [2.0, 2.0, 2.0]).unwrap();
         for p in s {
-            for k in 0..3 {
-                let v = sub(p, c[k]);
+            for ck in c {
+                let v = sub(p, ck);
                 assert!((dot(v, v).sqrt() - 2.0).abs() < 1e-12);
             }
         }

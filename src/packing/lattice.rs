@@ -10,11 +10,22 @@ use rand::{RngExt, SeedableRng};
 ///
 /// # Errors
 /// `damper.count` when fewer than `n` sites fit below the ceiling.
-pub fn fcc_lattice(box_m: [f64; 3], n: usize, r_max: f64, gap: f64, seed: u64) -> Result<Vec<[f64; 3]>, SceneError> {
+pub fn fcc_lattice(
+    box_m: [f64; 3],
+    n: usize,
+    r_max: f64,
+    gap: f64,
+    seed: u64,
+) -> Result<Vec<[f64; 3]>, SceneError> {
     let spacing = 2.0 * r_max * (1.0 + gap);
     let a = spacing * std::f64::consts::SQRT_2; // conventional cubic cell side
     let lo = r_max * (1.0 + gap);
-    let basis = [[0.0, 0.0, 0.0], [0.5, 0.5, 0.0], [0.5, 0.0, 0.5], [0.0, 0.5, 0.5]];
+    let basis = [
+        [0.0, 0.0, 0.0],
+        [0.5, 0.5, 0.0],
+        [0.5, 0.0, 0.5],
+        [0.0, 0.5, 0.5],
+    ];
     let mut sites = Vec::new();
     let cells = |l: f64| ((l - 2.0 * lo) / a).floor() as i64 + 2;
     let (nx, ny, nz) = (cells(box_m[0]), cells(box_m[1]), cells(box_m[2]));
@@ -22,7 +33,11 @@ pub fn fcc_lattice(box_m: [f64; 3], n: usize, r_max: f64, gap: f64, seed: u64) -
         for j in 0..ny {
             for i in 0..nx {
                 for b in &basis {
-                    let p = [lo + (i as f64 + b[0]) * a, lo + (j as f64 + b[1]) * a, lo + (k as f64 + b[2]) * a];
+                    let p = [
+                        lo + (i as f64 + b[0]) * a,
+                        lo + (j as f64 + b[1]) * a,
+                        lo + (k as f64 + b[2]) * a,
+                    ];
                     if p[0] <= box_m[0] - lo && p[1] <= box_m[1] - lo && p[2] <= box_m[2] - lo {
                         sites.push(p);
                     }
@@ -41,7 +56,11 @@ pub fn fcc_lattice(box_m: [f64; 3], n: usize, r_max: f64, gap: f64, seed: u64) -
             ),
         ));
     }
-    sites.sort_by(|p, q| p[2].total_cmp(&q[2]).then(p[1].total_cmp(&q[1])).then(p[0].total_cmp(&q[0])));
+    sites.sort_by(|p, q| {
+        p[2].total_cmp(&q[2])
+            .then(p[1].total_cmp(&q[1]))
+            .then(p[0].total_cmp(&q[0]))
+    });
     sites.truncate(n);
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
     let j = 0.5 * gap * r_max;
@@ -66,10 +85,16 @@ mod tests {
                 assert!(p[i][k] >= 0.003 && p[i][k] <= b[k] - 0.003);
             }
             for j in 0..i {
-                let d: f64 = (0..3).map(|k| (p[i][k] - p[j][k]).powi(2)).sum::<f64>().sqrt();
+                let d: f64 = (0..3)
+                    .map(|k| (p[i][k] - p[j][k]).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
                 assert!(d >= 0.006, "{d}");
             }
         }
-        assert!(fcc_lattice(b, 5000, 0.003, 0.1, 1).unwrap_err().to_string().contains("damper.count"));
+        assert!(fcc_lattice(b, 5000, 0.003, 0.1, 1)
+            .unwrap_err()
+            .to_string()
+            .contains("damper.count"));
     }
 }

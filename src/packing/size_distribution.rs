@@ -77,7 +77,12 @@ impl RadiusDistribution {
                     *min
                 }
             }
-            Self::Normal { mean, std, min, max } => {
+            Self::Normal {
+                mean,
+                std,
+                min,
+                max,
+            } => {
                 if *std <= 0.0 {
                     return mean.clamp(*min, *max);
                 }
@@ -135,12 +140,18 @@ mod tests {
         // mean 1.5, standard error 0.29/√20000 = 0.002: 5σ band
         assert!((m - 1.5).abs() < 0.01);
         assert!(s.iter().all(|r| (1.0..=2.0).contains(r)));
-        let d = RadiusDistribution::Discrete { values: vec![1.0, 3.0], weights: vec![3.0, 1.0] };
+        let d = RadiusDistribution::Discrete {
+            values: vec![1.0, 3.0],
+            weights: vec![3.0, 1.0],
+        };
         let s = d.sample_n(20_000, 4);
         let frac = s.iter().filter(|&&r| r == 3.0).count() as f64 / 20_000.0;
         // p = 0.25, σ = 0.003: 5σ band
         assert!((frac - 0.25).abs() < 0.016);
-        let e = RadiusDistribution::Empirical { radii: vec![1.0, 2.0, 4.0], cdf: vec![0.0, 0.5, 1.0] };
+        let e = RadiusDistribution::Empirical {
+            radii: vec![1.0, 2.0, 4.0],
+            cdf: vec![0.0, 0.5, 1.0],
+        };
         let s = e.sample_n(20_000, 5);
         let below2 = s.iter().filter(|&&r| r <= 2.0).count() as f64 / 20_000.0;
         assert!((below2 - 0.5).abs() < 0.02);

@@ -7,6 +7,9 @@ use crate::error::SceneError;
 use serde::{Deserialize, Serialize};
 
 /// The damper, selected by `kind = "none" | "impact" | "dem" | "auto"` in the `[damper]` table.
+// DemParams is large next to the other variants; a scene is built once per run, so the size
+// does not matter and the payload stays unboxed (the shared contract `Dem(DemParams)`).
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 #[serde(tag = "kind", rename_all = "lowercase")]
 pub enum Damper {

@@ -22,6 +22,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::contact::material::Material;
+use crate::contact::{NormalLaw, TangentialLaw};
 use crate::error::SceneError;
 use crate::packing::RadiusDistribution;
 
@@ -167,6 +168,9 @@ pub struct DemParams {
     /// Interval between particle snapshots (s); none when absent.
     #[serde(default)]
     pub snapshot_interval: Option<f64>,
+    /// Directory of the snapshots (default `snapshots`, relative to the current directory).
+    #[serde(default)]
+    pub snapshot_dir: Option<String>,
     /// Snapshot files: `"csv"`, `"vtk"` or `"both"` (default).
     #[serde(default)]
     pub snapshot_format: SnapshotFormat,
@@ -190,7 +194,11 @@ fn positive(field: &str, v: f64, unit: &str) -> Result<(), SceneError> {
     if v > 0.0 && v.is_finite() {
         Ok(())
     } else {
-        Err(SceneError::invalid(field, v, format!("must be > 0 ({unit})")))
+        Err(SceneError::invalid(
+            field,
+            v,
+            format!("must be > 0 ({unit})"),
+        ))
     }
 }
 
@@ -198,7 +206,11 @@ fn non_negative(field: &str, v: f64, unit: &str) -> Result<(), SceneError> {
     if v >= 0.0 && v.is_finite() {
         Ok(())
     } else {
-        Err(SceneError::invalid(field, v, format!("must be ≥ 0 ({unit})")))
+        Err(SceneError::invalid(
+            field,
+            v,
+            format!("must be ≥ 0 ({unit})"),
+        ))
     }
 }
 
@@ -206,7 +218,11 @@ fn poisson_ok(field: &str, v: f64) -> Result<(), SceneError> {
     if (0.0..0.5).contains(&v) {
         Ok(())
     } else {
-        Err(SceneError::invalid(field, v, "must be in [0, 0.5) (Poisson ratio)"))
+        Err(SceneError::invalid(
+            field,
+            v,
+            "must be in [0, 0.5) (Poisson ratio)",
+        ))
     }
 }
 
@@ -244,6 +260,7 @@ impl DemParams {
             rotations: true,
             orientations: false,
             snapshot_interval: None,
+            snapshot_dir: None,
             snapshot_format: SnapshotFormat::Both,
             neighbor_skin: None,
             settle_time: None,
@@ -272,7 +289,9 @@ impl DemParams {
             None => match (self.radius, self.radius_min, self.radius_max) {
                 (Some(_), None, None) => RadiusDistributionKind::Fixed,
                 (None, Some(_), Some(_)) => RadiusDistributionKind::Uniform,
-                (None, None, None) if self.radius_table.is_some() => RadiusDistributionKind::Discrete,
+                (None, None, None) if self.radius_table.is_some() => {
+                    RadiusDistributionKind::Discrete
+                }
                 _ => {
                     return Err(SceneError::Missing {
                         field: "damper.radius".into(),
@@ -292,11 +311,20 @@ impl DemParams {
             Ok(x)
         };
         let d = match kind {
-            RadiusDistributionKind::Fixed => RadiusDistribution::Fixed(need(self.radius, "radius")?),
+            RadiusDistributionKind::Fixed => {
+                RadiusDistribution::Fixed(need(self.radius, "radius")?)
+            }
             RadiusDistributionKind::Uniform => {
-                let (min, max) = (need(self.radius_min, "radius_min")?, need(self.radius_max, "radius_max")?);
+                let (min, max) = (
+                    need(self.radius_min, "radius_min")?,
+                    need(self.radius_max, "radius_max")?,
+                );
                 if max < min {
-                    return Err(SceneError::invalid("damper.radius_max", max, "must be ≥ radius_min"));
+                    return Err(SceneError::invalid(
+                        "damper.radius_max",
+                        max,
+                        "must be ≥ radius_min",
+                    ));
                 }
                 RadiusDistribution::Uniform { min, max }
             }
@@ -307,13 +335,24 @@ impl DemParams {
                     hint: "standard deviation of the normal radius distribution (m)".into(),
                 })?;
                 non_negative("damper.radius_std", std, "metres")?;
-                let min = self.radius_min.unwrap_or((mean - 3.0 * std).max(0.05 * mean));
+                let min = self
+                    .radius_min
+                    .unwrap_or((mean - 3.0 * std).max(0.05 * mean));
                 let max = self.radius_max.unwrap_or(mean + 3.0 * std);
                 positive("damper.radius_min", min, "metres")?;
                 if max < min {
-                    return Err(SceneError::invalid("damper.radius_max", max, "must be ≥ radius_min"));
+                    return Err(SceneError::invalid(
+                        "damper.radius_max",
+                        max,
+                        "must be ≥ radius_min",
+                    ));
                 }
-                RadiusDistribution::Normal { mean, std, min, max }
+                RadiusDistribution::Normal {
+                    mean,
+                    std,
+                    min,
+                    max,
+                }
             }
             RadiusDistributionKind::Discrete | RadiusDistributionKind::Empirical => {
                 let t = self.radius_table.as_ref().filter(|t| !t.is_empty()).ok_or_else(|| {
@@ -324,15 +363,26 @@ impl DemParams {
                 })?;
                 for row in t {
                     positive("damper.radius_table", row[0], "radius, metres")?;
-                    non_negative("damper.radius_table", row[1], "weight or cumulative fraction")?;
+                    non_negative(
+                        "damper.radius_table",
+                        row[1],
+                        "weight or cumulative fraction",
+                    )?;
                 }
                 let radii: Vec<f64> = t.iter().map(|r| r[0]).collect();
                 let w: Vec<f64> = t.iter().map(|r| r[1]).collect();
                 if kind == RadiusDistributionKind::Discrete {
                     if w.iter().sum::<f64>() <= 0.0 {
-                        return Err(SceneError::invalid("damper.radius_table", "weights", "weights must not all be 0"));
+                        return Err(SceneError::invalid(
+                            "damper.radius_table",
+                            "weights",
+                            "weights must not all be 0",
+                        ));
                     }
-                    RadiusDistribution::Discrete { values: radii, weights: w }
+                    RadiusDistribution::Discrete {
+                        values: radii,
+                        weights: w,
+                    }
                 } else {
                     let ok = t.len() >= 2
                         && radii.windows(2).all(|p| p[1] > p[0])
@@ -356,7 +406,10 @@ impl DemParams {
 
     /// Grain material.
     pub fn grain_material(&self) -> Material {
-        Material { youngs_modulus: self.youngs_modulus, poisson: self.poisson }
+        Material {
+            youngs_modulus: self.youngs_modulus,
+            poisson: self.poisson,
+        }
     }
 
     /// Wall material (defaults to the grains').
@@ -364,6 +417,58 @@ impl DemParams {
         Material {
             youngs_modulus: self.wall_youngs_modulus.unwrap_or(self.youngs_modulus),
             poisson: self.wall_poisson.unwrap_or(self.poisson),
+        }
+    }
+
+    /// Normal contact law of grain–grain (`wall = false`) or grain–wall contacts.
+    pub fn normal_law(&self, wall: bool) -> NormalLaw {
+        match self.contact {
+            ContactKind::HertzKk => NormalLaw::HertzKuwabaraKono {
+                gamma_n: if wall {
+                    self.wall_gamma_n.unwrap_or(self.gamma_n)
+                } else {
+                    self.gamma_n
+                },
+            },
+            ContactKind::Linear => NormalLaw::LinearSpringDashpot {
+                restitution: if wall {
+                    self.wall_restitution.or(self.restitution).unwrap_or(1.0)
+                } else {
+                    self.restitution.unwrap_or(1.0)
+                },
+                yield_strength: self.yield_strength.unwrap_or(1.0),
+            },
+        }
+    }
+
+    /// Tangential contact law of grain–grain (`wall = false`) or grain–wall contacts
+    /// ([`TangentialLaw::None`] when μ = 0 or, for Hertz, γ_s = 0).
+    pub fn tangential_law(&self, wall: bool) -> TangentialLaw {
+        let mu = if wall {
+            self.wall_friction.unwrap_or(self.friction)
+        } else {
+            self.friction
+        };
+        if mu <= 0.0 {
+            return TangentialLaw::None;
+        }
+        match self.contact {
+            ContactKind::HertzKk => {
+                let gamma_s = if wall {
+                    self.wall_gamma_s.unwrap_or(self.gamma_s)
+                } else {
+                    self.gamma_s
+                };
+                if gamma_s > 0.0 {
+                    TangentialLaw::CoulombViscous {
+                        gamma_s,
+                        friction: mu,
+                    }
+                } else {
+                    TangentialLaw::None
+                }
+            }
+            ContactKind::Linear => TangentialLaw::LinearDashpotCoulomb { friction: mu },
         }
     }
 
@@ -380,7 +485,14 @@ impl DemParams {
     /// (largest diameter above the smallest box side, or solid volume above 58 % of the box,
     /// about a random close packing).
     pub fn validate(&self) -> Result<(), SceneError> {
-        for (k, v) in ["damper.box[0] (Lx)", "damper.box[1] (Ly)", "damper.box[2] (Lz)"].iter().zip(self.r#box) {
+        for (k, v) in [
+            "damper.box[0] (Lx)",
+            "damper.box[1] (Ly)",
+            "damper.box[2] (Lz)",
+        ]
+        .iter()
+        .zip(self.r#box)
+        {
             positive(k, v, "metres")?;
         }
         if self.count == 0 {
@@ -410,12 +522,20 @@ impl DemParams {
         if self.contact == ContactKind::Linear {
             let e = self.restitution.ok_or_else(|| SceneError::Missing {
                 field: "damper.restitution".into(),
-                hint: "contact = \"linear\" needs the coefficient of restitution e in (0, 1]".into(),
+                hint: "contact = \"linear\" needs the coefficient of restitution e in (0, 1]"
+                    .into(),
             })?;
-            for (k, e) in [("damper.restitution", Some(e)), ("damper.wall_restitution", self.wall_restitution)] {
+            for (k, e) in [
+                ("damper.restitution", Some(e)),
+                ("damper.wall_restitution", self.wall_restitution),
+            ] {
                 if let Some(e) = e {
                     if !(e > 0.0 && e <= 1.0) {
-                        return Err(SceneError::invalid(k, e, "must be in (0, 1] (coefficient of restitution)"));
+                        return Err(SceneError::invalid(
+                            k,
+                            e,
+                            "must be in (0, 1] (coefficient of restitution)",
+                        ));
                     }
                 }
             }
@@ -441,7 +561,10 @@ impl DemParams {
             return Err(SceneError::invalid(
                 "damper.radius",
                 rmax,
-                format!("largest diameter {:.4e} m does not fit the smallest box side {side:.4e} m", 2.0 * rmax),
+                format!(
+                    "largest diameter {:.4e} m does not fit the smallest box side {side:.4e} m",
+                    2.0 * rmax
+                ),
             ));
         }
         let v_grains = self.count as f64 * 4.0 / 3.0 * std::f64::consts::PI * rmax.powi(3);
@@ -475,13 +598,25 @@ mod tests {
         assert!(e.contains("damper.radius") && e.contains("> 0"), "{e}");
         let mut p = DemParams::thesis_b();
         p.poisson = 0.5;
-        assert!(p.validate().unwrap_err().to_string().contains("damper.poisson"));
+        assert!(p
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("damper.poisson"));
         let mut p = DemParams::thesis_b();
         p.count = 2000;
-        assert!(p.validate().unwrap_err().to_string().contains("damper.count"));
+        assert!(p
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("damper.count"));
         let mut p = DemParams::thesis_b();
         p.contact = ContactKind::Linear;
-        assert!(p.validate().unwrap_err().to_string().contains("damper.restitution"));
+        assert!(p
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("damper.restitution"));
     }
 
     #[test]

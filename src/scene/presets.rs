@@ -36,3 +36,31 @@ impl Scene {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scene_files_match_the_presets() {
+        let b = Scene::from_toml(include_str!("../../data/scenes/thesis_b_impact.toml")).unwrap();
+        assert_eq!(b, Scene::thesis_b_impact());
+        let p = Scene::from_toml(include_str!("../../data/scenes/primary_only.toml")).unwrap();
+        assert_eq!(p, Scene::primary_only());
+        let bb = Scene::from_toml(include_str!("../../data/scenes/bouncing_ball.toml")).unwrap();
+        assert!(bb.primary.is_none());
+        // Γ = U (2π f)²/g = 1.50 as the file says
+        let gamma = bb.excitation.amplitude * bb.excitation.omega_rad_s().powi(2) / bb.gravity;
+        assert!((gamma - 1.5).abs() < 1e-3, "{gamma}");
+    }
+
+    #[test]
+    fn thesis_b_natural_frequency() {
+        // SPEC §6: f0 = 15.16 Hz for M = 2.37 kg, K = 21500 N/m
+        let f0 = Scene::thesis_b_impact()
+            .primary
+            .unwrap()
+            .natural_frequency_hz();
+        assert!((f0 - 15.16).abs() < 0.005);
+    }
+}

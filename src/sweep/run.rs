@@ -1,5 +1,6 @@
 //! Simulation dispatch: one scene → one [`RunSummary`], whatever the damper model.
 
+use crate::analysis::analyze::{analyze_series, AnalyzeOptions};
 use crate::error::SimError;
 use crate::model::{RunOptions, RunSummary};
 use crate::observe::{Observer, SteadyCollector, Tee};
@@ -23,11 +24,7 @@ pub fn run_scene(
             s.model = format!("auto:{}", s.model);
             Ok(s)
         }
-        Damper::Dem(_) => Err(SimError::Unavailable(
-            "damper.kind = \"dem\": the DEM simulator is not available yet in this build; \
-             use kind = \"impact\" (one effective particle) meanwhile"
-                .into(),
-        )),
+        Damper::Dem(_) => crate::dem::scene_run::simulate(scene, obs, opts),
     }
 }
 
@@ -71,12 +68,21 @@ pub fn run_with_analysis(
     Ok(summary)
 }
 
-/// Hook of the analysis layer: fills `summary.analysis` from the collected steady series.
-fn analyze_into(summary: &mut RunSummary, collector: &SteadyCollector, _forcing_hz: f64) {
-    if collector.grain_z_m.len() < 16 {
-        summary.analysis_error = Some("steady-state series too short for the analysis".into());
+/// Runs the analysis chain ([`crate::analysis::analyze::analyze_series`], SPEC §4) on the
+/// collected steady-state grain series and stores the report (or why it failed) in `summary`.
+fn analyze_into(summary: &mut RunSummary, collector: &SteadyCollector, forcing_hz: f64) {
+    let opts = AnalyzeOptions {
+        dt_s: collector.dt_s(),
+        forcing_hz: Some(forcing_hz),
+        ..AnalyzeOptions::default()
+    };
+    match analyze_series(&collector.grain_z_m, &opts) {
+        Ok(report) => match serde_json::to_value(&report) {
+            Ok(v) => summary.analysis = Some(v),
+            Err(e) => summary.analysis_error = Some(format!("analysis report: {e}")),
+        },
+        Err(e) => summary.analysis_error = Some(e.to_string()),
     }
-    // The analysis layer (pdamp::analysis::analyze::analyze_series) plugs in here.
 }
 
 /// Passes every `stride`-th sample (with time ≥ the collector's start) to the inner observer.
@@ -91,7 +97,7 @@ impl Observer for Decimate<'_> {
         if s.time_s < self.inner.from_s {
             return Ok(());
         }
-        let keep = self.count % self.stride == 0;
+        let keep = self.count.is_multiple_of(self.stride);
         self.count += 1;
         if keep {
             self.inner.sample(s)

@@ -82,12 +82,13 @@ pub struct Trace {
 }
 
 impl DemObserver for Trace {
-    fn sample(&mut self, s: &DemSample) {
+    fn sample(&mut self, s: &DemSample) -> Result<(), SimError> {
         self.time_s.push(s.time_s);
         self.box_z_m.push(s.box_z_m);
         self.grain_z_m.push(s.grain_z_m);
         self.dissipated_j.push(s.e_collision_j + s.e_friction_j);
         self.collision_j.push(s.e_collision_j);
+        Ok(())
     }
 }
 
@@ -137,6 +138,8 @@ pub fn run_dem_case(case: &Case, rig: &Rig, frequency_hz: f64) -> Result<RunOutp
         steady_fraction: case.steady_fraction,
         dt: DtChoice::Auto,
         dt_fraction: case.dt_fraction,
+        gravity_m_s2: rig.gravity,
+        ..DemRunConfig::default()
     };
     let mut trace = Trace::default();
     let clock = Instant::now();

@@ -1,10 +1,120 @@
-//! `pdamp fnn` (to be written by the issue that owns it).
+//! `pdamp fnn`: false nearest neighbours (Kennel et al. 1992; TISEAN `false_nearest`).
+
+use std::io::Write;
+
+use anyhow::{bail, Context};
+
+use crate::analysis::false_nearest_neighbors::suggested_dimension;
+use crate::analysis::{false_nearest_neighbors, FnnOptions};
+use crate::cli::commands::mutual::SeriesInput;
 
 /// Arguments of `pdamp fnn`.
+///
+/// Output: CSV on stdout with columns `m,false_fraction,accepted,false_count,mean_distance,
+/// rms_distance` (distances in data units; TISEAN prints m, fraction, mean and RMS distance).
+/// The suggested dimension (first m with at most 1 % false neighbours) goes to stderr.
+///
+/// Definition = TISEAN 3.0.1 (max norm, neighbour accepted if within σ/f, duplicates
+/// ignored). Defaults differ: pdamp uses Kennel's ratio f = 10 and a Theiler window of one
+/// delay; TISEAN uses f = 2 and no window. `--tisean` switches to TISEAN's defaults (explicit
+/// flags still win), and then the numbers match TISEAN's.
 #[derive(Debug, clap::Args)]
-pub struct Args {}
+pub struct Args {
+    /// Input series.
+    #[command(flatten)]
+    pub input: SeriesInput,
+    /// Smallest embedding dimension tested (TISEAN -m).
+    #[arg(short = 'm', long = "min-dim", help_heading = "Estimator")]
+    pub m_min: Option<usize>,
+    /// Largest dimension: `M` or TISEAN's `comp,M` (only 1 component is supported).
+    /// Default 6 (TISEAN: 5).
+    #[arg(short = 'M', long = "max-dim", help_heading = "Estimator")]
+    pub m_max: Option<String>,
+    /// Delay τ in samples (TISEAN -d); use the first minimum of `pdamp mutual`.
+    #[arg(
+        short = 'd',
+        long = "delay",
+        default_value_t = 1,
+        help_heading = "Estimator"
+    )]
+    pub tau: usize,
+    /// Escape ratio f: the neighbour is false if the distance grows by more than f. Default
+    /// 10 (Kennel et al.); TISEAN: 2.
+    #[arg(short = 'f', long = "ratio", help_heading = "Estimator")]
+    pub ratio: Option<f64>,
+    /// Theiler window in samples: neighbours must be more than this apart in time. Default
+    /// τ; TISEAN: 0.
+    #[arg(short = 't', long = "theiler", help_heading = "Estimator")]
+    pub theiler: Option<usize>,
+    /// Start from TISEAN false_nearest's defaults (-m1 -M1,5 -f2 -t0).
+    #[arg(long, help_heading = "Estimator")]
+    pub tisean: bool,
+}
+
+fn parse_max_dim(s: &str) -> anyhow::Result<usize> {
+    let parts: Vec<&str> = s.split(',').collect();
+    let (comp, m) = match parts.as_slice() {
+        [m] => ("1", *m),
+        [c, m] => (*c, *m),
+        _ => bail!("-M {s}: expected `M` or `components,M`"),
+    };
+    if comp.trim() != "1" {
+        bail!("-M {s}: only one component (univariate series) is supported");
+    }
+    m.trim()
+        .parse()
+        .with_context(|| format!("-M {s}: `{m}` is not a dimension"))
+}
 
 /// Run `pdamp fnn`.
-pub fn run(_args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("`fnn` is not available yet")
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let x = args.input.read()?;
+    let base = if args.tisean {
+        FnnOptions::tisean()
+    } else {
+        FnnOptions::default()
+    };
+    let opts = FnnOptions {
+        m_min: args.m_min.unwrap_or(base.m_min),
+        m_max: match &args.m_max {
+            Some(s) => parse_max_dim(s)?,
+            None => base.m_max,
+        },
+        tau: args.tau,
+        ratio: args.ratio.unwrap_or(base.ratio),
+        theiler: args.theiler.or(base.theiler),
+    };
+    let fnn = false_nearest_neighbors(&x, &opts)
+        .with_context(|| format!("false nearest neighbours of {}", args.input.file))?;
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    writeln!(
+        out,
+        "m,false_fraction,accepted,false_count,mean_distance,rms_distance"
+    )?;
+    for p in &fnn {
+        let f = p.fraction.map_or(String::new(), |f| format!("{f:.10e}"));
+        writeln!(
+            out,
+            "{},{f},{},{},{:.10e},{:.10e}",
+            p.m, p.accepted, p.false_count, p.mean_distance, p.rms_distance
+        )?;
+    }
+    out.flush()?;
+    match suggested_dimension(&fnn, 0.01) {
+        Some(m) => eprintln!("suggested embedding dimension: m = {m} (≤ 1 % false neighbours)"),
+        None => eprintln!("no tested dimension has ≤ 1 % false neighbours (noise, or raise -M)"),
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn max_dim_accepts_tisean_form() {
+        assert_eq!(parse_max_dim("8").unwrap(), 8);
+        assert_eq!(parse_max_dim("1,8").unwrap(), 8);
+        assert!(parse_max_dim("2,8").is_err());
+    }
 }

@@ -1,10 +1,167 @@
-//! `pdamp lyap_k` (to be written by the issue that owns it).
+//! `pdamp lyap-k`: Kantz's maximal Lyapunov exponent (TISEAN `lyap_k`).
 
-/// Arguments of `pdamp lyap_k`.
+use std::io::Write;
+
+use anyhow::Context;
+
+use crate::analysis::kantz::{
+    estimate_from_curves, fit_scaling_region, kantz, KantzDefinition, KantzOptions, ScalingOptions,
+};
+use crate::cli::commands::mutual::SeriesInput;
+
+/// Average inside the logarithm of S(Δn).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Definition {
+    /// ln of the mean Euclidean distance of the m-dim vectors ((4.1.7) literally; pdamp).
+    Mean,
+    /// ln of the RMS distance (TISEAN lyap_k).
+    Tisean,
+}
+
+/// Arguments of `pdamp lyap-k`.
+///
+/// Output: CSV on stdout, one row per (ε, m, Δn): `eps,m,dn_samples,s,count` — S in rescaled
+/// log units (add ln(max − min) for data units; slopes are unaffected), `count` the number of
+/// reference points with neighbours (TISEAN's third column). On stderr: the linear region of
+/// every curve (longest window with R² ≥ 0.99 whose first and last thirds have slopes within
+/// 20 %), its slope and R², and the median slope = the exponent per sample (and per second
+/// with --dt).
+///
+/// Differences from TISEAN lyap_k: pdamp's defaults are m = 2..2 as TISEAN but a Theiler
+/// window of one delay (TISEAN: 0) and the mean of distances (TISEAN: RMS); `--tisean`
+/// restores TISEAN's choices, after which S matches TISEAN number for number.
 #[derive(Debug, clap::Args)]
-pub struct Args {}
+pub struct Args {
+    /// Input series.
+    #[command(flatten)]
+    pub input: SeriesInput,
+    /// Smallest embedding dimension (TISEAN -m).
+    #[arg(
+        short = 'm',
+        long = "min-dim",
+        default_value_t = 2,
+        help_heading = "Estimator"
+    )]
+    pub m_min: usize,
+    /// Largest embedding dimension (TISEAN -M).
+    #[arg(
+        short = 'M',
+        long = "max-dim",
+        default_value_t = 2,
+        help_heading = "Estimator"
+    )]
+    pub m_max: usize,
+    /// Delay τ in samples (TISEAN -d).
+    #[arg(
+        short = 'd',
+        long = "delay",
+        default_value_t = 1,
+        help_heading = "Estimator"
+    )]
+    pub tau: usize,
+    /// Smallest radius ε in data units (TISEAN -r). Default: (max − min)/1000.
+    #[arg(short = 'r', long = "eps-min", help_heading = "Estimator")]
+    pub eps_min: Option<f64>,
+    /// Largest radius ε in data units (TISEAN -R). Default: (max − min)/100.
+    #[arg(short = 'R', long = "eps-max", help_heading = "Estimator")]
+    pub eps_max: Option<f64>,
+    /// Number of radii, log-spaced (TISEAN -#).
+    #[arg(
+        short = '#',
+        long = "eps-count",
+        default_value_t = 5,
+        help_heading = "Estimator"
+    )]
+    pub eps_count: usize,
+    /// Largest Δn in samples (TISEAN -s).
+    #[arg(
+        short = 's',
+        long = "steps",
+        default_value_t = 50,
+        help_heading = "Estimator"
+    )]
+    pub steps: usize,
+    /// Number of reference points: the first n admissible samples (TISEAN -n). Default: all.
+    #[arg(short = 'n', long = "references", help_heading = "Estimator")]
+    pub references: Option<usize>,
+    /// Theiler window in samples (TISEAN -t). Default: τ (TISEAN: 0).
+    #[arg(short = 't', long = "theiler", help_heading = "Estimator")]
+    pub theiler: Option<usize>,
+    /// Average inside the log. Default: mean (TISEAN: tisean).
+    #[arg(long, value_enum, help_heading = "Estimator")]
+    pub definition: Option<Definition>,
+    /// TISEAN lyap_k's choices: Theiler window 0 and the RMS definition (explicit flags win).
+    #[arg(long, help_heading = "Estimator")]
+    pub tisean: bool,
+    /// Sampling interval in seconds, to report the exponent per second too.
+    #[arg(long = "dt", help_heading = "Output")]
+    pub dt_s: Option<f64>,
+    /// Minimum R² of the linear region.
+    #[arg(long, default_value_t = 0.99, help_heading = "Output")]
+    pub r2_min: f64,
+}
 
-/// Run `pdamp lyap_k`.
-pub fn run(_args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("`lyap_k` is not available yet")
+/// Run `pdamp lyap-k`.
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let x = args.input.read()?;
+    let base = if args.tisean {
+        KantzOptions::tisean()
+    } else {
+        KantzOptions::default()
+    };
+    let definition = match args.definition {
+        Some(Definition::Mean) => KantzDefinition::MeanDistance,
+        Some(Definition::Tisean) => KantzDefinition::TiseanRms,
+        None => base.definition,
+    };
+    let opts = KantzOptions {
+        m_min: args.m_min,
+        m_max: args.m_max,
+        tau: args.tau,
+        eps_min: args.eps_min,
+        eps_max: args.eps_max,
+        eps_count: args.eps_count,
+        references: args.references,
+        steps: args.steps,
+        theiler: args.theiler.or(base.theiler),
+        definition,
+    };
+    let result = kantz(&x, &opts).with_context(|| format!("Kantz on {}", args.input.file))?;
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    writeln!(out, "eps,m,dn_samples,s,count")?;
+    for c in &result.curves {
+        for (t, (s, n)) in c.s.iter().zip(&c.count).enumerate() {
+            if let Some(s) = s {
+                writeln!(out, "{:.6e},{},{t},{s:.10e},{n}", c.eps, c.m)?;
+            }
+        }
+    }
+    out.flush()?;
+    let scaling = ScalingOptions {
+        r2_min: args.r2_min,
+        ..ScalingOptions::default()
+    };
+    for c in &result.curves {
+        if let Some(f) = fit_scaling_region(&c.s, &scaling) {
+            eprintln!(
+                "eps {:.4e} m {}: slope {:.6} per sample over dn {}..={} (R² {:.4}{})",
+                c.eps,
+                c.m,
+                f.slope,
+                f.start,
+                f.end,
+                f.r2,
+                if f.linear { "" } else { ", no linear region" }
+            );
+        }
+    }
+    let est = estimate_from_curves(&result, &scaling)?;
+    let per_s = args.dt_s.map_or(String::new(), |dt| {
+        format!(" = {:.6} per second", est.per_sample / dt)
+    });
+    eprintln!(
+        "maximal Lyapunov exponent (median of {} curves): {:.6} per sample{per_s}; slopes spread {:.2e}",
+        est.curves_used, est.per_sample, est.spread
+    );
+    Ok(())
 }

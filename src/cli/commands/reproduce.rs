@@ -1,10 +1,71 @@
-//! `pdamp reproduce` (to be written by the issue that owns it).
+//! `pdamp reproduce [--smoke|--quick|--full] [--out figures]`: the whole figure set of SPEC §7
+//! for scene B, headless, with `OUT/README.md` saying how each figure was made.
+
+use crate::study::{reproduce, Mode, ReproduceOptions};
+use anyhow::Context;
+use std::path::PathBuf;
 
 /// Arguments of `pdamp reproduce`.
 #[derive(Debug, clap::Args)]
-pub struct Args {}
+#[command(group(clap::ArgGroup::new("mode").args(["smoke", "quick", "full"])))]
+pub struct Args {
+    /// Minutes on 2 cores (default): shorter runs, fewer points, softened DEM contacts; every
+    /// reduction is listed in OUT/README.md next to its figure.
+    #[arg(long)]
+    pub quick: bool,
+    /// The source's parameters unchanged (13.12 s per frequency, 0.1 Hz steps, real steel
+    /// contacts): hours to days.
+    #[arg(long)]
+    pub full: bool,
+    /// Seconds: the smallest runs that still draw every impact-model figure (tests, CI); no
+    /// DEM figures.
+    #[arg(long)]
+    pub smoke: bool,
+    /// Output directory: PNG + CSV per figure, README.md, sweeps under OUT/data/ (resumable:
+    /// rerunning reuses finished points).
+    #[arg(long, default_value = "figures")]
+    pub out: PathBuf,
+    /// Make only these figures (repeatable; e.g. `--only frf --only poincare`; a name also
+    /// selects its variants: `poincare` → `poincare_f10`, …). OUT/README.md is written only
+    /// for a complete run.
+    #[arg(long, value_name = "FIGURE")]
+    pub only: Vec<String>,
+    /// Leave out the DEM figures (impact-model figures only).
+    #[arg(long)]
+    pub no_dem: bool,
+    /// Width of every figure (pixels).
+    #[arg(long, default_value_t = 1024)]
+    pub width: u32,
+    /// Height of every figure (pixels).
+    #[arg(long, default_value_t = 768)]
+    pub height: u32,
+}
 
 /// Run `pdamp reproduce`.
-pub fn run(_args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("`reproduce` is not available yet")
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let mode = if args.full {
+        Mode::Full
+    } else if args.smoke {
+        Mode::Smoke
+    } else {
+        Mode::Quick
+    };
+    let mut opts = ReproduceOptions::new(mode, &args.out);
+    opts.skip_dem = args.no_dem;
+    opts.only = args.only;
+    opts.figure.width = args.width;
+    opts.figure.height = args.height;
+    let started = std::time::Instant::now();
+    let progress = move |msg: &str| {
+        eprintln!("[{:7.1} s] {msg}", started.elapsed().as_secs_f64());
+    };
+    let report = reproduce(&opts, &progress)
+        .with_context(|| format!("reproduce {} into {}", mode.flag(), args.out.display()))?;
+    println!(
+        "{} figures in {:.1} s; wrote {}",
+        report.figures.len(),
+        report.elapsed_s,
+        args.out.join("README.md").display()
+    );
+    Ok(())
 }

@@ -26,10 +26,10 @@ pub struct Args {
 }
 
 /// Load a scene file and apply `--set` overrides.
-pub(crate) fn load_scene(
-    path: &Path,
-    set: &[String],
-) -> anyhow::Result<(SceneSource, Vec<(String, toml::Value)>, Scene)> {
+/// A scene file, its `--set` overrides and the validated scene they give.
+pub(crate) type LoadedScene = (SceneSource, Vec<(String, toml::Value)>, Scene);
+
+pub(crate) fn load_scene(path: &Path, set: &[String]) -> anyhow::Result<LoadedScene> {
     let text = std::fs::read_to_string(path)
         .with_context(|| format!("cannot read scene file {}", path.display()))?;
     let src = SceneSource::parse(&text).with_context(|| format!("in {}", path.display()))?;

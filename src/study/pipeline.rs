@@ -1,0 +1,392 @@
+//! Building blocks of studies: resumable sweeps into `OUT/data/`, single runs recorded in
+//! memory, CSV writing, and the record of what produced each figure.
+
+use std::path::{Path, PathBuf};
+
+use crate::error::{SimError, StudyError};
+use crate::model::RunOptions;
+use crate::observe::{fmt_num, Observer, Sample};
+use crate::plot::table::Table;
+use crate::plot::{render, Figure, FigureOptions};
+use crate::scene::{Scene, SceneSource};
+use crate::sweep::{run_sweep, SweepSpec, Vary};
+
+/// A scene file bundled with the library (same text as under `data/scenes/`).
+#[derive(Debug, Clone, Copy)]
+pub struct BundledScene {
+    /// Path relative to the repository root, for the commands written in the README.
+    pub path: &'static str,
+    /// The TOML text.
+    pub text: &'static str,
+}
+
+/// Scene B's one-particle stand-in (`data/scenes/thesis_b_impact.toml`).
+pub const IMPACT_B: BundledScene = BundledScene {
+    path: "data/scenes/thesis_b_impact.toml",
+    text: include_str!("../../data/scenes/thesis_b_impact.toml"),
+};
+
+/// Scene B with real steel contacts (`data/scenes/thesis_b.toml`).
+pub const DEM_B: BundledScene = BundledScene {
+    path: "data/scenes/thesis_b.toml",
+    text: include_str!("../../data/scenes/thesis_b.toml"),
+};
+
+/// Scene B with softened contacts (`data/scenes/thesis_b_soft.toml`).
+pub const DEM_B_SOFT: BundledScene = BundledScene {
+    path: "data/scenes/thesis_b_soft.toml",
+    text: include_str!("../../data/scenes/thesis_b_soft.toml"),
+};
+
+/// How one figure was made: written to `OUT/README.md`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FigureRecord {
+    /// File stem: `OUT/<name>.png` and `OUT/<name>.csv`.
+    pub name: String,
+    /// What it shows (one sentence).
+    pub caption: String,
+    /// The SPEC §7 item it reproduces.
+    pub spec_item: String,
+    /// Equivalent `pdamp` commands (sweeps, fits, plots).
+    pub commands: Vec<String>,
+    /// Reductions relative to the source's parameters (empty in `--full`).
+    pub reductions: Vec<String>,
+    /// Size of the PNG (pixels).
+    pub size_px: (u32, u32),
+}
+
+/// Shared state of a study run: output directory, figure options, progress sink.
+pub struct Ctx<'a> {
+    /// Output directory (figures in it, sweeps under `data/`).
+    pub out: PathBuf,
+    /// Size of every figure.
+    pub figure: FigureOptions,
+    /// Receives one line per stage (the CLI prints them on stderr).
+    pub progress: &'a (dyn Fn(&str) + Sync),
+}
+
+/// The result of a sweep: its table and the equivalent command.
+#[derive(Debug, Clone)]
+pub struct SweepResult {
+    /// `DIR/sweep.csv`.
+    pub table: Table,
+    /// `DIR/strobe.csv`, if it has rows.
+    pub strobe: Option<Table>,
+    /// `pdamp sweep …` reproducing it.
+    pub command: String,
+}
+
+impl Ctx<'_> {
+    /// `OUT/<name>`.
+    pub fn path(&self, name: &str) -> PathBuf {
+        self.out.join(name)
+    }
+
+    /// Runs (or resumes) a sweep of `scene` into `OUT/data/<dir>`.
+    ///
+    /// # Errors
+    /// [`StudyError::Step`] naming `dir` if the scene, the overrides or any point fail.
+    pub fn sweep(
+        &self,
+        dir: &str,
+        scene: BundledScene,
+        set: &[(&str, String)],
+        vary: &[(&str, String)],
+        analyze: bool,
+    ) -> Result<SweepResult, StudyError> {
+        let step = |e: &dyn std::fmt::Display| StudyError::step(format!("sweep {dir}"), e);
+        let base = SceneSource::parse(scene.text).map_err(|e| step(&e))?;
+        let set_parsed = set
+            .iter()
+            .map(|(k, v)| crate::scene::parse_assignment(&format!("{k}={v}")))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|e| step(&e))?;
+        let varies = vary
+            .iter()
+            .map(|(k, v)| Vary::parse(&format!("{k}={v}")))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|e| step(&e))?;
+        let n: usize = varies.iter().map(|v| v.values.len()).product();
+        let out = self.out.join("data").join(dir);
+        let mut command = format!("pdamp sweep {}", scene.path);
+        for (k, v) in set {
+            command += &format!(" --set {k}={v}");
+        }
+        for (k, v) in vary {
+            command += &format!(" --vary {k}={v}");
+        }
+        if !analyze {
+            command += " --no-analysis";
+        }
+        command += &format!(" --out {}", out.display());
+        let spec = SweepSpec {
+            base,
+            set: set_parsed,
+            varies,
+            analyze,
+        };
+        (self.progress)(&format!("sweep {dir}: {n} points"));
+        let started = std::time::Instant::now();
+        let tick = (n / 10).max(1);
+        let progress = self.progress;
+        let report = run_sweep(&spec, &out, &|done| {
+            if n >= 50 && done % tick == 0 && done < n {
+                progress(&format!("  {dir}: {done}/{n}"));
+            }
+        })
+        .map_err(|e| step(&e))?;
+        if let Some((i, why)) = report.failed.first() {
+            return Err(step(&format!(
+                "{} of {n} points failed (first: point {i}: {why}); rerun to retry them",
+                report.failed.len()
+            )));
+        }
+        (self.progress)(&format!(
+            "sweep {dir}: done ({} computed, {} reused) in {:.1} s",
+            report.computed,
+            report.skipped,
+            started.elapsed().as_secs_f64()
+        ));
+        let table = Table::read(&out.join("sweep.csv")).map_err(|e| step(&e))?;
+        let strobe = Table::read(&out.join("strobe.csv")).ok();
+        Ok(SweepResult {
+            table,
+            strobe,
+            command,
+        })
+    }
+
+    /// Like [`Ctx::sweep`] with `outer` as the slowest key of the grid, but as one sweep per
+    /// value of `outer` (in `OUT/data/<dir>/<key>=<value>/`), concatenated. Each sweep rebuilds
+    /// its `sweep.csv` after every point, so many small sweeps are cheaper than one large one.
+    ///
+    /// # Errors
+    /// As [`Ctx::sweep`]; also if the parts' columns differ.
+    pub fn sweep_split(
+        &self,
+        dir: &str,
+        scene: BundledScene,
+        set: &[(&str, String)],
+        outer: (&str, &[f64]),
+        vary: &[(&str, String)],
+        analyze: bool,
+    ) -> Result<SweepResult, StudyError> {
+        let (key, values) = outer;
+        let mut parts: Vec<(f64, SweepResult)> = Vec::new();
+        for &v in values {
+            let mut set_v: Vec<(&str, String)> = set.to_vec();
+            set_v.push((key, v.to_string()));
+            let sub = format!("{dir}/{key}={v}");
+            parts.push((v, self.sweep(&sub, scene, &set_v, vary, analyze)?));
+        }
+        let join =
+            |pick: &dyn Fn(&SweepResult) -> Option<&Table>| -> Result<Option<Table>, StudyError> {
+                let mut out: Option<Table> = None;
+                for (v, p) in &parts {
+                    let Some(t) = pick(p) else { continue };
+                    let mut headers = t.headers.clone();
+                    headers.insert(1, key.to_string());
+                    let rows = t.rows.iter().map(|r| {
+                        let mut r = r.clone();
+                        r.insert(1, v.to_string());
+                        r
+                    });
+                    match &mut out {
+                        None => {
+                            out = Some(Table {
+                                path: self.out.join("data").join(dir).display().to_string(),
+                                headers,
+                                rows: rows.collect(),
+                            })
+                        }
+                        Some(o) if o.headers == headers => o.rows.extend(rows),
+                        Some(_) => {
+                            return Err(StudyError::step(
+                                format!("sweep {dir}"),
+                                format!("the sweep at {key} = {v} has different columns"),
+                            ))
+                        }
+                    }
+                }
+                Ok(out)
+            };
+        let table = join(&|p| Some(&p.table))?.ok_or_else(|| {
+            StudyError::step(format!("sweep {dir}"), "no values of the outer key")
+        })?;
+        let strobe = join(&|p| p.strobe.as_ref())?;
+        let mut command = parts
+            .first()
+            .map(|(_, p)| p.command.clone())
+            .unwrap_or_default();
+        command += &format!(
+            "  (one sweep per {key} in {}; the outer key as --set)",
+            values
+                .iter()
+                .map(|v| v.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+        Ok(SweepResult {
+            table,
+            strobe,
+            command,
+        })
+    }
+
+    /// Renders `fig` to `OUT/<name>.png` and returns its size.
+    ///
+    /// # Errors
+    /// [`StudyError::Step`] naming the figure.
+    pub fn render<F: Figure>(&self, name: &str, fig: &F) -> Result<(u32, u32), StudyError> {
+        let path = self.path(&format!("{name}.png"));
+        render(fig, &path, &self.figure).map_err(|e| StudyError::step(name, e))?;
+        Ok((self.figure.width, self.figure.height))
+    }
+
+    /// Writes `OUT/<name>.csv` (header + rows) atomically.
+    ///
+    /// # Errors
+    /// [`StudyError::Output`] naming the file.
+    pub fn write_csv(
+        &self,
+        name: &str,
+        header: &[&str],
+        rows: &[Vec<f64>],
+    ) -> Result<(), StudyError> {
+        let mut text = header.join(",");
+        text.push('\n');
+        for r in rows {
+            let cells: Vec<String> = r.iter().map(|&x| fmt_num(x)).collect();
+            text += &cells.join(",");
+            text.push('\n');
+        }
+        self.write_text(&format!("{name}.csv"), &text)
+    }
+
+    /// Writes a text file `OUT/<file>` atomically.
+    ///
+    /// # Errors
+    /// [`StudyError::Output`] naming the file.
+    pub fn write_text(&self, file: &str, text: &str) -> Result<(), StudyError> {
+        let path = self.path(file);
+        crate::sweep::runner::atomic_write(&path, text.as_bytes()).map_err(|e| StudyError::Output {
+            path: path.display().to_string(),
+            message: e.to_string(),
+        })
+    }
+}
+
+/// Builds a scene from bundled text and `key=value` overrides.
+///
+/// # Errors
+/// [`StudyError::Step`] naming `step` for an invalid scene.
+pub fn scene_with(
+    step: &str,
+    scene: BundledScene,
+    set: &[(&str, String)],
+) -> Result<Scene, StudyError> {
+    let err = |e: &dyn std::fmt::Display| StudyError::step(step, e);
+    let src = SceneSource::parse(scene.text).map_err(|e| err(&e))?;
+    let ov = set
+        .iter()
+        .map(|(k, v)| crate::scene::parse_assignment(&format!("{k}={v}")))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| err(&e))?;
+    src.scene(&ov).map_err(|e| err(&e))
+}
+
+/// The `pdamp simulate` command reproducing [`record_run`]'s run.
+pub fn simulate_command(scene: BundledScene, set: &[(&str, String)], out: &Path) -> String {
+    let mut c = format!("pdamp simulate {}", scene.path);
+    for (k, v) in set {
+        c += &format!(" --set {k}={v}");
+    }
+    c + &format!(" --out {}", out.display())
+}
+
+/// The samples of one run kept in memory (the columns of `series.csv` that figures use).
+#[derive(Debug, Clone, Default)]
+pub struct Recorded {
+    /// `time_s`.
+    pub time_s: Vec<f64>,
+    /// `box_z_m`.
+    pub box_z_m: Vec<f64>,
+    /// `floor_z_m`.
+    pub floor_z_m: Vec<f64>,
+    /// `ceiling_z_m`.
+    pub ceiling_z_m: Vec<f64>,
+    /// `grain_z_m` (particle or z_cm).
+    pub grain_z_m: Vec<f64>,
+    /// `grain_zmin_m` (DEM only).
+    pub grain_zmin_m: Vec<f64>,
+    /// `grain_zmax_m` (DEM only).
+    pub grain_zmax_m: Vec<f64>,
+    /// `grain_force_n`.
+    pub grain_force_n: Vec<f64>,
+    zmin_col: Option<usize>,
+    zmax_col: Option<usize>,
+}
+
+impl Observer for Recorded {
+    fn start(&mut self, extra: &[&str]) -> Result<(), SimError> {
+        self.zmin_col = extra.iter().position(|c| *c == "grain_zmin_m");
+        self.zmax_col = extra.iter().position(|c| *c == "grain_zmax_m");
+        Ok(())
+    }
+    fn sample(&mut self, s: &Sample<'_>) -> Result<(), SimError> {
+        self.time_s.push(s.time_s);
+        self.box_z_m.push(s.box_z_m);
+        self.floor_z_m.push(s.floor_z_m);
+        self.ceiling_z_m.push(s.ceiling_z_m);
+        self.grain_z_m.push(s.grain_z_m);
+        self.grain_force_n.push(s.grain_force_n);
+        if let (Some(a), Some(b)) = (self.zmin_col, self.zmax_col) {
+            self.grain_zmin_m.push(s.extra[a]);
+            self.grain_zmax_m.push(s.extra[b]);
+        }
+        Ok(())
+    }
+}
+
+/// Runs `scene` once, keeping samples every `dt_s` from `from_s` on.
+///
+/// # Errors
+/// [`StudyError::Step`] naming `step` if the simulation fails.
+pub fn record_run(
+    step: &str,
+    scene: &Scene,
+    dt_s: f64,
+    from_s: f64,
+) -> Result<Recorded, StudyError> {
+    let mut rec = Recorded::default();
+    let opts = RunOptions {
+        sample_interval_s: Some(dt_s),
+        sample_from_s: from_s,
+    };
+    crate::sweep::run_scene(scene, &mut rec, &opts).map_err(|e| StudyError::step(step, e))?;
+    Ok(rec)
+}
+
+/// Rows of a table grouped by the value of `key` (ascending), each group's row indices in
+/// file order.
+///
+/// # Errors
+/// [`StudyError::Step`] if the column is missing or not numeric.
+pub fn group_by(step: &str, t: &Table, key: &str) -> Result<Vec<(f64, Vec<usize>)>, StudyError> {
+    let v = t.f64_column(key).map_err(|e| StudyError::step(step, e))?;
+    let mut keys: Vec<f64> = v.clone();
+    keys.sort_by(f64::total_cmp);
+    keys.dedup();
+    Ok(keys
+        .into_iter()
+        .map(|k| (k, (0..v.len()).filter(|&i| v[i] == k).collect()))
+        .collect())
+}
+
+/// A numeric column, or a study error naming the step.
+///
+/// # Errors
+/// [`StudyError::Step`] if the column is missing or holds a non-number.
+pub fn col(step: &str, t: &Table, name: &str) -> Result<Vec<f64>, StudyError> {
+    t.f64_column(name).map_err(|e| StudyError::step(step, e))
+}

@@ -1,0 +1,372 @@
+//! How much work each reproduction mode does: [`Mode`] → [`Settings`].
+//!
+//! `Full` keeps the source's parameters (Sánchez 2012 §3.2, SPEC §6): 13.12 s per frequency,
+//! 196.83 s for the nonlinear analysis, f from 0.5 to 30 Hz, Lz from 0.042 to 0.372 m, real
+//! steel contacts. `Quick` and `Smoke` reduce them; every reduction is listed next to the figure
+//! it affects (see [`Settings::reductions`]).
+
+/// Reproduction mode.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mode {
+    /// A few seconds: the smallest runs that still exercise every figure (tests, CI smoke).
+    Smoke,
+    /// Minutes on 2 cores: shorter runs, fewer points, softened DEM contacts.
+    Quick,
+    /// The source's parameters unchanged (hours to days).
+    Full,
+}
+
+impl Mode {
+    /// Lower-case name (`smoke`, `quick`, `full`).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Mode::Smoke => "smoke",
+            Mode::Quick => "quick",
+            Mode::Full => "full",
+        }
+    }
+
+    /// The CLI flag selecting this mode.
+    pub fn flag(self) -> &'static str {
+        match self {
+            Mode::Smoke => "--smoke",
+            Mode::Quick => "--quick",
+            Mode::Full => "--full",
+        }
+    }
+}
+
+/// A frequency range `start:stop:step` (Hz), as given to `pdamp sweep --vary`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FreqRange {
+    /// First frequency (Hz).
+    pub start_hz: f64,
+    /// Last frequency (Hz), included when on the grid.
+    pub stop_hz: f64,
+    /// Step (Hz).
+    pub step_hz: f64,
+}
+
+impl FreqRange {
+    const fn new(start_hz: f64, stop_hz: f64, step_hz: f64) -> Self {
+        FreqRange {
+            start_hz,
+            stop_hz,
+            step_hz,
+        }
+    }
+
+    /// The `--vary` range text `START:STOP:STEP`.
+    pub fn vary(&self) -> String {
+        format!("{}:{}:{}", self.start_hz, self.stop_hz, self.step_hz)
+    }
+
+    /// Number of points.
+    pub fn len(&self) -> usize {
+        ((self.stop_hz - self.start_hz) / self.step_hz + 1e-9).floor() as usize + 1
+    }
+
+    /// Always false (a range has at least its start).
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+}
+
+/// Settings of the DEM part of the figure set (scene B, SPEC §6).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DemSettings {
+    /// Young's modulus divisor (1 = real steel; 1000 = `thesis_b_soft.toml`: contacts 16×
+    /// longer, restitution curve e(v) unchanged).
+    pub soften: f64,
+    /// Time step as a fraction of the Hertz contact time (`run.dt_fraction`).
+    pub dt_fraction: f64,
+    /// Seconds of drive per frequency point.
+    pub duration_s: f64,
+    /// Frequency range of the FRF and energy sweeps.
+    pub freq: FreqRange,
+    /// Frequencies of the Lz / N / γ_n sweeps (around the resonance).
+    pub res_freq: FreqRange,
+    /// Container heights Lz (m) of the effective-mass and Z_res-versus-Lz figures.
+    pub heights_m: Vec<f64>,
+    /// Grain numbers N (at fixed total grain mass) of the "several N" figures.
+    pub counts: Vec<usize>,
+    /// γ_n values (kg s⁻¹ m^-1/2, before softening) of the Z_res-versus-γ_n figure.
+    pub gamma_n: Vec<f64>,
+    /// Seconds of drive of the bed-motion run (at 15 Hz).
+    pub bed_duration_s: f64,
+}
+
+/// Everything a reproduction run does, for one [`Mode`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Settings {
+    /// The mode these settings belong to.
+    pub mode: Mode,
+    /// Frequencies of the impact-model FRFs (Hz).
+    pub freq: FreqRange,
+    /// Seconds per frequency point of the impact-model sweeps.
+    pub duration_s: f64,
+    /// Gaps (m) of the impact-model effective-mass and Z_res figures; the first is 0
+    /// (clamped particle) and the last "huge".
+    pub gaps_m: Vec<f64>,
+    /// Frequencies of the gap × frequency grid (Hz).
+    pub grid_freq: FreqRange,
+    /// Restitutions of the Z_res-versus-e figure.
+    pub restitutions: Vec<f64>,
+    /// Gaps (m) of the Z_res-versus-e figure (one curve each).
+    pub restitution_gaps_m: Vec<f64>,
+    /// Frequencies of the regime / bifurcation sweep (with nonlinear analysis).
+    pub regime_freq: FreqRange,
+    /// Seconds per point of the analysed sweeps.
+    pub regime_duration_s: f64,
+    /// Gaps (m) of the regime map.
+    pub map_gaps_m: Vec<f64>,
+    /// Frequencies of the regime map (Hz).
+    pub map_freq: FreqRange,
+    /// Forcing frequencies (Hz) of the per-frequency Poincaré / spectrum / reconstruction
+    /// figures.
+    pub series_freqs_hz: Vec<f64>,
+    /// Forcing periods simulated for each per-frequency series (the steady state is the
+    /// last half).
+    pub series_periods: u32,
+    /// DEM figures; `None` skips them.
+    pub dem: Option<DemSettings>,
+}
+
+/// Gap (m) of the impact stand-in for scene B's Lz = 0.1225 m: Lz minus the bed at rest
+/// (≈ 0.039 m, SPEC §6).
+pub const SCENE_B_GAP_M: f64 = 0.0835;
+/// Height of scene B's bed at rest (m), SPEC §6: the impact model's gap is Lz minus this.
+pub const SCENE_B_BED_M: f64 = 0.039;
+
+impl Settings {
+    /// The settings of `mode`.
+    pub fn for_mode(mode: Mode) -> Settings {
+        match mode {
+            Mode::Full => Settings {
+                mode,
+                freq: FreqRange::new(0.5, 30.0, 0.1),
+                duration_s: 13.12,
+                gaps_m: vec![
+                    0.0, 0.003, 0.013, 0.028, 0.046, 0.056, 0.071, 0.081, 0.091, 0.111, 0.128,
+                    0.226, 0.333, 1.0,
+                ],
+                grid_freq: FreqRange::new(0.5, 30.0, 0.1),
+                restitutions: (0..=20).map(|i| i as f64 * 0.05).collect(),
+                restitution_gaps_m: vec![0.013, SCENE_B_GAP_M, 0.333],
+                regime_freq: FreqRange::new(0.5, 30.0, 0.1),
+                regime_duration_s: 196.83,
+                map_gaps_m: vec![
+                    0.003, 0.013, 0.028, 0.046, 0.071, 0.091, 0.128, 0.226, 0.333,
+                ],
+                map_freq: FreqRange::new(0.5, 30.0, 0.1),
+                series_freqs_hz: vec![10.0, 14.5, 20.0],
+                series_periods: 4000,
+                dem: Some(DemSettings {
+                    soften: 1.0,
+                    dt_fraction: 0.01,
+                    duration_s: 13.12,
+                    freq: FreqRange::new(0.5, 30.0, 0.5),
+                    res_freq: FreqRange::new(10.0, 20.0, 0.5),
+                    heights_m: vec![
+                        0.042, 0.052, 0.067, 0.085, 0.095, 0.11, 0.12, 0.13, 0.15, 0.167, 0.265,
+                        0.372,
+                    ],
+                    counts: vec![250, 500, 1000],
+                    gamma_n: vec![0.0, 100.0, 500.0, 1000.0, 3660.0, 10000.0],
+                    bed_duration_s: 13.12,
+                }),
+            },
+            Mode::Quick => Settings {
+                mode,
+                freq: FreqRange::new(0.5, 30.0, 0.25),
+                duration_s: 13.12,
+                gaps_m: vec![
+                    0.0, 0.003, 0.013, 0.028, 0.046, 0.071, 0.091, 0.128, 0.226, 0.333, 1.0,
+                ],
+                grid_freq: FreqRange::new(2.0, 30.0, 0.25),
+                restitutions: (0..=10).map(|i| i as f64 * 0.1).collect(),
+                restitution_gaps_m: vec![0.013, SCENE_B_GAP_M, 0.333],
+                regime_freq: FreqRange::new(2.0, 30.0, 0.25),
+                regime_duration_s: 40.0,
+                map_gaps_m: vec![0.003, 0.013, 0.028, 0.046, 0.071, 0.128, 0.226, 0.333],
+                map_freq: FreqRange::new(2.0, 30.0, 1.0),
+                series_freqs_hz: vec![10.0, 14.5, 20.0],
+                series_periods: 1000,
+                dem: Some(DemSettings {
+                    soften: 1000.0,
+                    dt_fraction: 0.02,
+                    duration_s: 1.5,
+                    freq: FreqRange::new(4.0, 28.0, 2.0),
+                    res_freq: FreqRange::new(11.0, 17.0, 1.0),
+                    heights_m: vec![0.052, 0.085, 0.12, 0.167, 0.265],
+                    counts: vec![125, 250],
+                    gamma_n: vec![0.0, 500.0, 3660.0, 10000.0],
+                    bed_duration_s: 1.0,
+                }),
+            },
+            Mode::Smoke => Settings {
+                mode,
+                freq: FreqRange::new(4.0, 26.0, 1.0),
+                duration_s: 4.0,
+                gaps_m: vec![0.0, 0.013, 0.046, 0.128, 1.0],
+                grid_freq: FreqRange::new(6.0, 24.0, 0.5),
+                restitutions: vec![0.0, 0.5, 1.0],
+                restitution_gaps_m: vec![0.013, SCENE_B_GAP_M],
+                regime_freq: FreqRange::new(6.0, 24.0, 3.0),
+                regime_duration_s: 6.0,
+                map_gaps_m: vec![0.013, 0.128],
+                map_freq: FreqRange::new(8.0, 24.0, 8.0),
+                series_freqs_hz: vec![20.0],
+                series_periods: 120,
+                dem: None,
+            },
+        }
+    }
+
+    /// Human-readable differences from the source's parameters (`Full`), for the settings
+    /// named in `keys` (`freq`, `duration`, `gaps`, `grid`, `restitutions`, `regime`, `map`,
+    /// `series`, `dem`, `dem_lz`, `dem_n`, `dem_gamma`, `dem_bed`). Empty in `Full` mode.
+    pub fn reductions(&self, keys: &[&str]) -> Vec<String> {
+        let full = Settings::for_mode(Mode::Full);
+        let mut out = Vec::new();
+        let mut diff = |what: &str, ours: String, theirs: String| {
+            if ours != theirs {
+                out.push(format!("{what}: {ours} (source: {theirs})"));
+            }
+        };
+        let fr = |r: &FreqRange| format!("{}–{} Hz step {} Hz", r.start_hz, r.stop_hz, r.step_hz);
+        let list = |v: &[f64]| {
+            format!(
+                "{} values {}",
+                v.len(),
+                v.iter()
+                    .map(|x| x.to_string())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        };
+        for key in keys {
+            match *key {
+                "freq" => diff("frequencies", fr(&self.freq), fr(&full.freq)),
+                "duration" => diff(
+                    "drive per frequency",
+                    format!("{} s", self.duration_s),
+                    format!("{} s", full.duration_s),
+                ),
+                "gaps" => diff("gaps (m)", list(&self.gaps_m), list(&full.gaps_m)),
+                "grid" => diff("grid frequencies", fr(&self.grid_freq), fr(&full.grid_freq)),
+                "restitutions" => diff(
+                    "restitutions e",
+                    list(&self.restitutions),
+                    list(&full.restitutions),
+                ),
+                "regime" => {
+                    diff(
+                        "analysed frequencies",
+                        fr(&self.regime_freq),
+                        fr(&full.regime_freq),
+                    );
+                    diff(
+                        "drive per analysed point",
+                        format!("{} s", self.regime_duration_s),
+                        format!("{} s", full.regime_duration_s),
+                    );
+                }
+                "map" => {
+                    diff(
+                        "map gaps (m)",
+                        list(&self.map_gaps_m),
+                        list(&full.map_gaps_m),
+                    );
+                    diff("map frequencies", fr(&self.map_freq), fr(&full.map_freq));
+                    diff(
+                        "drive per analysed point",
+                        format!("{} s", self.regime_duration_s),
+                        format!("{} s", full.regime_duration_s),
+                    );
+                }
+                "series" => diff(
+                    "periods per series",
+                    self.series_periods.to_string(),
+                    full.series_periods.to_string(),
+                ),
+                k if k.starts_with("dem") => {
+                    let (Some(d), Some(fd)) = (&self.dem, &full.dem) else {
+                        continue;
+                    };
+                    match k {
+                        "dem" => {
+                            diff(
+                                "grain Young's modulus",
+                                format!(
+                                    "E/{} with γ scaled by {}^-0.6 (same e(v))",
+                                    d.soften, d.soften
+                                ),
+                                format!("E/{}", fd.soften),
+                            );
+                            diff(
+                                "DEM time step",
+                                format!("t_s × {}", d.dt_fraction),
+                                format!("t_s × {}", fd.dt_fraction),
+                            );
+                            diff(
+                                "DEM drive per point",
+                                format!("{} s", d.duration_s),
+                                format!("{} s", fd.duration_s),
+                            );
+                            diff("DEM frequencies", fr(&d.freq), fr(&fd.freq));
+                        }
+                        "dem_res" => {
+                            diff(
+                                "DEM frequencies around resonance",
+                                fr(&d.res_freq),
+                                fr(&fd.res_freq),
+                            );
+                        }
+                        "dem_lz" => diff("Lz (m)", list(&d.heights_m), list(&fd.heights_m)),
+                        "dem_n" => diff(
+                            "grain numbers N",
+                            format!("{:?}", d.counts),
+                            format!("{:?}", fd.counts),
+                        ),
+                        "dem_gamma" => diff("γ_n", list(&d.gamma_n), list(&fd.gamma_n)),
+                        "dem_bed" => diff(
+                            "bed-motion drive",
+                            format!("{} s", d.bed_duration_s),
+                            format!("{} s", fd.bed_duration_s),
+                        ),
+                        _ => {}
+                    }
+                }
+                _ => {}
+            }
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn full_mode_has_no_reductions_and_quick_lists_them() {
+        let keys = ["freq", "duration", "gaps", "regime", "dem", "dem_lz"];
+        assert!(Settings::for_mode(Mode::Full).reductions(&keys).is_empty());
+        let quick = Settings::for_mode(Mode::Quick).reductions(&keys);
+        assert!(
+            quick.iter().any(|r| r.starts_with("frequencies")),
+            "{quick:?}"
+        );
+        assert!(quick.iter().any(|r| r.contains("Young")), "{quick:?}");
+    }
+
+    #[test]
+    fn gaps_span_clamped_to_huge() {
+        for m in [Mode::Smoke, Mode::Quick, Mode::Full] {
+            let s = Settings::for_mode(m);
+            assert_eq!(s.gaps_m[0], 0.0);
+            assert!(*s.gaps_m.last().unwrap() >= 1.0);
+        }
+    }
+}

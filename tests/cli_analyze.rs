@@ -1,0 +1,126 @@
+//! `pdamp analyze --json`, `pdamp spectrum` and `pdamp poincare` end to end: the binary reads a
+//! series file and prints the documented JSON keys / CSV headers with the reference values.
+
+use pdamp::systems::logistic::logistic_series;
+use std::f64::consts::TAU;
+use std::io::Write;
+use std::process::Command;
+
+fn write_series(dir: &tempfile::TempDir, name: &str, x: &[f64]) -> String {
+    let path = dir.path().join(name);
+    let mut f = std::fs::File::create(&path).unwrap();
+    writeln!(f, "# test series").unwrap();
+    for v in x {
+        writeln!(f, "{v:.17e}").unwrap();
+    }
+    path.to_str().unwrap().to_string()
+}
+
+fn pdamp(args: &[&str]) -> (String, String, bool) {
+    let out = Command::new(env!("CARGO_BIN_EXE_pdamp"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        String::from_utf8(out.stdout).unwrap(),
+        String::from_utf8(out.stderr).unwrap(),
+        out.status.success(),
+    )
+}
+
+#[test]
+fn analyze_json_periodic_and_chaotic() {
+    let dir = tempfile::tempdir().unwrap();
+    // Logistic r = 3.5: period 4 (SPEC §9: between r₂ = 3.4495 and r₃ = 3.5441).
+    let file = write_series(&dir, "p4.txt", &logistic_series(3.5, 0.3, 3000, 1000));
+    let (out, err, ok) = pdamp(&["analyze", &file, "--json"]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    for key in [
+        "lag",
+        "embedding_dim",
+        "mle_per_sample",
+        "mle_per_time",
+        "regime",
+        "period",
+        "spectral_lines",
+        "poincare_distinct_points",
+        "kantz_fit",
+        "zero_one_k",
+    ] {
+        assert!(v.get(key).is_some(), "missing key {key}");
+    }
+    assert_eq!(v["regime"], "periodic");
+    assert_eq!(v["period"], 4.0);
+    assert!(v["mle_per_time"].is_null()); // no --dt
+                                          // Logistic r = 4 with dt = 0.5 s: chaotic, λ per second = λ per sample / 0.5 exactly.
+    let file = write_series(&dir, "chaos.txt", &logistic_series(4.0, 0.3, 8000, 100));
+    let (out, err, ok) = pdamp(&["analyze", &file, "--json", "--dt", "0.5"]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["regime"], "chaotic");
+    assert!(v["period"].is_null());
+    let per_sample = v["mle_per_sample"].as_f64().unwrap();
+    assert!((v["mle_per_time"].as_f64().unwrap() - per_sample / 0.5).abs() < 1e-12);
+    assert!(v["zero_one_k"].as_f64().unwrap() > 0.8);
+}
+
+#[test]
+fn analyze_forced_sine_text_and_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let (dt, f) = (1e-3, 1.0 / (37.3e-3));
+    let x: Vec<f64> = (0..10_000)
+        .map(|n| (TAU * f * n as f64 * dt).sin())
+        .collect();
+    let file = write_series(&dir, "sine.txt", &x);
+    let fs = format!("{f}");
+    let (out, err, ok) = pdamp(&[
+        "analyze",
+        &file,
+        "--dt",
+        "0.001",
+        "--forcing-hz",
+        &fs,
+        "--json",
+    ]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["regime"], "periodic");
+    assert_eq!(v["period"], 1.0); // one point per forcing period
+    assert_eq!(v["poincare_distinct_points"], 1);
+    // Text report names the regime and period unit.
+    let (out, _, ok) = pdamp(&["analyze", &file, "--dt", "0.001", "--forcing-hz", &fs]);
+    assert!(ok);
+    assert!(out.contains("periodic, period 1 forcing periods"), "{out}");
+    // --forcing-hz without --dt is an error that says what to add.
+    let (_, err, ok) = pdamp(&["analyze", &file, "--forcing-hz", &fs]);
+    assert!(!ok);
+    assert!(err.contains("--dt"), "{err}");
+}
+
+#[test]
+fn spectrum_and_poincare_csv() {
+    let dir = tempfile::tempdir().unwrap();
+    let x: Vec<f64> = (0..4096)
+        .map(|n| 2.0 * (TAU * 0.1 * n as f64).sin())
+        .collect();
+    let file = write_series(&dir, "s.txt", &x);
+    let (out, _, ok) = pdamp(&["spectrum", &file, "--dt", "0.01"]);
+    assert!(ok);
+    assert!(out.starts_with("frequency_hz,power\n"));
+    assert_eq!(out.lines().count(), 1 + 4096 / 2 + 1);
+    // The line: 0.1 cycles/sample = 10 Hz, power A²/2 = 2 (Hann main lobe, ≤ 0.1 % leakage).
+    let (out, _, ok) = pdamp(&["spectrum", &file, "--dt", "0.01", "--lines"]);
+    assert!(ok);
+    let rows: Vec<&str> = out.lines().collect();
+    assert_eq!(rows[0], "frequency_hz,line_power,peak_power,prominence");
+    assert_eq!(rows.len(), 2, "{out}");
+    let cols: Vec<f64> = rows[1].split(',').map(|c| c.parse().unwrap()).collect();
+    assert!((cols[0] - 10.0).abs() < 0.1 * 100.0 / 4096.0); // 0.1 bin
+    assert!((cols[1] - 2.0).abs() < 2e-3 * 2.0);
+    // Poincaré at 10 samples per period: every point is (0, 2 sin(2π·0.1·3)).
+    let (out, err, ok) = pdamp(&["poincare", &file, "--period-samples", "10", "--delay", "3"]);
+    assert!(ok);
+    assert!(out.starts_with("cycle,time_samples,s,s_delayed\n"));
+    assert!(err.contains("1 distinct point"), "{err}");
+}
