@@ -19,7 +19,13 @@ fn small_bed() -> DemParams {
 
 fn rig() -> Rig {
     // scene B's primary with the base amplitude of scene B
-    Rig { mass_kg: 2.37, stiffness_n_m: 21500.0, damping_n_s_m: 7.6, amplitude_m: 4.5e-3, gravity: 9.8 }
+    Rig {
+        mass_kg: 2.37,
+        stiffness_n_m: 21500.0,
+        damping_n_s_m: 7.6,
+        amplitude_m: 4.5e-3,
+        gravity: 9.8,
+    }
 }
 
 fn study(threads: usize) -> Study {
@@ -43,28 +49,58 @@ fn small_study_is_consistent_and_thread_independent() {
     let a = study(1);
     let b = study(2);
     let measured = |s: &Study| -> Vec<(String, Option<f64>, Option<f64>, String)> {
-        s.runs.iter().map(|r| (r.setting.clone(), r.amplitude_m, r.dissipation_j_per_cycle, r.status.clone())).collect()
+        s.runs
+            .iter()
+            .map(|r| {
+                (
+                    r.setting.clone(),
+                    r.amplitude_m,
+                    r.dissipation_j_per_cycle,
+                    r.status.clone(),
+                )
+            })
+            .collect()
     };
     // bit-identical physics with 1 and 2 threads (each run is sequential and seeded)
     assert_eq!(measured(&a), measured(&b));
 
-    let reference = a.settings.iter().find(|s| s.axis == Axis::Reference).unwrap();
+    let reference = a
+        .settings
+        .iter()
+        .find(|s| s.axis == Axis::Reference)
+        .unwrap();
     assert_eq!(reference.amplitude_max_rel_error, Some(0.0));
     assert_eq!(reference.dissipation_max_rel_error, Some(0.0));
     // t_s/10 is refused by the DEM's stability guard (dt ≤ t_s/20): recorded, not run
     let coarse = a.runs.iter().find(|r| r.setting == "dt = t_s/10").unwrap();
-    assert!(coarse.status.contains("run.dt_fraction"), "{}", coarse.status);
+    assert!(
+        coarse.status.contains("run.dt_fraction"),
+        "{}",
+        coarse.status
+    );
     assert!(coarse.amplitude_m.is_none());
     // friction off removes the friction share of the dissipation: its error must be well
     // above 0 (friction is tens of % of the loss of a dense bed, Sánchez 2012 ch. 5)
-    let fr = a.settings.iter().find(|s| s.axis == Axis::Friction).unwrap();
+    let fr = a
+        .settings
+        .iter()
+        .find(|s| s.axis == Axis::Friction)
+        .unwrap();
     assert!(fr.dissipation_max_rel_error.unwrap() > 0.02, "{fr:?}");
     // every error is finite and ≥ 0 where the run finished
     for r in a.runs.iter().filter(|r| r.status == "ok") {
-        assert!(r.amplitude_rel_error.is_some_and(|e| e.is_finite() && e >= 0.0), "{r:?}");
+        assert!(
+            r.amplitude_rel_error
+                .is_some_and(|e| e.is_finite() && e >= 0.0),
+            "{r:?}"
+        );
         assert!(r.wall_time_s >= 0.0);
     }
     // the one-particle note gives m_p = 24 × 8030 × 4/3 π (3 mm)³ = 0.02180 kg
-    assert!(a.notes.iter().any(|n| n.contains("m_p = 0.0218")), "{:?}", a.notes);
+    assert!(
+        a.notes.iter().any(|n| n.contains("m_p = 0.0218")),
+        "{:?}",
+        a.notes
+    );
     assert!(a.settings.iter().any(|s| s.pareto_amplitude));
 }

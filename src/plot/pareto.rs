@@ -45,17 +45,33 @@ impl Figure for ParetoFigure {
 
     fn validate(&self) -> Result<(), PlotError> {
         if self.points.is_empty() {
-            return Err(PlotError::bad("pareto", "points", "nothing to draw: give at least one setting"));
+            return Err(PlotError::bad(
+                "pareto",
+                "points",
+                "nothing to draw: give at least one setting",
+            ));
         }
         if !(self.error_floor > 0.0 && self.error_floor.is_finite()) {
-            return Err(PlotError::bad("pareto", "error_floor", "must be finite and > 0 (log axis)"));
+            return Err(PlotError::bad(
+                "pareto",
+                "error_floor",
+                "must be finite and > 0 (log axis)",
+            ));
         }
         for p in &self.points {
             if !(p.wall_time_s > 0.0 && p.wall_time_s.is_finite()) {
-                return Err(PlotError::bad("pareto", format!("{} wall_time_s", p.label), "must be finite and > 0 (log axis); leave failed runs out"));
+                return Err(PlotError::bad(
+                    "pareto",
+                    format!("{} wall_time_s", p.label),
+                    "must be finite and > 0 (log axis); leave failed runs out",
+                ));
             }
             if !(p.error.is_finite() && p.error >= 0.0) {
-                return Err(PlotError::bad("pareto", format!("{} error", p.label), "must be finite and ≥ 0; leave failed runs out"));
+                return Err(PlotError::bad(
+                    "pareto",
+                    format!("{} error", p.label),
+                    "must be finite and ≥ 0; leave failed runs out",
+                ));
             }
         }
         Ok(())
@@ -65,7 +81,11 @@ impl Figure for ParetoFigure {
         self.title.clone()
     }
 
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>, title: &str) -> Result<(), PlotError> {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        title: &str,
+    ) -> Result<(), PlotError> {
         let err = |p: &ParetoPoint| p.error.max(self.error_floor);
         let (mut x_lo, mut x_hi) = (f64::INFINITY, 0.0f64);
         let (mut y_lo, mut y_hi) = (f64::INFINITY, 0.0f64);
@@ -75,7 +95,10 @@ impl Figure for ParetoFigure {
             y_lo = y_lo.min(err(p));
             y_hi = y_hi.max(err(p));
         }
-        if let Some(r) = self.reference_wall_time_s.filter(|r| *r > 0.0 && r.is_finite()) {
+        if let Some(r) = self
+            .reference_wall_time_s
+            .filter(|r| *r > 0.0 && r.is_finite())
+        {
             x_lo = x_lo.min(r);
             x_hi = x_hi.max(r);
         }
@@ -99,14 +122,27 @@ impl Figure for ParetoFigure {
             .light_line_style(WHITE.mix(0.0))
             .draw()
             .map_err(draw_err)?;
-        if let Some(r) = self.reference_wall_time_s.filter(|r| *r > 0.0 && r.is_finite()) {
+        if let Some(r) = self
+            .reference_wall_time_s
+            .filter(|r| *r > 0.0 && r.is_finite())
+        {
             chart
-                .draw_series(DashedLineSeries::new(vec![(r, y_lo), (r, y_hi)], 6, 4, BLACK.mix(0.5).stroke_width(1)))
+                .draw_series(DashedLineSeries::new(
+                    vec![(r, y_lo), (r, y_hi)],
+                    6,
+                    4,
+                    BLACK.mix(0.5).stroke_width(1),
+                ))
                 .map_err(draw_err)?
                 .label("reference wall time")
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.mix(0.5)));
         }
-        let mut front: Vec<(f64, f64)> = self.points.iter().filter(|p| p.on_front).map(|p| (p.wall_time_s, err(p))).collect();
+        let mut front: Vec<(f64, f64)> = self
+            .points
+            .iter()
+            .filter(|p| p.on_front)
+            .map(|p| (p.wall_time_s, err(p)))
+            .collect();
         front.sort_by(|a, b| a.0.total_cmp(&b.0));
         let mut stair = Vec::new();
         for (i, &(x, y)) in front.iter().enumerate() {
@@ -120,7 +156,9 @@ impl Figure for ParetoFigure {
                 .draw_series(LineSeries::new(stair, BLACK.stroke_width(2)))
                 .map_err(draw_err)?
                 .label("Pareto front")
-                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
+                .legend(|(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2))
+                });
         }
         let mut groups: Vec<&str> = Vec::new();
         for p in &self.points {
@@ -132,13 +170,23 @@ impl Figure for ParetoFigure {
             let color = series_color(gi);
             let pts: Vec<&ParetoPoint> = self.points.iter().filter(|p| p.group == *g).collect();
             chart
-                .draw_series(pts.iter().map(|p| Circle::new((p.wall_time_s, err(p)), if p.on_front { 7 } else { 5 }, color.filled())))
+                .draw_series(pts.iter().map(|p| {
+                    Circle::new(
+                        (p.wall_time_s, err(p)),
+                        if p.on_front { 7 } else { 5 },
+                        color.filled(),
+                    )
+                }))
                 .map_err(draw_err)?
                 .label(*g)
                 .legend(move |(x, y)| Circle::new((x + 10, y), 5, color.filled()));
             chart
                 .draw_series(pts.iter().map(|p| {
-                    Text::new(p.label.clone(), (p.wall_time_s * 1.08, err(p) * 1.08), common::small_font())
+                    Text::new(
+                        p.label.clone(),
+                        (p.wall_time_s * 1.08, err(p) * 1.08),
+                        common::small_font(),
+                    )
                 }))
                 .map_err(draw_err)?;
         }
@@ -152,18 +200,46 @@ mod tests {
     use crate::plot::{render_rgb, FigureOptions};
 
     fn fig(points: Vec<ParetoPoint>) -> ParetoFigure {
-        ParetoFigure { points, y_label: "error (–)".into(), error_floor: 1e-4, reference_wall_time_s: Some(10.0), title: "t".into() }
+        ParetoFigure {
+            points,
+            y_label: "error (–)".into(),
+            error_floor: 1e-4,
+            reference_wall_time_s: Some(10.0),
+            title: "t".into(),
+        }
     }
 
     #[test]
     fn draws_and_rejects_bad_points() {
-        let p = |l: &str, w: f64, e: f64, f: bool| ParetoPoint { label: l.into(), group: "g".into(), wall_time_s: w, error: e, on_front: f };
-        let ok = fig(vec![p("a", 1.0, 0.1, true), p("b", 5.0, 0.0, true), p("c", 3.0, 0.2, false)]);
-        let rgb = render_rgb(&ok, &FigureOptions { width: 400, height: 300, title: None }).unwrap();
+        let p = |l: &str, w: f64, e: f64, f: bool| ParetoPoint {
+            label: l.into(),
+            group: "g".into(),
+            wall_time_s: w,
+            error: e,
+            on_front: f,
+        };
+        let ok = fig(vec![
+            p("a", 1.0, 0.1, true),
+            p("b", 5.0, 0.0, true),
+            p("c", 3.0, 0.2, false),
+        ]);
+        let rgb = render_rgb(
+            &ok,
+            &FigureOptions {
+                width: 400,
+                height: 300,
+                title: None,
+            },
+        )
+        .unwrap();
         // something other than white was drawn
         assert!(rgb.iter().any(|&b| b < 200));
         let bad = fig(vec![p("a", 0.0, 0.1, true)]);
-        assert!(bad.validate().unwrap_err().to_string().contains("wall_time_s"));
+        assert!(bad
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("wall_time_s"));
         assert!(fig(vec![]).validate().is_err());
     }
 }

@@ -113,13 +113,21 @@ mod tests {
             tolerance: 0.0,
             ..Outputs::default()
         };
-        assert!(bad.validate().unwrap_err().to_string().contains("outputs.tolerance"));
+        assert!(bad
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("outputs.tolerance"));
         let clash = Outputs {
             frf_only: true,
             orientations: true,
             ..Outputs::default()
         };
-        assert!(clash.validate().unwrap_err().to_string().contains("outputs.frf_only"));
+        assert!(clash
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("outputs.frf_only"));
         assert!(toml::from_str::<Outputs>("frf_onyl = true").is_err());
     }
 }

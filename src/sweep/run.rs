@@ -18,13 +18,13 @@ pub fn run_scene(
 ) -> Result<RunSummary, SimError> {
     match &scene.damper {
         Damper::None | Damper::Impact(_) => crate::impact::simulate(scene, obs, opts),
-        Damper::Dem(_) => crate::dem::scene_run::simulate(scene, obs, opts),
         Damper::Auto(_) => {
             let choice = crate::tradeoff::choose(scene)?;
             let mut s = run_scene(&choice.scene, obs, opts)?;
             s.model = format!("auto:{}", s.model);
             Ok(s)
         }
+        Damper::Dem(_) => crate::dem::scene_run::simulate(scene, obs, opts),
     }
 }
 

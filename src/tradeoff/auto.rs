@@ -3,8 +3,9 @@
 //! (`data/reference/tradeoff_scene_b.csv`, built into the binary), and say which and why.
 //!
 //! # Rules
-//! A measured setting is eligible when all its runs finished, its largest relative errors of
-//! Z and of the grains' dissipation per cycle are ≤ `outputs.tolerance`, and it can deliver
+//! A measured setting is eligible when all its runs finished, its largest relative error of
+//! Z (and, with `energies_by_mechanism`, of the grains' dissipation per cycle) is ≤
+//! `outputs.tolerance`, and it can deliver
 //! the outputs:
 //! - grain outputs (`grain_snapshots`, `orientations`, `energies_by_mechanism`) exclude the
 //!   one-particle model;
@@ -94,7 +95,8 @@ pub fn table_reference(text: &str) -> LadderOptions {
 /// [`SceneError`] if the scene's grains cannot be rescaled (invalid radii) or the built-in
 /// table cannot be read.
 pub fn choose(scene: &Scene) -> Result<AutoChoice, SceneError> {
-    let table = builtin_table().map_err(|e| SceneError::Parse(format!("built-in trade-off table: {e}")))?;
+    let table =
+        builtin_table().map_err(|e| SceneError::Parse(format!("built-in trade-off table: {e}")))?;
     choose_with(scene, &table, &table_reference(BUILTIN_TABLE))
 }
 
@@ -115,7 +117,11 @@ pub fn delivers(s: &MeasuredSetting, o: &Outputs) -> bool {
 /// was measured without the analysis, then only the errors count).
 pub fn accurate_enough(s: &MeasuredSetting, o: &Outputs, regime_known: bool) -> bool {
     let within = |e: Option<f64>| e.is_some_and(|e| e <= o.tolerance);
-    let dissipation_ok = s.dissipation_max_rel_error.is_none_or(|e| e <= o.tolerance);
+    // the dissipation error counts only when its split is requested: over short runs it is
+    // dominated by cycle-to-cycle scatter (the reference's own steady-window rows show ~10 %)
+    let dissipation_ok = !o.energies_by_mechanism
+        || s.dissipation_max_rel_error
+            .is_some_and(|e| e <= o.tolerance);
     let regime_ok = !o.zcm_series || !regime_known || s.regime_matches == s.runs;
     s.complete && within(s.amplitude_max_rel_error) && dissipation_ok && regime_ok
 }
@@ -124,7 +130,11 @@ pub fn accurate_enough(s: &MeasuredSetting, o: &Outputs, regime_known: bool) -> 
 ///
 /// # Errors
 /// See [`choose`].
-pub fn choose_with(scene: &Scene, table: &[MeasuredSetting], reference: &LadderOptions) -> Result<AutoChoice, SceneError> {
+pub fn choose_with(
+    scene: &Scene,
+    table: &[MeasuredSetting],
+    reference: &LadderOptions,
+) -> Result<AutoChoice, SceneError> {
     let Damper::Auto(params) = &scene.damper else {
         return Ok(AutoChoice {
             scene: scene.clone(),
@@ -139,12 +149,17 @@ pub fn choose_with(scene: &Scene, table: &[MeasuredSetting], reference: &LadderO
         });
     };
     let o = &scene.outputs;
-    let regime_known = table.iter().any(|s| s.axis == Axis::Reference && s.regime_matches > 0);
+    let regime_known = table
+        .iter()
+        .any(|s| s.axis == Axis::Reference && s.regime_matches > 0);
     let ref_row = table.iter().find(|s| s.axis == Axis::Reference);
     let ref_wall = ref_row.map_or(f64::NAN, |r| r.wall_time_s);
     let mut eligible: Vec<&MeasuredSetting> = table
         .iter()
-        .filter(|s| delivers(s, o) && accurate_enough(s, o, regime_known) && s.wall_time_s.is_finite())
+        .filter(|s| s.axis != Axis::Reference)
+        .filter(|s| {
+            delivers(s, o) && accurate_enough(s, o, regime_known) && s.wall_time_s.is_finite()
+        })
         .collect();
     eligible.sort_by(|a, b| a.wall_time_s.total_cmp(&b.wall_time_s));
     let (pick, why) = match (eligible.first(), ref_row) {
@@ -201,18 +216,30 @@ fn fmt_err(e: Option<f64>) -> String {
 }
 
 /// The concrete scene for a measured setting.
-fn concretise(scene: &Scene, params: &DemParams, s: &MeasuredSetting, (soft, dt_fraction): (f64, f64)) -> Result<(Scene, &'static str), SceneError> {
+fn concretise(
+    scene: &Scene,
+    params: &DemParams,
+    s: &MeasuredSetting,
+    (soft, dt_fraction): (f64, f64),
+) -> Result<(Scene, &'static str), SceneError> {
     let o = &scene.outputs;
     let mut out = scene.clone();
     if s.axis == Axis::OneParticle {
         let dist = params.radius_distribution()?;
         let radii = dist.sample_n(params.count, params.seed);
-        let v: f64 = radii.iter().map(|r| 4.0 / 3.0 * std::f64::consts::PI * r.powi(3)).sum();
+        let v: f64 = radii
+            .iter()
+            .map(|r| 4.0 / 3.0 * std::f64::consts::PI * r.powi(3))
+            .sum();
         let bed = v / (params.r#box[0] * params.r#box[1] * BED_VOLUME_FRACTION);
         out.damper = Damper::Impact(ImpactParams {
             mass: v * params.density,
             gap: (params.r#box[2] - bed).max(0.0),
-            restitution: if s.value.is_finite() { s.value.clamp(0.0, 1.0) } else { 0.0 },
+            restitution: if s.value.is_finite() {
+                s.value.clamp(0.0, 1.0)
+            } else {
+                0.0
+            },
             initial_height: 0.0,
             initial_velocity: 0.0,
         });
@@ -224,11 +251,18 @@ fn concretise(scene: &Scene, params: &DemParams, s: &MeasuredSetting, (soft, dt_
         Axis::DtFraction => dtf = s.value,
         Axis::Softening => soft = s.value,
         Axis::ContactLaw => {
-            let drive = crate::dem::BoxDrive { primary: None, amplitude_m: scene.excitation.amplitude, frequency_hz: scene.excitation.frequency };
+            let drive = crate::dem::BoxDrive {
+                primary: None,
+                amplitude_m: scene.excitation.amplitude,
+                frequency_hz: scene.excitation.frequency,
+            };
             let e = super::ladder::design_restitution(&p, &drive)?;
             p.contact = crate::scene::dem::ContactKind::Linear;
             p.restitution = Some(e);
-            p.yield_strength = Some(p.yield_strength.unwrap_or(super::ladder::DEFAULT_YIELD_STRENGTH_PA));
+            p.yield_strength = Some(
+                p.yield_strength
+                    .unwrap_or(super::ladder::DEFAULT_YIELD_STRENGTH_PA),
+            );
         }
         Axis::Rotations => p.rotations = false,
         Axis::Friction => {
@@ -243,7 +277,11 @@ fn concretise(scene: &Scene, params: &DemParams, s: &MeasuredSetting, (soft, dt_
     if o.orientations {
         p.rotations = true;
     }
-    p.snapshot_interval = if o.grain_snapshots { Some(p.snapshot_interval.unwrap_or(0.01)) } else { None };
+    p.snapshot_interval = if o.grain_snapshots {
+        Some(p.snapshot_interval.unwrap_or(0.01))
+    } else {
+        None
+    };
     out.damper = Damper::Dem(p);
     out.run.dt = Some(DtSpec::Auto);
     out.run.dt_fraction = dtf;
@@ -264,7 +302,10 @@ fn skipped(o: &Outputs, model: &str) -> Vec<String> {
         }
     }
     if !o.zcm_series {
-        v.push("nonlinear analysis of z_cm (not requested; `pdamp simulate --no-analysis` skips it)".into());
+        v.push(
+            "nonlinear analysis of z_cm (not requested; `pdamp simulate --no-analysis` skips it)"
+                .into(),
+        );
     }
     v
 }

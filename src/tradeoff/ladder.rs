@@ -190,7 +190,8 @@ impl Change {
                 let e = design_restitution(&c.params, drive)?;
                 c.params.contact = ContactKind::Linear;
                 c.params.restitution = Some(e);
-                c.params.yield_strength = Some(c.params.yield_strength.unwrap_or(DEFAULT_YIELD_STRENGTH_PA));
+                c.params.yield_strength =
+                    Some(c.params.yield_strength.unwrap_or(DEFAULT_YIELD_STRENGTH_PA));
             }
             Change::Rotations(on) => c.params.rotations = on,
             Change::Friction(on) => {
@@ -282,20 +283,37 @@ impl LadderOptions {
     pub fn validate(&self) -> Result<(), SceneError> {
         crate::scene::run::Run::with_duration(self.duration_s).validate()?;
         if !(self.reference_softening >= 1.0 && self.reference_softening.is_finite()) {
-            return Err(SceneError::invalid("reference_softening", self.reference_softening, "must be ≥ 1"));
+            return Err(SceneError::invalid(
+                "reference_softening",
+                self.reference_softening,
+                "must be ≥ 1",
+            ));
         }
         if !(self.reference_dt_fraction > 0.0 && self.reference_dt_fraction <= 0.05) {
-            return Err(SceneError::invalid("reference_dt_fraction", self.reference_dt_fraction, "must be in (0, 0.05]"));
+            return Err(SceneError::invalid(
+                "reference_dt_fraction",
+                self.reference_dt_fraction,
+                "must be in (0, 0.05]",
+            ));
         }
         if !(self.steady_fraction > 0.0 && self.steady_fraction <= 1.0) {
-            return Err(SceneError::invalid("steady_fraction", self.steady_fraction, "must be in (0, 1]"));
+            return Err(SceneError::invalid(
+                "steady_fraction",
+                self.steady_fraction,
+                "must be in (0, 1]",
+            ));
         }
         Ok(())
     }
 }
 
 fn rung(axis: Axis, label: impl Into<String>, value: f64, change: Change) -> Setting {
-    Setting { axis, label: label.into(), value, change }
+    Setting {
+        axis,
+        label: label.into(),
+        value,
+        change,
+    }
 }
 
 /// The ladder of settings for a scene with `count` grains, reference first.
@@ -306,38 +324,91 @@ fn rung(axis: Axis, label: impl Into<String>, value: f64, change: Change) -> Set
 /// `quick` drops the rungs costlier than the reference.
 pub fn settings_ladder(opts: &LadderOptions, count: usize) -> Vec<Setting> {
     let mut v = vec![rung(Axis::Reference, "reference", 1.0, Change::None)];
-    let dts: &[f64] = if opts.quick { &[10.0, 20.0, 50.0] } else { &[10.0, 20.0, 50.0, 200.0] };
+    let dts: &[f64] = if opts.quick {
+        &[10.0, 20.0, 50.0]
+    } else {
+        &[10.0, 20.0, 50.0, 200.0]
+    };
     for &d in dts {
         if (1.0 / d - opts.reference_dt_fraction).abs() > 1e-12 {
-            v.push(rung(Axis::DtFraction, format!("dt = t_s/{d}"), 1.0 / d, Change::DtFraction(1.0 / d)));
+            v.push(rung(
+                Axis::DtFraction,
+                format!("dt = t_s/{d}"),
+                1.0 / d,
+                Change::DtFraction(1.0 / d),
+            ));
         }
     }
-    let softs: &[f64] = if opts.quick { &[1000.0, 10000.0] } else { &[1.0, 10.0, 1000.0, 10000.0] };
+    let softs: &[f64] = if opts.quick {
+        &[1000.0, 10000.0]
+    } else {
+        &[1.0, 10.0, 1000.0, 10000.0]
+    };
     for &s in softs {
         if (s - opts.reference_softening).abs() > 1e-9 {
-            v.push(rung(Axis::Softening, format!("E / {s}"), s, Change::Soften(s)));
+            v.push(rung(
+                Axis::Softening,
+                format!("E / {s}"),
+                s,
+                Change::Soften(s),
+            ));
         }
     }
     v.push(rung(Axis::ContactLaw, "linear law", 0.0, Change::LinearLaw));
-    v.push(rung(Axis::Rotations, "rotations off", 0.0, Change::Rotations(false)));
-    v.push(rung(Axis::Friction, "friction off", 0.0, Change::Friction(false)));
+    v.push(rung(
+        Axis::Rotations,
+        "rotations off",
+        0.0,
+        Change::Rotations(false),
+    ));
+    v.push(rung(
+        Axis::Friction,
+        "friction off",
+        0.0,
+        Change::Friction(false),
+    ));
     let mut counts: Vec<usize> = vec![(count / 8).max(1), (count * 2 / 5).max(1)];
     if !opts.quick {
         counts.push(count * 2);
     }
     counts.dedup();
     for n in counts.into_iter().filter(|&n| n != count) {
-        v.push(rung(Axis::GrainCount, format!("N = {n}"), n as f64, Change::GrainCount(n)));
+        v.push(rung(
+            Axis::GrainCount,
+            format!("N = {n}"),
+            n as f64,
+            Change::GrainCount(n),
+        ));
     }
-    v.push(rung(Axis::OneParticle, "one particle e = 0", 0.0, Change::OneParticle(Some(0.0))));
-    v.push(rung(Axis::OneParticle, "one particle, fitted e", f64::NAN, Change::OneParticle(None)));
+    v.push(rung(
+        Axis::OneParticle,
+        "one particle e = 0",
+        0.0,
+        Change::OneParticle(Some(0.0)),
+    ));
+    v.push(rung(
+        Axis::OneParticle,
+        "one particle, fitted e",
+        f64::NAN,
+        Change::OneParticle(None),
+    ));
     for frac in [1.0 / 3.0, 2.0 / 3.0] {
         let d = opts.duration_s * frac;
-        v.push(rung(Axis::RunLength, format!("run {d:.2} s"), d, Change::Duration(d)));
+        v.push(rung(
+            Axis::RunLength,
+            format!("run {d:.2} s"),
+            d,
+            Change::Duration(d),
+        ));
     }
     for sf in [0.1, 0.25] {
         if (sf - opts.steady_fraction).abs() > 1e-12 {
-            v.push(rung(Axis::SteadyFraction, format!("steady {sf}"), sf, Change::SteadyFraction(sf)));
+            v.push(rung(
+                Axis::SteadyFraction,
+                format!("steady {sf}"),
+                sf,
+                Change::SteadyFraction(sf),
+            ));
         }
     }
     v
@@ -352,7 +423,11 @@ mod tests {
         // e(v) of Kuwabara–Kono depends on γ_n k_n^{-3/5} only (SPEC §9): softening by 1000
         // with γ ∝ E^{3/5} must leave e at a given speed unchanged (Padé formula, exact
         // algebra up to rounding)
-        let drive = BoxDrive { primary: None, amplitude_m: 4.5e-3, frequency_hz: 15.0 };
+        let drive = BoxDrive {
+            primary: None,
+            amplitude_m: 4.5e-3,
+            frequency_hz: 15.0,
+        };
         let p = DemParams::thesis_b();
         let e1 = design_restitution(&p, &drive).unwrap();
         let e2 = design_restitution(&soften(&p, 1000.0), &drive).unwrap();
@@ -378,7 +453,13 @@ mod tests {
             assert_eq!(Axis::parse(a.as_str()), Some(a));
         }
         assert!(!l.iter().any(|s| s.change == Change::Soften(100.0)));
-        let q = settings_ladder(&LadderOptions { quick: true, ..Default::default() }, 250);
+        let q = settings_ladder(
+            &LadderOptions {
+                quick: true,
+                ..Default::default()
+            },
+            250,
+        );
         assert!(q.len() < l.len());
     }
 }

@@ -3,7 +3,9 @@
 
 use std::time::Instant;
 
-use crate::dem::{run_dem, BoxDrive, DemObserver, DemRunConfig, DemSample, DtChoice, PrimarySystem};
+use crate::dem::{
+    run_dem, BoxDrive, DemObserver, DemRunConfig, DemSample, DtChoice, PrimarySystem,
+};
 use crate::error::{SceneError, SimError};
 use crate::model::RunOptions;
 use crate::observe::{Observer, Sample};
@@ -136,9 +138,8 @@ pub fn run_dem_case(case: &Case, rig: &Rig, frequency_hz: f64) -> Result<RunOutp
         steady_fraction: case.steady_fraction,
         dt: DtChoice::Auto,
         dt_fraction: case.dt_fraction,
-        samples: true,
-        sample_from_s: 0.0,
-        gravity_m_s2: crate::units::G,
+        gravity_m_s2: rig.gravity,
+        ..DemRunConfig::default()
     };
     let mut trace = Trace::default();
     let clock = Instant::now();
@@ -158,14 +159,29 @@ pub fn run_dem_case(case: &Case, rig: &Rig, frequency_hz: f64) -> Result<RunOutp
 }
 
 /// The one-particle scene equivalent to a bed: mass m_p, gap = Lz − bed height, restitution e.
-pub fn one_particle_scene(rig: &Rig, frequency_hz: f64, mass_kg: f64, gap_m: f64, e: f64, duration_s: f64, steady_fraction: f64) -> Scene {
+pub fn one_particle_scene(
+    rig: &Rig,
+    frequency_hz: f64,
+    mass_kg: f64,
+    gap_m: f64,
+    e: f64,
+    duration_s: f64,
+    steady_fraction: f64,
+) -> Scene {
     let mut run = Run::with_duration(duration_s);
     run.steady_fraction = steady_fraction;
     run.sample_interval = SAMPLE_INTERVAL_S;
     Scene {
         gravity: rig.gravity,
-        primary: Some(crate::scene::Primary::new(rig.mass_kg, rig.stiffness_n_m, rig.damping_n_s_m)),
-        excitation: crate::scene::Excitation { amplitude: rig.amplitude_m, frequency: frequency_hz },
+        primary: Some(crate::scene::Primary::new(
+            rig.mass_kg,
+            rig.stiffness_n_m,
+            rig.damping_n_s_m,
+        )),
+        excitation: crate::scene::Excitation {
+            amplitude: rig.amplitude_m,
+            frequency: frequency_hz,
+        },
         damper: Damper::Impact(ImpactParams {
             mass: mass_kg,
             gap: gap_m.max(0.0),
@@ -184,7 +200,10 @@ pub fn one_particle_scene(rig: &Rig, frequency_hz: f64, mass_kg: f64, gap_m: f64
 /// The impact model's errors.
 pub fn run_impact_scene(scene: &Scene) -> Result<RunOutput, SimError> {
     let mut trace = Trace::default();
-    let opts = RunOptions { sample_interval_s: Some(SAMPLE_INTERVAL_S), sample_from_s: 0.0 };
+    let opts = RunOptions {
+        sample_interval_s: Some(SAMPLE_INTERVAL_S),
+        sample_from_s: 0.0,
+    };
     let clock = Instant::now();
     let s = crate::impact::simulate(scene, &mut trace, &opts)?;
     let wall = clock.elapsed().as_secs_f64();

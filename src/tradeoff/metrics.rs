@@ -15,7 +15,8 @@ use super::measure::Observation;
 /// # Formula
 /// ε = |x − x_ref| / |x_ref|.
 pub fn relative_error(x: f64, reference: f64) -> Option<f64> {
-    (x.is_finite() && reference.is_finite() && reference != 0.0).then(|| (x - reference).abs() / reference.abs())
+    (x.is_finite() && reference.is_finite() && reference != 0.0)
+        .then(|| (x - reference).abs() / reference.abs())
 }
 
 /// Regime verdict and maximal Lyapunov exponent of a steady grain series.
@@ -40,7 +41,11 @@ pub fn dynamics(obs: &Observation, forcing_hz: f64) -> Dynamics {
 fn analyze(x: &[f64], _dt_s: f64, _forcing_hz: f64) -> Dynamics {
     // placeholder until the analysis chain lands on main (branch areg)
     let _ = x;
-    Dynamics { regime: "n/a".into(), period: None, mle_per_s: None }
+    Dynamics {
+        regime: "n/a".into(),
+        period: None,
+        mle_per_s: None,
+    }
 }
 
 /// Effective mass and damping fitted to the measured (f, Z) points of one setting.
@@ -54,7 +59,12 @@ pub struct Effective {
 
 /// Fits (2.1.21) with K and U fixed to the points (SPEC §1, `analysis::frf_fit`); `None`
 /// with fewer than 2 finite points or when the fit fails.
-pub fn effective(frequency_hz: &[f64], amplitude_m: &[f64], stiffness_n_m: f64, base_amplitude_m: f64) -> Option<Effective> {
+pub fn effective(
+    frequency_hz: &[f64],
+    amplitude_m: &[f64],
+    stiffness_n_m: f64,
+    base_amplitude_m: f64,
+) -> Option<Effective> {
     let (f, z): (Vec<f64>, Vec<f64>) = frequency_hz
         .iter()
         .zip(amplitude_m)
@@ -65,7 +75,10 @@ pub fn effective(frequency_hz: &[f64], amplitude_m: &[f64], stiffness_n_m: f64, 
         return None;
     }
     let fit = fit_frf(&f, &z, &FrfFitOptions::new(stiffness_n_m, base_amplitude_m)).ok()?;
-    Some(Effective { mass_kg: fit.mass_ef_kg, damping_n_s_m: fit.damping_ef_ns_per_m })
+    Some(Effective {
+        mass_kg: fit.mass_ef_kg,
+        damping_n_s_m: fit.damping_ef_ns_per_m,
+    })
 }
 
 #[cfg(test)]
@@ -75,7 +88,10 @@ mod tests {
 
     #[test]
     fn relative_error_handles_edges() {
-        assert_eq!(relative_error(1.1, 1.0).map(|e| (e * 1e6).round()), Some(1e5));
+        assert_eq!(
+            relative_error(1.1, 1.0).map(|e| (e * 1e6).round()),
+            Some(1e5)
+        );
         assert_eq!(relative_error(1.0, 0.0), None);
         assert_eq!(relative_error(f64::NAN, 1.0), None);
     }
@@ -85,7 +101,10 @@ mod tests {
         // three exact points of (2.1.21) determine M and C (2 unknowns): the fit must return
         // them to solver precision (1e-6 relative, LM tolerances)
         let f = [10.0, 15.0, 20.0];
-        let z: Vec<f64> = f.iter().map(|&f| sdof_amplitude(f, 2.6, 30.0, 21500.0, 4.5e-3)).collect();
+        let z: Vec<f64> = f
+            .iter()
+            .map(|&f| sdof_amplitude(f, 2.6, 30.0, 21500.0, 4.5e-3))
+            .collect();
         let e = effective(&f, &z, 21500.0, 4.5e-3).unwrap();
         assert!((e.mass_kg / 2.6 - 1.0).abs() < 1e-6, "{e:?}");
         assert!((e.damping_n_s_m / 30.0 - 1.0).abs() < 1e-4, "{e:?}");

@@ -19,9 +19,9 @@ pub fn pareto_front(points: &[(f64, f64)]) -> Vec<bool> {
         .iter()
         .map(|p| {
             ok(p)
-                && !points.iter().any(|q| {
-                    ok(q) && q.0 <= p.0 && q.1 <= p.1 && (q.0 < p.0 || q.1 < p.1)
-                })
+                && !points
+                    .iter()
+                    .any(|q| ok(q) && q.0 <= p.0 && q.1 <= p.1 && (q.0 < p.0 || q.1 < p.1))
         })
         .collect()
 }
@@ -33,7 +33,13 @@ mod tests {
     #[test]
     fn front_by_brute_force_definition() {
         // a point dominated by another is off the front; ties on both stay on; NaN is off
-        let pts = [(1.0, 1.0), (1.0, 1.0), (2.0, 2.0), (f64::NAN, 0.0), (3.0, 0.5)];
+        let pts = [
+            (1.0, 1.0),
+            (1.0, 1.0),
+            (2.0, 2.0),
+            (f64::NAN, 0.0),
+            (3.0, 0.5),
+        ];
         assert_eq!(pareto_front(&pts), vec![true, true, false, false, true]);
         assert!(pareto_front(&[]).is_empty());
     }

@@ -9,7 +9,9 @@ use crate::error::{SceneError, SimError};
 use crate::scene::dem::DemParams;
 
 use super::ladder::{settings_ladder, Axis, Case, Change, LadderOptions, Setting};
-use super::measure::{observe, one_particle_scene, run_dem_case, run_impact_scene, Observation, Rig, RunOutput};
+use super::measure::{
+    observe, one_particle_scene, run_dem_case, run_impact_scene, Observation, Rig, RunOutput,
+};
 use super::metrics::{dynamics, effective, relative_error, Dynamics};
 use super::pareto::pareto_front;
 
@@ -136,7 +138,10 @@ pub fn default_frequencies(rig: &Rig, params: &DemParams) -> Result<Vec<f64>, Sc
     let r = 0.5 * (d.r_min() + d.r_max());
     let m_p = params.count as f64 * params.density * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
     let fr = (rig.stiffness_n_m / (rig.mass_kg + m_p)).sqrt() / crate::units::TWO_PI;
-    Ok([0.7, 1.0, 1.3].iter().map(|k| (k * fr * 100.0).round() / 100.0).collect())
+    Ok([0.7, 1.0, 1.3]
+        .iter()
+        .map(|k| (k * fr * 100.0).round() / 100.0)
+        .collect())
 }
 
 /// A finished run with its observation and dynamics, or its error.
@@ -167,7 +172,11 @@ pub fn run_study(
 ) -> Result<Study, SimError> {
     opts.ladder.validate()?;
     params.validate()?;
-    let freqs = if opts.frequencies_hz.is_empty() { default_frequencies(rig, params)? } else { opts.frequencies_hz.clone() };
+    let freqs = if opts.frequencies_hz.is_empty() {
+        default_frequencies(rig, params)?
+    } else {
+        opts.frequencies_hz.clone()
+    };
     if let Some(f) = freqs.iter().find(|f| !(**f > 0.0 && f.is_finite())) {
         return Err(SceneError::invalid("frequencies", f, "must be > 0 (Hz)").into());
     }
@@ -188,7 +197,11 @@ pub fn run_study(
             jobs.push((si, fi, s.change.apply(&reference, &rig.drive(f))?));
         }
     }
-    jobs.sort_by(|a, b| cost(&b.2).total_cmp(&cost(&a.2)).then((a.0, a.1).cmp(&(b.0, b.1))));
+    jobs.sort_by(|a, b| {
+        cost(&b.2)
+            .total_cmp(&cost(&a.2))
+            .then((a.0, a.1).cmp(&(b.0, b.1)))
+    });
     let results: Vec<Done> = pool.install(|| {
         jobs.par_iter()
             .map(|(si, fi, case)| {
@@ -204,7 +217,12 @@ pub fn run_study(
         if ladder[*si].axis == Axis::Reference {
             match &d {
                 Ok((o, _, _)) => ref_out[*fi] = Some(o.clone()),
-                Err(e) => return Err(SimError::Output(format!("the reference run at {} Hz failed: {e}", freqs[*fi]))),
+                Err(e) => {
+                    return Err(SimError::Output(format!(
+                        "the reference run at {} Hz failed: {e}",
+                        freqs[*fi]
+                    )))
+                }
             }
         }
         done[*si][*fi] = Some(d);
@@ -230,13 +248,23 @@ pub fn run_study(
         finish(run_impact_scene(&scene), rl.steady_fraction)
     };
     let ref_z: Vec<f64> = (0..freqs.len())
-        .map(|fi| done[0][fi].as_ref().and_then(|d| d.as_ref().ok()).map_or(f64::NAN, |d| d.1.amplitude_m))
+        .map(|fi| {
+            done[0][fi]
+                .as_ref()
+                .and_then(|d| d.as_ref().ok())
+                .map_or(f64::NAN, |d| d.1.amplitude_m)
+        })
         .collect();
     let mut fitted_e = f64::NAN;
     for (si, s) in ladder.iter().enumerate() {
-        let Change::OneParticle(e) = s.change else { continue };
+        let Change::OneParticle(e) = s.change else {
+            continue;
+        };
         let (e, runs) = match e {
-            Some(e) => (e, pool.install(|| freqs.par_iter().map(|&f| impact(e, f)).collect::<Vec<_>>())),
+            Some(e) => (
+                e,
+                pool.install(|| freqs.par_iter().map(|&f| impact(e, f)).collect::<Vec<_>>()),
+            ),
             None => fit_restitution(&opts.fitted_e_candidates, &freqs, &ref_z, &pool, &impact),
         };
         if s.value.is_nan() {
@@ -272,7 +300,12 @@ pub fn run_study(
         ),
         "steady-fraction rows re-analyse the reference runs (same wall time)".into(),
     ];
-    Ok(Study { frequencies_hz: freqs, runs, settings, notes })
+    Ok(Study {
+        frequencies_hz: freqs,
+        runs,
+        settings,
+        notes,
+    })
 }
 
 /// Runs the impact model for every candidate e and keeps the e with the smallest largest
@@ -284,14 +317,22 @@ fn fit_restitution(
     pool: &rayon::ThreadPool,
     impact: &(dyn Fn(f64, f64) -> Done + Sync),
 ) -> (f64, Vec<Done>) {
-    let grid: Vec<(f64, f64)> = candidates.iter().flat_map(|&e| freqs.iter().map(move |&f| (e, f))).collect();
+    let grid: Vec<(f64, f64)> = candidates
+        .iter()
+        .flat_map(|&e| freqs.iter().map(move |&f| (e, f)))
+        .collect();
     let all: Vec<Done> = pool.install(|| grid.par_iter().map(|&(e, f)| impact(e, f)).collect());
     let mut best: Option<(f64, f64, Vec<Done>)> = None;
     for (k, chunk) in all.chunks(freqs.len()).enumerate() {
         let worst = chunk
             .iter()
             .zip(ref_z)
-            .map(|(d, &z)| d.as_ref().ok().and_then(|d| relative_error(d.1.amplitude_m, z)).unwrap_or(f64::INFINITY))
+            .map(|(d, &z)| {
+                d.as_ref()
+                    .ok()
+                    .and_then(|d| relative_error(d.1.amplitude_m, z))
+                    .unwrap_or(f64::INFINITY)
+            })
             .fold(0.0, f64::max);
         if best.as_ref().is_none_or(|b| worst < b.1) {
             best = Some((candidates[k], worst, chunk.to_vec()));
@@ -305,20 +346,43 @@ fn fit_restitution(
 
 fn describe(s: &Setting, f: f64, d: &Done) -> String {
     match d {
-        Ok((o, obs, _)) => format!("{:<28} {f:>7.2} Hz: Z = {:.4e} m, wall {:.2} s", s.label, obs.amplitude_m, o.wall_time_s),
+        Ok((o, obs, _)) => format!(
+            "{:<28} {f:>7.2} Hz: Z = {:.4e} m, wall {:.2} s",
+            s.label, obs.amplitude_m, o.wall_time_s
+        ),
         Err(e) => format!("{:<28} {f:>7.2} Hz: failed: {e}", s.label),
     }
 }
 
 fn max_opt(v: impl Iterator<Item = Option<f64>>) -> Option<f64> {
-    v.flatten().fold(None, |m, x| Some(m.map_or(x, |m: f64| m.max(x))))
+    v.flatten()
+        .fold(None, |m, x| Some(m.map_or(x, |m: f64| m.max(x))))
 }
 
-fn compare(ladder: &[Setting], freqs: &[f64], done: &[Vec<Option<Done>>], rig: &Rig) -> (Vec<RunRow>, Vec<SettingRow>) {
-    let reference: Vec<&(RunOutput, Observation, Dynamics)> =
-        done[0].iter().map(|d| d.as_ref().and_then(|d| d.as_ref().ok()).expect("reference checked")).collect();
+fn compare(
+    ladder: &[Setting],
+    freqs: &[f64],
+    done: &[Vec<Option<Done>>],
+    rig: &Rig,
+) -> (Vec<RunRow>, Vec<SettingRow>) {
+    let reference: Vec<&(RunOutput, Observation, Dynamics)> = done[0]
+        .iter()
+        .map(|d| {
+            d.as_ref()
+                .and_then(|d| d.as_ref().ok())
+                .expect("reference checked")
+        })
+        .collect();
     let ref_wall: f64 = reference.iter().map(|r| r.0.wall_time_s).sum();
-    let ref_eff = effective(freqs, &reference.iter().map(|r| r.1.amplitude_m).collect::<Vec<_>>(), rig.stiffness_n_m, rig.amplitude_m);
+    let ref_eff = effective(
+        freqs,
+        &reference
+            .iter()
+            .map(|r| r.1.amplitude_m)
+            .collect::<Vec<_>>(),
+        rig.stiffness_n_m,
+        rig.amplitude_m,
+    );
     let mut runs = Vec::new();
     let mut settings = Vec::new();
     for (si, s) in ladder.iter().enumerate() {
@@ -360,13 +424,20 @@ fn compare(ladder: &[Setting], freqs: &[f64], done: &[Vec<Option<Done>>], rig: &
                     dt_s: o.dt_s,
                     amplitude_m: Some(obs.amplitude_m),
                     amplitude_rel_error: relative_error(obs.amplitude_m, r_obs.amplitude_m),
-                    dissipation_j_per_cycle: Some(obs.dissipation_j_per_cycle).filter(|x| x.is_finite()),
-                    dissipation_rel_error: relative_error(obs.dissipation_j_per_cycle, r_obs.dissipation_j_per_cycle),
+                    dissipation_j_per_cycle: Some(obs.dissipation_j_per_cycle)
+                        .filter(|x| x.is_finite()),
+                    dissipation_rel_error: relative_error(
+                        obs.dissipation_j_per_cycle,
+                        r_obs.dissipation_j_per_cycle,
+                    ),
                     regime: d.regime.clone(),
                     regime_reference: r_dyn.regime.clone(),
                     regime_match: d.regime == r_dyn.regime && d.regime != "n/a",
                     mle_per_s: d.mle_per_s,
-                    mle_abs_error_per_s: d.mle_per_s.zip(r_dyn.mle_per_s).map(|(a, b)| (a - b).abs()),
+                    mle_abs_error_per_s: d
+                        .mle_per_s
+                        .zip(r_dyn.mle_per_s)
+                        .map(|(a, b)| (a - b).abs()),
                 },
             };
             rows.push(row);
@@ -374,11 +445,18 @@ fn compare(ladder: &[Setting], freqs: &[f64], done: &[Vec<Option<Done>>], rig: &
         let ok: Vec<&RunRow> = rows.iter().filter(|r| r.status == "ok").collect();
         let eff = (ok.len() == freqs.len())
             .then(|| {
-                let z: Vec<f64> = ok.iter().map(|r| r.amplitude_m.unwrap_or(f64::NAN)).collect();
+                let z: Vec<f64> = ok
+                    .iter()
+                    .map(|r| r.amplitude_m.unwrap_or(f64::NAN))
+                    .collect();
                 effective(freqs, &z, rig.stiffness_n_m, rig.amplitude_m)
             })
             .flatten();
-        let wall = if ok.len() == rows.len() && !rows.is_empty() { ok.iter().map(|r| r.wall_time_s).sum() } else { f64::NAN };
+        let wall = if ok.len() == rows.len() && !rows.is_empty() {
+            ok.iter().map(|r| r.wall_time_s).sum()
+        } else {
+            f64::NAN
+        };
         settings.push(SettingRow {
             axis: s.axis,
             setting: s.label.clone(),
@@ -387,12 +465,24 @@ fn compare(ladder: &[Setting], freqs: &[f64], done: &[Vec<Option<Done>>], rig: &
             runs: rows.len(),
             wall_time_s: wall,
             speedup: ref_wall / wall,
-            amplitude_max_rel_error: if ok.len() == rows.len() { max_opt(ok.iter().map(|r| r.amplitude_rel_error)) } else { None },
-            dissipation_max_rel_error: if ok.len() == rows.len() { max_opt(ok.iter().map(|r| r.dissipation_rel_error)) } else { None },
+            amplitude_max_rel_error: if ok.len() == rows.len() {
+                max_opt(ok.iter().map(|r| r.amplitude_rel_error))
+            } else {
+                None
+            },
+            dissipation_max_rel_error: if ok.len() == rows.len() {
+                max_opt(ok.iter().map(|r| r.dissipation_rel_error))
+            } else {
+                None
+            },
             m_ef_kg: eff.map(|e| e.mass_kg),
-            m_ef_rel_error: eff.zip(ref_eff).and_then(|(e, r)| relative_error(e.mass_kg, r.mass_kg)),
+            m_ef_rel_error: eff
+                .zip(ref_eff)
+                .and_then(|(e, r)| relative_error(e.mass_kg, r.mass_kg)),
             c_ef_n_s_m: eff.map(|e| e.damping_n_s_m),
-            c_ef_rel_error: eff.zip(ref_eff).and_then(|(e, r)| relative_error(e.damping_n_s_m, r.damping_n_s_m)),
+            c_ef_rel_error: eff
+                .zip(ref_eff)
+                .and_then(|(e, r)| relative_error(e.damping_n_s_m, r.damping_n_s_m)),
             regime_matches: ok.iter().filter(|r| r.regime_match).count(),
             mle_max_abs_error_per_s: max_opt(ok.iter().map(|r| r.mle_abs_error_per_s)),
             pareto_amplitude: false,

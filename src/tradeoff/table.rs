@@ -14,7 +14,8 @@ amplitude_rel_error,dissipation_j_per_cycle,dissipation_rel_error,regime,regime_
 mle_per_s,mle_abs_error_per_s";
 
 /// Header of `tradeoff_settings.csv`.
-pub const SETTING_COLUMNS: &str = "axis,setting,value,runs_ok,runs,wall_time_s,speedup,amplitude_max_rel_error,\
+pub const SETTING_COLUMNS: &str =
+    "axis,setting,value,runs_ok,runs,wall_time_s,speedup,amplitude_max_rel_error,\
 dissipation_max_rel_error,m_ef_kg,m_ef_rel_error,c_ef_n_s_m,c_ef_rel_error,regime_matches,\
 mle_max_abs_error_per_s,pareto_amplitude";
 
@@ -93,7 +94,15 @@ pub fn settings_csv(study: &Study, header: &[String]) -> String {
     for h in header {
         s.push_str(&format!("# {h}\n"));
     }
-    s.push_str(&format!("# frequencies_hz: {}\n", study.frequencies_hz.iter().map(|f| fmt_num(*f)).collect::<Vec<_>>().join(" ")));
+    s.push_str(&format!(
+        "# frequencies_hz: {}\n",
+        study
+            .frequencies_hz
+            .iter()
+            .map(|f| fmt_num(*f))
+            .collect::<Vec<_>>()
+            .join(" ")
+    ));
     for n in &study.notes {
         s.push_str(&format!("# {n}\n"));
     }
@@ -138,7 +147,11 @@ pub fn read_settings(text: &str, path: &str) -> Result<Vec<MeasuredSetting>, Dat
     let mut header: Option<Vec<String>> = None;
     for (k, line) in text.lines().enumerate() {
         let line_no = k + 1;
-        let bad = |m: String| DataError::Malformed { path: path.into(), line: line_no, message: m };
+        let bad = |m: String| DataError::Malformed {
+            path: path.into(),
+            line: line_no,
+            message: m,
+        };
         if line.trim().is_empty() || line.starts_with('#') {
             continue;
         }
@@ -148,7 +161,10 @@ pub fn read_settings(text: &str, path: &str) -> Result<Vec<MeasuredSetting>, Dat
             continue;
         };
         let get = |name: &str| -> Result<&str, DataError> {
-            let i = h.iter().position(|c| c == name).ok_or_else(|| bad(format!("no column `{name}` in the header")))?;
+            let i = h
+                .iter()
+                .position(|c| c == name)
+                .ok_or_else(|| bad(format!("no column `{name}` in the header")))?;
             Ok(cells.get(i).map(|s| s.as_str()).unwrap_or(""))
         };
         let num = |name: &str| -> Result<Option<f64>, DataError> {
@@ -156,11 +172,14 @@ pub fn read_settings(text: &str, path: &str) -> Result<Vec<MeasuredSetting>, Dat
             if v.is_empty() {
                 return Ok(None);
             }
-            v.parse::<f64>().map(Some).map_err(|_| bad(format!("column `{name}`: `{v}` is not a number")))
+            v.parse::<f64>()
+                .map(Some)
+                .map_err(|_| bad(format!("column `{name}`: `{v}` is not a number")))
         };
         let int = |name: &str| -> Result<usize, DataError> {
             let v = get(name)?;
-            v.parse::<usize>().map_err(|_| bad(format!("column `{name}`: `{v}` is not a count")))
+            v.parse::<usize>()
+                .map_err(|_| bad(format!("column `{name}`: `{v}` is not a count")))
         };
         let axis_s = get("axis")?;
         let axis = Axis::parse(axis_s).ok_or_else(|| bad(format!("unknown axis `{axis_s}`")))?;
@@ -178,7 +197,11 @@ pub fn read_settings(text: &str, path: &str) -> Result<Vec<MeasuredSetting>, Dat
         });
     }
     if header.is_none() {
-        return Err(DataError::Malformed { path: path.into(), line: 0, message: "no header row".into() });
+        return Err(DataError::Malformed {
+            path: path.into(),
+            line: 0,
+            message: "no header row".into(),
+        });
     }
     Ok(out)
 }
@@ -214,7 +237,8 @@ mod tests {
 
     #[test]
     fn read_rejects_bad_numbers_with_line() {
-        let t = format!("# x\n{SETTING_COLUMNS}\nreference,reference,1,3,3,abc,1,0,0,,,,,3,,true\n");
+        let t =
+            format!("# x\n{SETTING_COLUMNS}\nreference,reference,1,3,3,abc,1,0,0,,,,,3,,true\n");
         let e = read_settings(&t, "t.csv").unwrap_err().to_string();
         assert!(e.contains("t.csv:3") && e.contains("wall_time_s"), "{e}");
     }

@@ -76,7 +76,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         threads: args.threads,
         ..StudyOptions::default()
     };
-    std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("cannot create {}", args.out.display()))?;
     let study = run_study(&params, &rig, &opts, &|line| eprintln!("{line}"))?;
     let header = vec![
         "pdamp tradeoff: speed against accuracy, one row per setting (errors against the reference row)".to_string(),
@@ -123,36 +124,83 @@ fn pct(e: Option<f64>) -> String {
 fn plot_all(study: &Study, out: &Path) -> anyhow::Result<()> {
     type Get = fn(&crate::tradeoff::study::SettingRow) -> Option<f64>;
     let figs: [(&str, &str, Get); 4] = [
-        ("tradeoff_amplitude.png", "largest relative error of Z (–)", |s| s.amplitude_max_rel_error),
-        ("tradeoff_dissipation.png", "largest relative error of the grains' dissipation per cycle (–)", |s| s.dissipation_max_rel_error),
-        ("tradeoff_effective.png", "relative error of C_ef (–)", |s| s.c_ef_rel_error),
-        ("tradeoff_lyapunov.png", "largest |λ − λ_ref| (1/s)", |s| s.mle_max_abs_error_per_s),
+        (
+            "tradeoff_amplitude.png",
+            "largest relative error of Z (–)",
+            |s| s.amplitude_max_rel_error,
+        ),
+        (
+            "tradeoff_dissipation.png",
+            "largest relative error of the grains' dissipation per cycle (–)",
+            |s| s.dissipation_max_rel_error,
+        ),
+        (
+            "tradeoff_effective.png",
+            "relative error of C_ef (–)",
+            |s| s.c_ef_rel_error,
+        ),
+        (
+            "tradeoff_lyapunov.png",
+            "largest |λ − λ_ref| (1/s)",
+            |s| s.mle_max_abs_error_per_s,
+        ),
     ];
-    let ref_wall = study.settings.iter().find(|s| s.axis == crate::tradeoff::Axis::Reference).map(|s| s.wall_time_s);
+    let ref_wall = study
+        .settings
+        .iter()
+        .find(|s| s.axis == crate::tradeoff::Axis::Reference)
+        .map(|s| s.wall_time_s);
     for (file, label, get) in figs {
         let rows: Vec<(&crate::tradeoff::study::SettingRow, f64)> = study
             .settings
             .iter()
-            .filter(|s| s.axis != crate::tradeoff::Axis::Reference && s.wall_time_s > 0.0 && s.wall_time_s.is_finite())
+            .filter(|s| {
+                s.axis != crate::tradeoff::Axis::Reference
+                    && s.wall_time_s > 0.0
+                    && s.wall_time_s.is_finite()
+            })
             .filter_map(|s| get(s).filter(|e| e.is_finite()).map(|e| (s, e)))
             .collect();
         if rows.is_empty() {
             continue;
         }
-        let front = crate::tradeoff::pareto::pareto_front(&rows.iter().map(|(s, e)| (s.wall_time_s, *e)).collect::<Vec<_>>());
+        let front = crate::tradeoff::pareto::pareto_front(
+            &rows
+                .iter()
+                .map(|(s, e)| (s.wall_time_s, *e))
+                .collect::<Vec<_>>(),
+        );
         let points = rows
             .iter()
             .zip(front)
-            .map(|((s, e), f)| ParetoPoint { label: s.setting.clone(), group: s.axis.as_str().into(), wall_time_s: s.wall_time_s, error: *e, on_front: f })
+            .map(|((s, e), f)| ParetoPoint {
+                label: s.setting.clone(),
+                group: s.axis.as_str().into(),
+                wall_time_s: s.wall_time_s,
+                error: *e,
+                on_front: f,
+            })
             .collect();
         let fig = ParetoFigure {
             points,
             y_label: label.into(),
             error_floor: 1e-4,
             reference_wall_time_s: ref_wall,
-            title: format!("Speed against accuracy, {} Hz", study.frequencies_hz.iter().map(|f| format!("{f}")).collect::<Vec<_>>().join(" / ")),
+            title: format!(
+                "Speed against accuracy, {} Hz",
+                study
+                    .frequencies_hz
+                    .iter()
+                    .map(|f| format!("{f}"))
+                    .collect::<Vec<_>>()
+                    .join(" / ")
+            ),
         };
-        let opts = FigureOptions { width: 1400, height: 1000, title: None };
+        let opts = FigureOptions {
+            width: 1400,
+            height: 1000,
+            title: None,
+        };
         render(&fig, &out.join(file), &opts).with_context(|| format!("drawing {file}"))?;
     }
     Ok(())
@@ -160,7 +208,9 @@ fn plot_all(study: &Study, out: &Path) -> anyhow::Result<()> {
 
 /// Today's date (UTC) as YYYY-MM-DD, from the system clock (civil-from-days, H. Hinnant).
 fn today() -> String {
-    let secs = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_secs());
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
     let z = (secs / 86_400) as i64 + 719_468;
     let era = z.div_euclid(146_097);
     let doe = z - era * 146_097;
