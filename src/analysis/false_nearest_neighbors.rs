@@ -334,13 +334,13 @@ impl<const K: usize> Grid<K> {
         let mut points = vec![[0.0; K]; n];
         let mut index = vec![0u32; n];
         let mut pos = vec![0u32; n];
-        for j in 0..n {
+        for (j, pos_j) in pos.iter_mut().enumerate() {
             let p = point(j);
             let c = key(&p);
             let at = fill[c] as usize;
             points[at] = p;
             index[at] = j as u32;
-            pos[j] = at as u32;
+            *pos_j = at as u32;
             fill[c] += 1;
         }
         Self {
