@@ -11,8 +11,16 @@
 //! coordinate differences `e_t = (s_{i+t} − s_{j+t})²` are computed once and reused for all
 //! m (`‖y_{i+Δn} − y_{j+Δn}‖²_m = Σ_{k<m} e_{Δn+kτ}`) and all ε (a pair is summed into the
 //! bin of the smallest ε that contains it, bins are then accumulated over increasing ε).
+//! The logarithms are not taken per reference: within a chunk the per-reference sums are
+//! multiplied into running products (mantissa + binary exponent), `Σ ln(a/c) = ln Π a − Σ ln c`,
+//! one logarithm per (m, ε, Δn) and chunk; pairs at distance exactly 0 and sums outside
+//! [2^-100, 2^100] take an exact direct path. The pair loops are contiguous and vectorise.
 //! References are processed in fixed chunks in parallel (rayon) and combined in chunk order,
 //! so results do not depend on the thread count.
+//!
+//! Cost: the kd-tree search is O(N log N); the accumulation is O(pairs · steps · m), and at a
+//! fixed ε the number of neighbour pairs grows as N² (each reference has ∝ N neighbours), as
+//! in TISEAN's `lyap_k`.
 
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use rayon::prelude::*;
