@@ -303,3 +303,71 @@ fn thread_count_does_not_change_results() {
         .install(|| kantz(&x, &o).unwrap());
     assert_eq!(one, two, "bitwise-identical curves expected");
 }
+
+#[test]
+fn repeated_values_match_brute_force() {
+    // Hénon with two fixed values at every 10th position: pairs aligned modulo 10 have
+    // distance exactly 0 at some Δn and not at others, so the per-Δn neighbour counts differ
+    // from the neighbourhood size (the rare exact-zero path of the implementation).
+    let mut x = henon::henon_x(1500);
+    for (k, v) in x.iter_mut().enumerate() {
+        match k % 10 {
+            0 => *v = 0.3,
+            1 => *v = 0.7,
+            _ => {}
+        }
+    }
+    for definition in [KantzDefinition::TiseanRms, KantzDefinition::MeanDistance] {
+        check_against_brute_force(
+            &x,
+            &KantzOptions {
+                m_min: 1,
+                m_max: 3,
+                tau: 1,
+                eps_min: Some(0.02),
+                eps_max: Some(0.2),
+                eps_count: 3,
+                steps: 15,
+                theiler: Some(0),
+                definition,
+                ..KantzOptions::default()
+            },
+        );
+    }
+}
+
+#[test]
+fn tiny_distances_match_brute_force() {
+    // A block of 300 distinct values ~1e-60 at the bottom of a [1, 2] series: pairs inside
+    // it have squared distances ~1e-121, below the range admitted to the implementation's
+    // running products (2^-100), which must fall back to direct logarithms.
+    let h = henon::henon_x(1500);
+    let x: Vec<f64> = h
+        .iter()
+        .enumerate()
+        .map(|(k, v)| {
+            if (600..900).contains(&k) {
+                1e-60 * (v + 2.0)
+            } else {
+                1.5 + 0.3 * v
+            }
+        })
+        .collect();
+    for definition in [KantzDefinition::TiseanRms, KantzDefinition::MeanDistance] {
+        check_against_brute_force(
+            &x,
+            &KantzOptions {
+                m_min: 1,
+                m_max: 2,
+                tau: 1,
+                eps_min: Some(0.01),
+                eps_max: Some(0.1),
+                eps_count: 2,
+                steps: 20,
+                theiler: Some(0),
+                definition,
+                ..KantzOptions::default()
+            },
+        );
+    }
+}

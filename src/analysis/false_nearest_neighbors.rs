@@ -1,15 +1,19 @@
 //! False nearest neighbours (Kennel, Brown & Abarbanel 1992; SPEC (4.1.4)), with TISEAN
-//! 3.0.1 `false_nearest`'s definition (SPEC §8). Nearest neighbours come from a kiddo 6
-//! kd-tree in the maximum (Chebyshev) norm, one tree per dimension.
-
-use std::num::NonZero;
-
-use kiddo::{Chebyshev, ImmutableKdTree};
+//! 3.0.1 `false_nearest`'s definition (SPEC §8).
+//!
+//! # Algorithm (why it is fast)
+//! Exact nearest neighbours in the maximum norm by a box-assisted search, as TISEAN's: the
+//! candidates are sorted into the cells of a grid on two delay coordinates (the first and
+//! the last of the m-dimensional vector; one coordinate for m = 1) and a query scans only
+//! the cells within its current bound, columns outward from its own. The bound starts at
+//! the smallest of σ/R_t (farther neighbours are never accepted), the distance to the
+//! nearest indices outside the Theiler window, and the distance to the previous dimension's
+//! neighbour, and shrinks with every closer candidate, so a query visits a few cells.
 
 use crate::analysis::{outside_theiler_window, require_positive, rescale_unit, standard_deviation};
 use crate::error::AnalysisError;
 
-/// Largest embedding dimension supported (kd-trees are built for a compile-time dimension).
+/// Largest embedding dimension supported (distances are unrolled for a compile-time dimension).
 pub const MAX_DIMENSION: usize = 12;
 
 /// Options of [`false_nearest_neighbors`].
@@ -145,7 +149,7 @@ pub fn false_nearest_neighbors(
     };
     // nearest neighbour of each reference in the previous dimension: its distance in the next
     // dimension bounds the new nearest-neighbour distance from above (max norm), which
-    // shrinks the kd-tree search radius
+    // shrinks the search radius
     let mut prev: Vec<u32> = vec![NONE; setup.n_ref];
     (opts.m_min..=opts.m_max)
         .map(|m| fnn_in_dimension(&setup, m, &mut prev))
@@ -250,7 +254,7 @@ fn fnn_in_dimension(setup: &Setup, m: usize, prev: &mut [u32]) -> Result<FnnPoin
     macro_rules! dispatch {
         ($($k:literal),*) => {
             match m {
-                $($k => fnn_k::<$k>(setup, prev),)*
+                $($k => Ok(fnn_k::<$k>(setup, prev)),)*
                 _ => Err(AnalysisError::bad("m", m, format!("1..={MAX_DIMENSION}"))),
             }
         };
@@ -258,69 +262,232 @@ fn fnn_in_dimension(setup: &Setup, m: usize, prev: &mut [u32]) -> Result<FnnPoin
     dispatch!(1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12)
 }
 
-fn fnn_k<const K: usize>(setup: &Setup, prev: &mut [u32]) -> Result<FnnPoint, AnalysisError> {
-    let tau = setup.tau;
-    let s = setup.s;
-    let point = |i: usize| -> [f64; K] { std::array::from_fn(|k| s[i + k * tau]) };
-    let cands: Vec<[f64; K]> = (0..setup.n_cand).map(point).collect();
-    let tree: ImmutableKdTree<f64, K> = ImmutableKdTree::new_from_slice(&cands)
-        .map_err(|e| AnalysisError::NoResult(format!("kd-tree construction failed: {e:?}")))?;
+fn fnn_k<const K: usize>(setup: &Setup, prev: &mut [u32]) -> FnnPoint {
+    let grid = Grid::<K>::new(setup);
+    // Queries in the grid's cell order (neighbouring queries read the same cells: cache
+    // friendly); results are stored per n and tallied in n order (sums as in a plain loop).
+    let mut dist = vec![0.0f64; setup.n_ref];
+    let mut query = |n: usize, q: [f64; K]| {
+        let found = nearest(&grid, setup, n, q, prev[n]);
+        prev[n] = found.map_or(NONE, |(j, _)| j);
+        dist[n] = found.map_or(0.0, |(_, d)| d);
+    };
+    for (p, &n) in grid.points.iter().zip(&grid.index) {
+        query(n as usize, *p);
+    }
+    for n in setup.n_cand..setup.n_ref {
+        query(n, std::array::from_fn(|k| setup.s[n + k * setup.tau]));
+    }
     let mut tally = Tally::default();
-    // Enough candidates to step over the Theiler window and the point itself.
-    let k_start = (2 * setup.theiler + 2).min(setup.n_cand).max(1);
-    for (n, prev_n) in prev.iter_mut().enumerate().take(setup.n_ref) {
-        let q = point(n);
-        let bound = match *prev_n {
-            NONE => setup.max_dist,
-            j => {
-                let pj = point(j as usize);
-                let d = q
-                    .iter()
-                    .zip(&pj)
-                    .fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
-                d.min(setup.max_dist)
-            }
-        };
-        *prev_n = NONE;
-        if let Some((j, dist)) = nearest_valid(&tree, &q, n, setup, k_start, bound) {
-            *prev_n = j as u32;
-            if dist <= setup.max_dist {
-                tally.add(setup, K, n, j, dist);
-            }
+    for (n, (&j, &d)) in prev.iter().zip(&dist).enumerate() {
+        if j != NONE {
+            tally.add(setup, K, n, j as usize, d);
         }
     }
-    Ok(tally.finish(K, setup.range))
+    tally.finish(K, setup.range)
 }
 
-/// Nearest candidate j of reference n with |n − j| > w and distance in (0, bound]
-/// (max norm). Grows k until one is found or all candidates within `bound` are exhausted.
-fn nearest_valid<const K: usize>(
-    tree: &ImmutableKdTree<f64, K>,
-    q: &[f64; K],
-    n: usize,
-    setup: &Setup,
-    k_start: usize,
-    bound: f64,
-) -> Option<(usize, f64)> {
-    let mut k = k_start;
-    loop {
-        let found = tree
-            .query(q)
-            .nearest_n::<Chebyshev<f64>>(NonZero::new(k)?)
-            .within(bound)
-            .execute();
-        let exhausted = found.len() < k;
-        if let Some(hit) = found
-            .iter()
-            .find(|r| r.distance > 0.0 && outside_theiler_window(n, r.item as usize, setup.theiler))
-        {
-            return Some((hit.item as usize, hit.distance));
+/// Box-assisted search structure (as TISEAN's): the candidates sorted by the cell of their
+/// first and last coordinates `(s_j, s_{j+(K−1)τ})` on a `g1 × g2` grid over [0, 1]² (the
+/// first coordinate only, `g2 = 1`, for K = 1), column-major, so that the cells of one
+/// column form one contiguous run. The delay vectors are stored in that order (contiguous
+/// reads while scanning a run).
+struct Grid<const K: usize> {
+    g1: usize,
+    g2: usize,
+    /// `start[c]..start[c + 1]`: the candidates of cell `c = cx·g2 + cy`.
+    start: Vec<u32>,
+    /// Delay vectors of the candidates, in cell order.
+    points: Vec<[f64; K]>,
+    /// Index j of each of them.
+    index: Vec<u32>,
+    /// Position of candidate j in cell order (inverse of `index`).
+    pos: Vec<u32>,
+}
+
+/// Cell of a rescaled coordinate `v ∈ [0, 1]` on a grid of `g` cells (monotone in `v`).
+fn cell(v: f64, g: usize) -> usize {
+    ((v * g as f64) as usize).min(g - 1)
+}
+
+impl<const K: usize> Grid<K> {
+    fn new(setup: &Setup) -> Self {
+        let n = setup.n_cand;
+        // a few candidates per occupied cell (the attractor covers part of the square)
+        let (g1, g2) = if K == 1 {
+            (n.max(1), 1)
+        } else {
+            let g = ((n as f64).sqrt().ceil() as usize).clamp(1, 1 << 12);
+            (g, g)
+        };
+        let (s, tau) = (setup.s, setup.tau);
+        let point = |j: usize| -> [f64; K] { std::array::from_fn(|k| s[j + k * tau]) };
+        let key = |p: &[f64; K]| cell(p[0], g1) * g2 + cell(p[K - 1], g2);
+        let mut start = vec![0u32; g1 * g2 + 1];
+        for j in 0..n {
+            start[key(&point(j)) + 1] += 1;
         }
-        if exhausted || k >= setup.n_cand {
-            return None;
+        for c in 0..g1 * g2 {
+            start[c + 1] += start[c];
         }
-        k = (2 * k).min(setup.n_cand);
+        let mut fill = start.clone();
+        let mut points = vec![[0.0; K]; n];
+        let mut index = vec![0u32; n];
+        let mut pos = vec![0u32; n];
+        for (j, pos_j) in pos.iter_mut().enumerate() {
+            let p = point(j);
+            let c = key(&p);
+            let at = fill[c] as usize;
+            points[at] = p;
+            index[at] = j as u32;
+            *pos_j = at as u32;
+            fill[c] += 1;
+        }
+        Self {
+            g1,
+            g2,
+            start,
+            points,
+            index,
+            pos,
+        }
     }
+
+    /// Positions (in cell order) of the candidates of the cells `cx × (cy0..=cy1)`.
+    fn run(&self, cx: usize, cy0: usize, cy1: usize) -> std::ops::Range<usize> {
+        self.start[cx * self.g2 + cy0] as usize..self.start[cx * self.g2 + cy1 + 1] as usize
+    }
+}
+
+/// The best neighbour found so far and the current search bound.
+struct Search<'a, const K: usize> {
+    q: [f64; K],
+    n: usize,
+    w: usize,
+    /// Current bound on the distance (σ/R_t, then the best distance).
+    r: f64,
+    best: Option<(u32, f64)>,
+    grid: &'a Grid<K>,
+}
+
+impl<const K: usize> Search<'_, K> {
+    /// Max-norm distance from the query to `p`, or `None` beyond the bound (early exit).
+    fn distance(&self, p: &[f64; K]) -> Option<f64> {
+        let mut d = 0.0f64;
+        for (a, b) in self.q.iter().zip(p) {
+            d = d.max((a - b).abs());
+            if d > self.r {
+                return None;
+            }
+        }
+        Some(d)
+    }
+
+    /// Takes candidate j at point p if it is admissible and beats the best `(distance, j)`.
+    fn consider(&mut self, j: u32, p: &[f64; K]) {
+        if !outside_theiler_window(self.n, j as usize, self.w) {
+            return;
+        }
+        if let Some(d) = self.distance(p) {
+            let better = d > 0.0
+                && match self.best {
+                    None => true,
+                    Some((bj, bd)) => d < bd || (d == bd && j < bj),
+                };
+            if better {
+                self.best = Some((j, d));
+                self.r = d;
+            }
+        }
+    }
+
+    /// [`Search::consider`] for candidate j (`j < n_cand`).
+    fn consider_index(&mut self, j: usize) {
+        let p = self.grid.points[self.grid.pos[j] as usize];
+        self.consider(j as u32, &p);
+    }
+
+    /// Scans the candidates at positions `range` of the grid (box test on the first and
+    /// last coordinates first).
+    fn scan(&mut self, range: std::ops::Range<usize>) {
+        let grid = self.grid;
+        let (qx, qy) = (self.q[0], self.q[K - 1]);
+        for (p, &j) in grid.points[range.clone()].iter().zip(&grid.index[range]) {
+            if (p[0] - qx).abs() <= self.r && (p[K - 1] - qy).abs() <= self.r {
+                self.consider(j, p);
+            }
+        }
+    }
+}
+
+/// The nearest candidate of reference `n` (delay vector `q`) in the max norm, ties to the smallest index:
+/// the minimum of `(distance, j)` over `j < n_cand` with `|n − j| > w` and distance in
+/// `(0, σ/R_t]` (neighbours farther than σ/R_t are never accepted, so the search stops
+/// there). `seed` (the neighbour of the previous dimension) and the nearest indices outside
+/// the Theiler window give the first bound on the distance; the grid scan is exact.
+fn nearest<const K: usize>(
+    grid: &Grid<K>,
+    setup: &Setup,
+    n: usize,
+    q: [f64; K],
+    seed: u32,
+) -> Option<(u32, f64)> {
+    let w = setup.theiler;
+    let mut sr = Search {
+        q,
+        n,
+        w,
+        r: setup.max_dist,
+        best: None,
+        grid,
+    };
+    if seed != NONE {
+        sr.consider_index(seed as usize);
+    }
+    if n > w && n - w - 1 < setup.n_cand {
+        sr.consider_index(n - w - 1);
+    }
+    if n + w + 1 < setup.n_cand {
+        sr.consider_index(n + w + 1);
+    }
+    let (g1, g2) = (grid.g1, grid.g2);
+    let (qx, qy) = (sr.q[0], sr.q[K - 1]);
+    let (cx_q, cy_q) = (cell(qx, g1), cell(qy, g2));
+    // rings of cells at Chebyshev cell distance d around the query's cell, nearest first,
+    // so that the bound shrinks early; only cells inside the current bound's box are read
+    for d in 0..g1.max(g2) {
+        let r = sr.r;
+        let (lo, hi) = (cell((qx - r).max(0.0), g1), cell((qx + r).min(1.0), g1));
+        let (ylo, yhi) = (cell((qy - r).max(0.0), g2), cell((qy + r).min(1.0), g2));
+        if d == 0 {
+            sr.scan(grid.run(cx_q, cy_q, cy_q));
+            continue;
+        }
+        let left = cx_q.checked_sub(d).filter(|&c| c >= lo);
+        let right = Some(cx_q + d).filter(|&c| c <= hi);
+        let below = cy_q.checked_sub(d).filter(|&c| c >= ylo);
+        let above = Some(cy_q + d).filter(|&c| c <= yhi);
+        if left.is_none() && right.is_none() && below.is_none() && above.is_none() {
+            break;
+        }
+        // columns cx_q ± d, rows strictly inside the ring (one contiguous run each)
+        let (c0, c1) = (
+            (cy_q + 1).saturating_sub(d).max(ylo),
+            (cy_q + d).min(yhi + 1),
+        );
+        for cx in [left, right].into_iter().flatten() {
+            if c0 < c1 {
+                sr.scan(grid.run(cx, c0, c1 - 1));
+            }
+        }
+        // rows cy_q ± d, columns across the ring (corners included)
+        for cy in [below, above].into_iter().flatten() {
+            for cx in cx_q.saturating_sub(d).max(lo)..=(cx_q + d).min(hi) {
+                sr.scan(grid.run(cx, cy, cy));
+            }
+        }
+    }
+    sr.best
 }
 
 #[cfg(test)]

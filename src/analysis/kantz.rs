@@ -11,8 +11,16 @@
 //! coordinate differences `e_t = (s_{i+t} − s_{j+t})²` are computed once and reused for all
 //! m (`‖y_{i+Δn} − y_{j+Δn}‖²_m = Σ_{k<m} e_{Δn+kτ}`) and all ε (a pair is summed into the
 //! bin of the smallest ε that contains it, bins are then accumulated over increasing ε).
+//! The logarithms are not taken per reference: within a chunk the per-reference sums are
+//! multiplied into running products (mantissa + binary exponent), `Σ ln(a/c) = ln Π a − Σ ln c`,
+//! one logarithm per (m, ε, Δn) and chunk; pairs at distance exactly 0 and sums outside
+//! [2^-100, 2^100] take an exact direct path. The pair loops are contiguous and vectorise.
 //! References are processed in fixed chunks in parallel (rayon) and combined in chunk order,
 //! so results do not depend on the thread count.
+//!
+//! Cost: the kd-tree search is O(N log N); the accumulation is O(pairs · steps · m), and at a
+//! fixed ε the number of neighbour pairs grows as N² (each reference has ∝ N neighbours), as
+//! in TISEAN's `lyap_k`.
 
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use rayon::prelude::*;
@@ -276,6 +284,14 @@ impl Job<'_> {
     fn total_len(&self) -> usize {
         self.n_dims() * self.eps2.len() * self.len()
     }
+    /// Factor of the logarithm: ½ for TISEAN's log of the RMS distance, 1 otherwise.
+    fn half(&self) -> f64 {
+        if self.opts.definition == KantzDefinition::TiseanRms {
+            0.5
+        } else {
+            1.0
+        }
+    }
 }
 
 /// Sums of ln-terms and reference counts, laid out [dim][eps][Δn].
@@ -301,18 +317,106 @@ impl Totals {
     }
 }
 
+/// Running products of one chunk's per-reference sums, so that the logarithm is taken once
+/// per chunk instead of once per reference: `Σ_r ln(a_r/c_r) = ln Π_r a_r − Σ_r ln c_r`.
+/// A product is kept as a mantissa `p` and a binary exponent `exp2` (value `p·2^exp2`);
+/// `p` is renormalised to [1, 2) after every [`RENORM_EVERY`] factors, and only factors in
+/// [`PROD_LO`, `PROD_HI`] enter it (others take the direct path), so it never leaves the
+/// normal f64 range. Rounding: ~1e-16 relative per factor, as for a sum of logarithms.
+struct Products {
+    /// Mantissa products, [row][Δn] (row = dimension slot × ε).
+    p: Vec<f64>,
+    /// Binary exponents taken out of `p`, same layout.
+    exp2: Vec<i64>,
+    /// Factors multiplied into each row since its last renormalisation.
+    since: Vec<u32>,
+    /// Σ ln c_r of the references in each row's product (c_r: neighbour count, the same
+    /// at every Δn for these references).
+    ln_count: Vec<f64>,
+    /// Number of references in each row's product.
+    refs: Vec<u64>,
+}
+
+/// Smallest factor admitted to a running product (2^-100).
+const PROD_LO: f64 = 7.888_609_052_210_118e-31;
+/// Largest factor admitted to a running product (2^100).
+const PROD_HI: f64 = 1.267_650_600_228_229_4e30;
+/// Renormalise a product after this many factors: 8 factors in [2^-100, 2^100] times a
+/// mantissa in [1, 2) stay inside 2^±808.
+const RENORM_EVERY: u32 = 8;
+/// Mantissa bits of an f64.
+const MANTISSA: u64 = 0x000f_ffff_ffff_ffff;
+/// Bits of 1.0 (biased exponent 1023, zero mantissa).
+const ONE_BITS: u64 = 0x3ff0_0000_0000_0000;
+
+impl Products {
+    fn new(rows: usize, len: usize) -> Self {
+        Self {
+            p: vec![1.0; rows * len],
+            exp2: vec![0; rows * len],
+            since: vec![0; rows],
+            ln_count: vec![0.0; rows],
+            refs: vec![0; rows],
+        }
+    }
+
+    /// Multiplies the factors `a` (all in [PROD_LO, PROD_HI]) of one reference with `c`
+    /// neighbours into row `r`.
+    fn multiply(&mut self, r: usize, a: &[f64], c: u32) {
+        let len = a.len();
+        let p = &mut self.p[r * len..(r + 1) * len];
+        for (x, y) in p.iter_mut().zip(a) {
+            *x *= y;
+        }
+        self.ln_count[r] += f64::from(c).ln();
+        self.refs[r] += 1;
+        self.since[r] += 1;
+        if self.since[r] == RENORM_EVERY {
+            self.since[r] = 0;
+            let exp2 = &mut self.exp2[r * len..(r + 1) * len];
+            for (x, e) in p.iter_mut().zip(exp2) {
+                let b = x.to_bits();
+                *e += ((b >> 52) & 0x7ff) as i64 - 1023;
+                *x = f64::from_bits((b & MANTISSA) | ONE_BITS);
+            }
+        }
+    }
+
+    /// Adds `half·(ln Π a − Σ ln c)` and the reference counts to `totals`.
+    fn fold_into(&self, totals: &mut Totals, half: f64, len: usize) {
+        for (r, &refs) in self.refs.iter().enumerate() {
+            if refs == 0 {
+                continue;
+            }
+            let span = r * len..(r + 1) * len;
+            let (p, exp2) = (&self.p[span.clone()], &self.exp2[span.clone()]);
+            let (lyap, count) = (&mut totals.lyap[span.clone()], &mut totals.count[span]);
+            for t in 0..len {
+                let ln_prod = p[t].ln() + exp2[t] as f64 * std::f64::consts::LN_2;
+                lyap[t] += half * (ln_prod - self.ln_count[r]);
+                count[t] += refs;
+            }
+        }
+    }
+}
+
 /// Per-worker scratch buffers, allocated once per chunk.
 struct Scratch {
     /// Neighbour indices of the current reference.
     nb: Vec<u32>,
-    /// Squared distance diffs e_t of the current pair.
+    /// Squared coordinate differences e_t of the current pair.
     e: Vec<f64>,
-    /// Running squared distance of the current pair in the current dimension.
+    /// Squared distance of the current pair in the current dimension, per Δn.
     d: Vec<f64>,
-    /// Per-reference sums [dim][eps][Δn] (bin of the smallest ε containing the pair).
+    /// Per-reference sums [row][Δn] (bin of the smallest ε containing the pair).
     acc: Vec<f64>,
-    /// Per-reference neighbour counts with nonzero distance, same layout.
-    cnt: Vec<u32>,
+    /// Per-reference pair counts per row (same binning).
+    pairs: Vec<u32>,
+    /// Per-reference counts of pairs at distance exactly 0, [row][Δn]; kept only for the
+    /// dimension slots flagged in `zero_slot` (pairs with a repeated value: rare).
+    zeros: Vec<u32>,
+    /// Whether a pair of the current reference had an exactly repeated value, per slot.
+    zero_slot: Vec<bool>,
     /// Smallest ε bin of each dimension slot touched by the current reference.
     first_bin: Vec<usize>,
 }
@@ -352,15 +456,19 @@ fn chunk<const K: usize>(
 ) -> Totals {
     let o = job.opts;
     let span = o.steps + (o.m_max - 1) * o.tau;
+    let rows = job.n_dims() * job.eps2.len();
     let mut sc = Scratch {
         nb: Vec::with_capacity(256),
         e: vec![0.0; span + 1],
         d: vec![0.0; job.len()],
         acc: vec![0.0; job.total_len()],
-        cnt: vec![0; job.total_len()],
+        pairs: vec![0; rows],
+        zeros: vec![0; job.total_len()],
+        zero_slot: vec![false; job.n_dims()],
         first_bin: vec![usize::MAX; job.n_dims()],
     };
     let mut totals = Totals::new(job.total_len());
+    let mut products = Products::new(rows, job.len());
     // Query radius slightly above ε_max² so that kiddo's rounding cannot drop a pair that the
     // exact test below accepts; the test below is the definition.
     let r2 = job.eps2[job.eps2.len() - 1] * (1.0 + 1e-9);
@@ -379,13 +487,59 @@ fn chunk<const K: usize>(
             continue;
         }
         sc.nb.sort_unstable();
-        reference(job, i, &mut sc, &mut totals);
+        reference(job, i, &mut sc);
+        finish_reference(job, &mut sc, &mut products, &mut totals);
     }
+    products.fold_into(&mut totals, job.half(), job.len());
     totals
 }
 
-/// Adds the contribution of reference `i` (its neighbours are in `sc.nb`).
-fn reference(job: &Job, i: usize, sc: &mut Scratch, totals: &mut Totals) {
+/// `e_t = (a_t − b_t)²`; returns the number of exact zeros.
+fn squared_differences(a: &[f64], b: &[f64], e: &mut [f64]) -> usize {
+    let mut zeros = 0;
+    for ((e, x), y) in e.iter_mut().zip(a).zip(b) {
+        let v = (x - y) * (x - y);
+        *e = v;
+        zeros += usize::from(v == 0.0);
+    }
+    zeros
+}
+
+/// `d += e` (the pair's squared distance gains one coordinate, every Δn at once).
+fn extend(d: &mut [f64], e: &[f64]) {
+    for (x, y) in d.iter_mut().zip(e) {
+        *x += y;
+    }
+}
+
+/// `d += e` (unless `e` is empty) and `acc += d` (TISEAN: squared distances) or
+/// `acc += √d` (pdamp: distances), fused.
+fn extend_and_accumulate(d: &mut [f64], e: &[f64], acc: &mut [f64], tisean: bool) {
+    match (e.is_empty(), tisean) {
+        (true, true) => acc.iter_mut().zip(d.iter()).for_each(|(a, x)| *a += x),
+        (true, false) => acc
+            .iter_mut()
+            .zip(d.iter())
+            .for_each(|(a, x)| *a += x.sqrt()),
+        (false, true) => {
+            for ((x, y), a) in d.iter_mut().zip(e).zip(acc) {
+                let v = *x + y;
+                *x = v;
+                *a += v;
+            }
+        }
+        (false, false) => {
+            for ((x, y), a) in d.iter_mut().zip(e).zip(acc) {
+                let v = *x + y;
+                *x = v;
+                *a += v.sqrt();
+            }
+        }
+    }
+}
+
+/// Bins the pairs of reference `i` (its neighbours are in `sc.nb`) into `sc.acc`/`sc.pairs`.
+fn reference(job: &Job, i: usize, sc: &mut Scratch) {
     let o = job.opts;
     let s = job.s;
     let (tau, len) = (o.tau, job.len());
@@ -393,6 +547,7 @@ fn reference(job: &Job, i: usize, sc: &mut Scratch, totals: &mut Totals) {
     let eps2_max = job.eps2[n_eps - 1];
     let tisean = o.definition == KantzDefinition::TiseanRms;
     sc.first_bin.fill(usize::MAX);
+    sc.zero_slot.fill(false);
     for idx in 0..sc.nb.len() {
         let j = sc.nb[idx] as usize;
         // Squared distance in dimension m, extended coordinate by coordinate (TISEAN order).
@@ -411,21 +566,20 @@ fn reference(job: &Job, i: usize, sc: &mut Scratch, totals: &mut Totals) {
         }
         // e_t for t = 0 ..= steps + (m_top−1)τ
         let t_max = o.steps + (m_top - 1) * tau;
-        for t in 0..=t_max {
-            let dt = s[i + t] - s[j + t];
-            sc.e[t] = dt * dt;
-        }
-        sc.d[..len].copy_from_slice(&sc.e[..len]);
-        let mut d2 = sc.e[0];
+        let e = &mut sc.e[..=t_max];
+        let has_zero = squared_differences(&s[i..=i + t_max], &s[j..=j + t_max], e) > 0;
+        let e = &sc.e[..=t_max];
+        sc.d.copy_from_slice(&e[..len]);
+        // the same additions in the same order as a direct sum over k (bitwise equal)
+        let mut d2 = e[0];
         for m in 1..=m_top {
+            let off = (m - 1) * tau;
+            let shifted: &[f64] = if m > 1 { &e[off..off + len] } else { &[] };
             if m > 1 {
-                let off = (m - 1) * tau;
-                d2 += sc.e[off];
-                for (dv, ev) in sc.d.iter_mut().zip(&sc.e[off..off + len]) {
-                    *dv += ev;
-                }
+                d2 += e[off];
             }
             if m < o.m_min {
+                extend(&mut sc.d, shifted);
                 continue;
             }
             // smallest ε containing this pair in dimension m
@@ -435,55 +589,77 @@ fn reference(job: &Job, i: usize, sc: &mut Scratch, totals: &mut Totals) {
             }
             let slot = m - o.m_min;
             sc.first_bin[slot] = sc.first_bin[slot].min(l0);
-            let row = job.row(slot, l0);
-            let acc = &mut sc.acc[row..row + len];
-            let cnt = &mut sc.cnt[row..row + len];
-            if tisean {
-                // branch-free (vectorises): a zero distance adds 0 to the sum and 0 to the count
-                for ((a, c), &dv) in acc.iter_mut().zip(cnt.iter_mut()).zip(&sc.d[..len]) {
-                    *a += dv;
-                    *c += u32::from(dv > 0.0);
-                }
-            } else {
-                for ((a, c), &dv) in acc.iter_mut().zip(cnt.iter_mut()).zip(&sc.d[..len]) {
-                    *a += dv.sqrt();
-                    *c += u32::from(dv > 0.0);
+            let r = slot * n_eps + l0;
+            sc.pairs[r] += 1;
+            let acc = &mut sc.acc[r * len..(r + 1) * len];
+            extend_and_accumulate(&mut sc.d, shifted, acc, tisean);
+            if has_zero {
+                sc.zero_slot[slot] = true;
+                for (z, &dv) in sc.zeros[r * len..(r + 1) * len].iter_mut().zip(&sc.d) {
+                    *z += u32::from(dv == 0.0);
                 }
             }
         }
     }
-    // Accumulate bins over increasing ε, take logs, reset the scratch rows.
-    let half = if tisean { 0.5 } else { 1.0 };
+}
+
+/// Accumulates the bins of the current reference over increasing ε and adds its
+/// `ln(sum/count)` terms (through `products`, or directly), then clears the scratch rows.
+fn finish_reference(job: &Job, sc: &mut Scratch, products: &mut Products, totals: &mut Totals) {
+    let len = job.len();
+    let n_eps = job.eps2.len();
+    let half = job.half();
     for slot in 0..job.n_dims() {
         let l_first = sc.first_bin[slot];
         if l_first == usize::MAX {
             continue;
         }
+        let zero = sc.zero_slot[slot];
+        let mut c = 0u32;
         for l in l_first..n_eps {
-            let row = job.row(slot, l);
+            let r = slot * n_eps + l;
+            let row = r * len;
+            c += sc.pairs[r];
             if l > l_first {
-                let prev = job.row(slot, l - 1);
                 let (lo, hi) = sc.acc.split_at_mut(row);
-                for (h, p) in hi[..len].iter_mut().zip(&lo[prev..prev + len]) {
-                    *h += p;
-                }
-                let (lo, hi) = sc.cnt.split_at_mut(row);
-                for (h, p) in hi[..len].iter_mut().zip(&lo[prev..prev + len]) {
-                    *h += p;
+                extend(&mut hi[..len], &lo[row - len..]);
+                if zero {
+                    let (lo, hi) = sc.zeros.split_at_mut(row);
+                    for (h, p) in hi[..len].iter_mut().zip(&lo[row - len..]) {
+                        *h += p;
+                    }
                 }
             }
-            for t in 0..len {
-                let c = sc.cnt[row + t];
-                if c > 0 {
-                    totals.lyap[row + t] += half * (sc.acc[row + t] / c as f64).ln();
-                    totals.count[row + t] += 1;
+            let a = &sc.acc[row..row + len];
+            let (lyap, count) = (
+                &mut totals.lyap[row..row + len],
+                &mut totals.count[row..row + len],
+            );
+            if zero {
+                // exact per-Δn counts: pairs at distance 0 are skipped at that Δn
+                for (t, (&z, &at)) in sc.zeros[row..row + len].iter().zip(a).enumerate() {
+                    let ct = c - z;
+                    if ct > 0 {
+                        lyap[t] += half * (at / f64::from(ct)).ln();
+                        count[t] += 1;
+                    }
+                }
+            } else if a.iter().all(|&v| (PROD_LO..=PROD_HI).contains(&v)) {
+                products.multiply(r, a, c);
+            } else {
+                for (t, &at) in a.iter().enumerate() {
+                    lyap[t] += half * (at / f64::from(c)).ln();
+                    count[t] += 1;
                 }
             }
         }
         for l in l_first..n_eps {
-            let row = job.row(slot, l);
-            sc.acc[row..row + len].fill(0.0);
-            sc.cnt[row..row + len].fill(0);
+            let r = slot * n_eps + l;
+            sc.acc[r * len..(r + 1) * len].fill(0.0);
+            sc.pairs[r] = 0;
+            if zero {
+                sc.zeros[r * len..(r + 1) * len].fill(0);
+            }
         }
     }
 }

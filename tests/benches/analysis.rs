@@ -8,6 +8,15 @@
 //! - `mutual` (no TISEAN timing given): `analysis/mi/{50000,200000}`, 16 bins, D = 20.
 //!
 //! Run: `cargo bench --bench analysis`.
+//!
+//! Measured 2026-11-22 (AMD EPYC, 1 thread, machine shared with other jobs; CPU times of the
+//! CLI with `taskset -c 0`, the same code paths):
+//! - kantz/50000: 2.59 s (criterion median; CLI 2.55 s user, before this tuning 5.57 s):
+//!   51 s / 2.6 s ≈ 20× TISEAN. At 200 000 points 38.0 s (before: 84.8 s): ×14.9 for ×4 data,
+//!   i.e. ∝ N² — at a fixed ε the neighbour pairs grow as N² (TISEAN's lyap_k alike); the
+//!   neighbour search itself is N log N.
+//! - fnn/200000: 0.73 s (criterion median; CLI 0.71 s user, before 1.56 s): 6.5 s / 0.73 s
+//!   ≈ 9× TISEAN; fnn/50000 0.165 s, ×4.4 for ×4 data (N log N: ×4.5).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use pdamp::analysis::kantz::{kantz, KantzOptions};
