@@ -126,10 +126,13 @@ impl Scene {
         self.damper.validate()?;
         self.run.validate()?;
         self.outputs.validate()?;
-        if self.primary.is_none() && matches!(self.damper, Damper::Dem(_) | Damper::Auto(_)) {
+        // A DEM box without [primary] moves kinematically with the base (supported by the DEM
+        // run); `kind = "auto"` compares against the primary's response, so it needs one.
+        if self.primary.is_none() && matches!(self.damper, Damper::Auto(_)) {
             return Err(SceneError::Missing {
                 field: "primary".into(),
-                hint: "the DEM damper needs a [primary] table (mass, stiffness, damping)".into(),
+                hint: "damper.kind = \"auto\" needs a [primary] table (mass, stiffness, damping)"
+                    .into(),
             });
         }
         self.check_not_undamped_resonance()?;

@@ -54,7 +54,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             p.mass, p.gap, p.restitution
         ),
         Damper::Dem(d) => println!("damper: dem, {} grains, box {:?} m", d.count, d.r#box),
-        Damper::Auto(_) => println!("damper: {}", crate::tradeoff::auto::describe(&crate::tradeoff::choose(&scene)?)),
+        Damper::Auto(_) => println!(
+            "damper: {}",
+            crate::tradeoff::auto::describe(&crate::tradeoff::choose(&scene)?)
+        ),
     }
     Ok(())
 }

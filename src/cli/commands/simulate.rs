@@ -49,6 +49,15 @@ pub(crate) fn load_scene(path: &Path, set: &[String]) -> anyhow::Result<LoadedSc
 /// Run `pdamp simulate`.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let (_, _, scene) = load_scene(&args.scene, &args.set)?;
+    // `kind = "auto"`: say which model and settings were chosen, and why (stderr + summary).
+    let auto_choice = match &scene.damper {
+        crate::scene::Damper::Auto(_) => {
+            let why = crate::tradeoff::auto::describe(&crate::tradeoff::choose(&scene)?);
+            eprintln!("{why}");
+            Some(why)
+        }
+        _ => None,
+    };
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
     let mut csv = CsvRecorder::create(&args.out.join("series.csv"))?;
@@ -62,9 +71,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         &RunOptions::full_series(&scene),
         !args.no_analysis,
     )?;
-    write_outputs(&args.out, &scene, &summary)?;
+    write_outputs(&args.out, &scene, &summary, auto_choice)?;
     println!(
-        "{}: f = {} Hz, amplitude Z = {:.6e} m{}, impacts/cycle = {:.4}, energy balance residual = {}",
+        "{}: f = {} Hz, amplitude Z = {:.6e} m{}, impacts/cycle = {}, energy balance residual = {}",
         summary.model,
         summary.frequency_hz,
         summary.amplitude_m,
@@ -72,7 +81,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .reference_amplitude_m
             .map(|r| format!(" (primary alone: {r:.6e} m)"))
             .unwrap_or_default(),
-        summary.impacts_per_cycle,
+        if summary.impacts_per_cycle.is_finite() {
+            format!("{:.4}", summary.impacts_per_cycle)
+        } else {
+            "n/a (not counted for DEM)".into()
+        },
         summary
             .energy_balance_relative_error
             .map(|e| format!("{e:.2e}"))
@@ -82,8 +95,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn write_outputs(out: &Path, scene: &Scene, summary: &RunSummary) -> anyhow::Result<()> {
-    let json = serde_json::to_string_pretty(summary)?;
+fn write_outputs(
+    out: &Path,
+    scene: &Scene,
+    summary: &RunSummary,
+    auto_choice: Option<String>,
+) -> anyhow::Result<()> {
+    let mut value = serde_json::to_value(summary)?;
+    if let (Some(why), Some(obj)) = (auto_choice, value.as_object_mut()) {
+        obj.insert("auto_choice".into(), serde_json::Value::String(why));
+    }
+    let json = serde_json::to_string_pretty(&value)?;
     crate::sweep::runner::atomic_write(&out.join("summary.json"), json.as_bytes())?;
     let mut strobe = String::from("cycle,time_s,grain_z_m,box_z_m\n");
     for p in &summary.strobe {
