@@ -265,3 +265,22 @@ fn cli_reports_the_key() {
     let (ok, _) = pdamp(&["check-scene", good.to_str().unwrap()]);
     assert!(ok);
 }
+
+/// A DEM box without `[primary]` moves kinematically with the base (issue 4); `kind = "auto"`
+/// compares against the primary's response, so without `[primary]` it is refused naming the key.
+#[test]
+fn kinematic_dem_is_accepted_and_auto_needs_a_primary() {
+    let soft = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/data/scenes/thesis_b_soft.toml"
+    ))
+    .unwrap();
+    let start = soft.find("[primary]").unwrap();
+    let end = soft.find("[excitation]").unwrap();
+    let kinematic = format!("{}{}", &soft[..start], &soft[end..]);
+    let scene = Scene::from_toml(&kinematic).expect("kinematic DEM scene");
+    assert!(scene.primary.is_none());
+    let auto = kinematic.replace("kind = \"dem\"", "kind = \"auto\"");
+    let err = Scene::from_toml(&auto).unwrap_err().to_string();
+    assert!(err.contains("primary"), "{err}");
+}
