@@ -270,13 +270,6 @@ fn impact_frf_sweep(ctx: &Ctx, s: &Settings, e: f64) -> Result<SweepResult, Stud
     )
 }
 
-fn list(v: &[f64]) -> String {
-    v.iter()
-        .map(|x| x.to_string())
-        .collect::<Vec<_>>()
-        .join(",")
-}
-
 fn impact_gap_grid(ctx: &Ctx, s: &Settings, e: f64) -> Result<SweepResult, StudyError> {
     ctx.sweep_split(
         &format!("impact_gap_grid_e{e}"),

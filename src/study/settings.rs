@@ -298,10 +298,14 @@ impl Settings {
                         "dem" => {
                             diff(
                                 "grain Young's modulus",
-                                format!(
-                                    "E/{} with γ scaled by {}^-0.6 (same e(v))",
-                                    d.soften, d.soften
-                                ),
+                                if d.soften == fd.soften {
+                                    format!("E/{}", d.soften)
+                                } else {
+                                    format!(
+                                        "E/{} with γ scaled by {}^-0.6 (same e(v))",
+                                        d.soften, d.soften
+                                    )
+                                },
                                 format!("E/{}", fd.soften),
                             );
                             diff(
