@@ -851,10 +851,18 @@ fn per_frequency(ctx: &Ctx, s: &Settings, f: f64) -> Result<Vec<FigureRecord>, S
     Ok(out)
 }
 
-fn regime_frf(ctx: &Ctx, s: &Settings, sw: &SweepResult) -> Result<FigureRecord, StudyError> {
-    let name = "regime_frf";
+/// Frequency, a second column, regime and Lyapunov exponent of a sweep, also written to
+/// `NAME.csv` (`frequency_hz,<y_header>,regime,mle_per_s`) next to the figure.
+#[allow(clippy::type_complexity)]
+fn regime_columns(
+    ctx: &Ctx,
+    name: &str,
+    sw: &SweepResult,
+    y_column: &str,
+    y_header: &str,
+) -> Result<(Vec<f64>, Vec<f64>, Vec<String>, Vec<Option<f64>>), StudyError> {
     let f = col(name, &sw.table, "frequency_hz")?;
-    let z = col(name, &sw.table, "amplitude_m")?;
+    let y = col(name, &sw.table, y_column)?;
     let regime = sw
         .table
         .str_column("regime")
@@ -863,17 +871,23 @@ fn regime_frf(ctx: &Ctx, s: &Settings, sw: &SweepResult) -> Result<FigureRecord,
         .table
         .opt_f64_column("mle_per_s")
         .map_err(|e| StudyError::step(name, e))?;
-    let mut text = String::from("frequency_hz,amplitude_m,regime,mle_per_s\n");
+    let mut text = format!("frequency_hz,{y_header},regime,mle_per_s\n");
     for i in 0..f.len() {
         text += &format!(
             "{},{},{},{}\n",
             f[i],
-            z[i],
+            y[i],
             regime[i],
             mle[i].map(|m| m.to_string()).unwrap_or_default()
         );
     }
     ctx.write_text(&format!("{name}.csv"), &text)?;
+    Ok((f, y, regime, mle))
+}
+
+fn regime_frf(ctx: &Ctx, s: &Settings, sw: &SweepResult) -> Result<FigureRecord, StudyError> {
+    let name = "regime_frf";
+    let (f, z, regime, mle) = regime_columns(ctx, name, sw, "amplitude_m", "amplitude_m")?;
     let size = ctx.render(
         name,
         &RegimeFrfFigure {
@@ -947,27 +961,7 @@ fn regime_map(ctx: &Ctx, s: &Settings) -> Result<FigureRecord, StudyError> {
         &[("excitation.frequency", s.map_freq.vary())],
         true,
     )?;
-    let f = col(name, &sw.table, "frequency_hz")?;
-    let g = col(name, &sw.table, "damper.gap")?;
-    let regime = sw
-        .table
-        .str_column("regime")
-        .map_err(|e| StudyError::step(name, e))?;
-    let mle = sw
-        .table
-        .opt_f64_column("mle_per_s")
-        .map_err(|e| StudyError::step(name, e))?;
-    let mut text = String::from("frequency_hz,gap_m,regime,mle_per_s\n");
-    for i in 0..f.len() {
-        text += &format!(
-            "{},{},{},{}\n",
-            f[i],
-            g[i],
-            regime[i],
-            mle[i].map(|m| m.to_string()).unwrap_or_default()
-        );
-    }
-    ctx.write_text(&format!("{name}.csv"), &text)?;
+    let (f, g, regime, mle) = regime_columns(ctx, name, &sw, "damper.gap", "gap_m")?;
     let size = ctx.render(
         name,
         &RegimeMapFigure {
