@@ -23,6 +23,11 @@ use crate::analysis::regime::{
 use crate::analysis::spectrum::{
     check_finite, line_power_fraction, power_spectrum, spectral_lines, LineOptions, SpectrumOptions,
 };
+use crate::analysis::regime::{classify_forced, Exponent, ForcedEvidence};
+use crate::analysis::section::{analyze_section, SectionAnalysis, SectionOptions};
+use crate::analysis::section_lyapunov::{
+    section_lyapunov, SectionLyapunov, SectionLyapunovOptions,
+};
 use crate::analysis::zero_one_test::{zero_one_test, ZeroOneOptions};
 use crate::error::AnalysisError;
 use serde::Serialize;
@@ -152,6 +157,27 @@ pub struct AnalysisReport {
     pub zero_one_samples: Option<usize>,
     /// FNN fraction per dimension (m, fraction), `None` where no neighbour was accepted.
     pub fnn_fractions: Vec<(usize, Option<f64>)>,
+    /// The stroboscopic section's pattern test (forced systems).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub section: Option<SectionAnalysis>,
+    /// Where the section came from: `exact` (the simulator's state at t = kT) or
+    /// `interpolated` (cubic interpolation of the given series in delay coordinates).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub section_source: Option<&'static str>,
+    /// Exponent of the stroboscopic map estimated from the data (section divergence), per
+    /// second, with its standard error.
+    pub data_mle_per_s: Option<f64>,
+    /// Standard error of `data_mle_per_s`.
+    pub data_mle_stderr_per_s: Option<f64>,
+    /// Exponent from the model's equations (tangent dynamics), per second, when known.
+    pub model_mle_per_s: Option<f64>,
+    /// Standard error of `model_mle_per_s`.
+    pub model_mle_stderr_per_s: Option<f64>,
+    /// The section exponent's curves S(ε, Δ) and fits.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub section_exponent: Option<SectionLyapunov>,
+    /// Sampling interval of the series analysed (s), after any decimation.
+    pub series_dt_s: Option<f64>,
     /// All evidence given to the classifier.
     pub evidence: Evidence,
     /// Fallbacks taken and estimators that could not run.
@@ -250,6 +276,14 @@ pub fn analyze_series(x: &[f64], opts: &AnalyzeOptions) -> Result<AnalysisReport
         zero_one_k: None,
         zero_one_samples: None,
         fnn_fractions: Vec::new(),
+        section: None,
+        section_source: None,
+        data_mle_per_s: None,
+        data_mle_stderr_per_s: None,
+        model_mle_per_s: None,
+        model_mle_stderr_per_s: None,
+        section_exponent: None,
+        series_dt_s: opts.dt_s,
         evidence: Evidence::default(),
         notes: Vec::new(),
     };
@@ -383,6 +417,178 @@ pub fn analyze_series(x: &[f64], opts: &AnalyzeOptions) -> Result<AnalysisReport
     report.evidence = evidence;
     report.notes = notes;
     Ok(report)
+}
+
+/// A forced run as the simulators deliver it: the steady-state series of the observed
+/// coordinate and the exact stroboscopic section of the state.
+#[derive(Debug, Clone, Copy)]
+pub struct ForcedRun<'a> {
+    /// Steady-state series of the observed coordinate (e.g. grain z, m), evenly sampled; may be
+    /// empty (then no spectrum is reported).
+    pub series: &'a [f64],
+    /// Sampling interval of `series` (s).
+    pub dt_s: f64,
+    /// Forcing frequency f (Hz).
+    pub forcing_hz: f64,
+    /// Exact section states s(kT), one row per forcing period of the steady window, in order.
+    pub section: &'a [Vec<f64>],
+    /// Extent of each section coordinate along the continuous trajectory (units of the rows).
+    pub scales: &'a [f64],
+    /// The exponent computed from the model's equations, when the simulator has one.
+    pub model_exponent: Option<Exponent>,
+}
+
+/// Returns the regime of a forced run judged from its exact stroboscopic section first, with
+/// the data exponent of the section and, when given, the model's exponent beside it.
+///
+/// # Formula
+/// 1. Section pattern ([`analyze_section`]): periodic-n (exact or with noise), an invariant
+///    circle, or a cloud; fewer than 48 points → `too-short`.
+/// 2. Data exponent ([`section_lyapunov`], (4.1.7) on the section states) unless the section is
+///    a finite set of points.
+/// 3. [`classify_forced`]: the model exponent decides chaos when known; otherwise the data
+///    exponent with the section's determinism ratio.
+/// 4. Spectrum of the series (lines, line power) as supporting evidence only.
+///
+/// # Units
+/// Exponents per second (`*_per_s`) and per forcing period inside `section_exponent`.
+///
+/// # Errors
+/// Bad section rows or scales (see [`analyze_section`]); `forcing_hz` or `dt_s` not positive.
+pub fn analyze_forced(run: &ForcedRun<'_>, opts: &AnalyzeOptions) -> Result<AnalysisReport, AnalysisError> {
+    if !(run.forcing_hz.is_finite() && run.forcing_hz > 0.0) {
+        return Err(AnalysisError::bad("forcing_hz", run.forcing_hz, "must be > 0 Hz"));
+    }
+    if !(run.dt_s.is_finite() && run.dt_s > 0.0) {
+        return Err(AnalysisError::bad("dt", run.dt_s, "must be > 0 s"));
+    }
+    let mut report = empty_report(run.series.len(), Some(run.dt_s));
+    report.series_dt_s = Some(run.dt_s);
+    let mut evidence = Evidence {
+        forcing_period_samples: Some(1.0 / (run.forcing_hz * run.dt_s)),
+        ..Default::default()
+    };
+    let x = run.series;
+    if x.len() >= MIN_SAMPLES && x.iter().all(|v| v.is_finite()) {
+        let (lo, hi) = crate::analysis::min_max(x);
+        let range = hi - lo;
+        if range > 0.0 {
+            let z: Vec<f64> = x.iter().map(|v| (v - lo) / range).collect();
+            let sopts = AnalyzeOptions {
+                dt_s: Some(run.dt_s),
+                ..*opts
+            };
+            spectral_evidence(&z, &sopts, range, &mut evidence, &mut report)?;
+        }
+    }
+    let sec = analyze_section(run.section, run.scales, &SectionOptions::default())?;
+    section_verdict(
+        &mut report,
+        sec,
+        run.section,
+        run.scales,
+        run.forcing_hz,
+        run.model_exponent,
+        "exact",
+    );
+    report.evidence = evidence;
+    Ok(report)
+}
+
+/// Section exponent, classification and report fields from a section analysis.
+fn section_verdict(
+    report: &mut AnalysisReport,
+    sec: SectionAnalysis,
+    points: &[Vec<f64>],
+    scales: &[f64],
+    forcing_hz: f64,
+    model: Option<Exponent>,
+    source: &'static str,
+) {
+    use crate::analysis::section::SectionPattern as P;
+    let data = match sec.pattern {
+        P::Irregular | P::QuasiPeriodic { .. } => {
+            match section_lyapunov(points, scales, &SectionLyapunovOptions::default()) {
+                Ok(l) => Some(l),
+                Err(e) => {
+                    report.notes.push(format!("section exponent not computed: {e}"));
+                    None
+                }
+            }
+        }
+        _ => None,
+    };
+    let data_exp = data.as_ref().map(|l| Exponent {
+        per_period: l.per_period,
+        stderr_per_period: l.stderr_per_period,
+    });
+    let verdict = classify_forced(&ForcedEvidence {
+        section: &sec,
+        data_exponent: data_exp,
+        model_exponent: model,
+        zero_band: 0.01,
+    });
+    report.regime = verdict.regime;
+    report.period = verdict.period;
+    report.reason = verdict.reason;
+    report.poincare_section_points = Some(sec.n_points);
+    report.poincare_distinct_points = match sec.pattern {
+        P::Periodic { period, .. } => Some(period),
+        _ => None,
+    };
+    report.poincare_shape = Some(match sec.pattern {
+        P::Periodic { .. } => "points",
+        P::QuasiPeriodic { .. } => "closed-curve",
+        P::Irregular => "cloud",
+        P::TooShort { .. } => "too-few",
+    });
+    report.data_mle_per_s = data_exp.map(|d| d.per_period * forcing_hz);
+    report.data_mle_stderr_per_s = data_exp.map(|d| d.stderr_per_period * forcing_hz);
+    report.model_mle_per_s = model.map(|m| m.per_period * forcing_hz);
+    report.model_mle_stderr_per_s = model.map(|m| m.stderr_per_period * forcing_hz);
+    report.mle_per_time = report.data_mle_per_s;
+    if let (Some(l), Some(dt)) = (report.mle_per_time, report.series_dt_s) {
+        report.mle_per_sample = Some(l * dt);
+    }
+    report.section_source = Some(source);
+    report.section = Some(sec);
+    report.section_exponent = data;
+}
+
+/// A report with nothing decided yet.
+fn empty_report(n: usize, dt_s: Option<f64>) -> AnalysisReport {
+    AnalysisReport {
+        n_samples: n,
+        lag: None,
+        embedding_dim: None,
+        mle_per_sample: None,
+        mle_per_time: None,
+        mle_fit_r2: None,
+        regime: Regime::Undetermined,
+        period: None,
+        reason: String::new(),
+        spectral_lines: Vec::new(),
+        frequency_unit: if dt_s.is_some() { "hz" } else { "cycles/sample" },
+        line_power_fraction: 0.0,
+        poincare_distinct_points: None,
+        poincare_section_points: None,
+        poincare_shape: None,
+        closed_curve_score: None,
+        kantz_fit: None,
+        zero_one_k: None,
+        zero_one_samples: None,
+        fnn_fractions: Vec::new(),
+        section: None,
+        section_source: None,
+        data_mle_per_s: None,
+        data_mle_stderr_per_s: None,
+        model_mle_per_s: None,
+        model_mle_stderr_per_s: None,
+        section_exponent: None,
+        series_dt_s: dt_s,
+        evidence: Evidence::default(),
+        notes: Vec::new(),
+    }
 }
 
 /// Number of distinct values (exact equality) of a series.

@@ -15,6 +15,8 @@ pub mod mutual_information;
 pub mod optimum;
 pub mod poincare;
 pub mod regime;
+pub mod section;
+pub mod section_lyapunov;
 pub mod spectrum;
 pub mod zero_one_test;
 

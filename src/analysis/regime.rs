@@ -7,11 +7,12 @@
 //! harmonic line set ([`harmonic_fundamental`]), and the decision [`classify`].
 
 use crate::analysis::poincare::{SectionShape, SectionSummary};
+use crate::analysis::section::{SectionAnalysis, SectionPattern};
 use crate::analysis::spectrum::SpectralLine;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Dynamical regime of a series.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Regime {
     /// A periodic orbit (the period is reported separately).
@@ -22,13 +23,15 @@ pub enum Regime {
     Chaotic,
     /// Irregular without low-dimensional determinism (noise).
     Stochastic,
-    /// The evidence disagrees or is too weak (short series, transients).
+    /// The evidence disagrees (the reason says which indicators conflict).
     Undetermined,
+    /// The steady window is too short for a verdict (the reason gives the length needed).
+    TooShort,
 }
 
 impl Regime {
     /// The name used in JSON and CSV: `periodic`, `quasi-periodic`, `chaotic`, `stochastic`,
-    /// `undetermined`.
+    /// `undetermined`, `too-short`.
     pub fn as_str(self) -> &'static str {
         match self {
             Regime::Periodic => "periodic",
@@ -36,6 +39,7 @@ impl Regime {
             Regime::Chaotic => "chaotic",
             Regime::Stochastic => "stochastic",
             Regime::Undetermined => "undetermined",
+            Regime::TooShort => "too-short",
         }
     }
 }
@@ -332,6 +336,201 @@ pub fn classify(e: &Evidence, t: &RegimeThresholds) -> Verdict {
         None,
         "the indicators disagree or are missing".into(),
     )
+}
+
+/// A Lyapunov exponent with its standard error, per forcing period.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Exponent {
+    /// λ per forcing period (natural log).
+    pub per_period: f64,
+    /// Standard error of λ per forcing period.
+    pub stderr_per_period: f64,
+}
+
+/// Sign of an exponent, decided with its error bar.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ExponentSign {
+    /// λ > max(3σ, `zero_band`): exponential divergence.
+    Positive,
+    /// λ < −max(3σ, `zero_band`): contraction.
+    Negative,
+    /// |λ| within the band: neutral (a torus) or unresolved.
+    Zero,
+}
+
+impl Exponent {
+    /// Sign with a 3σ error bar and a neutral band `zero_band` per period.
+    pub fn sign(&self, zero_band: f64) -> ExponentSign {
+        let band = (3.0 * self.stderr_per_period).max(zero_band);
+        if self.per_period > band {
+            ExponentSign::Positive
+        } else if self.per_period < -band {
+            ExponentSign::Negative
+        } else {
+            ExponentSign::Zero
+        }
+    }
+}
+
+/// What the forced-system classifier [`classify_forced`] looks at.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ForcedEvidence<'a> {
+    /// The exact stroboscopic section's pattern ([`crate::analysis::section::analyze_section`]).
+    pub section: &'a SectionAnalysis,
+    /// Exponent of the stroboscopic map estimated from the data (the section's divergence).
+    pub data_exponent: Option<Exponent>,
+    /// Exponent computed from the model's equations (tangent dynamics), when the simulator
+    /// knows them.
+    pub model_exponent: Option<Exponent>,
+    /// Neutral band of the exponents per period (default 0.01: slower divergence than
+    /// e-fold per 100 forcing periods is not called chaos).
+    pub zero_band: f64,
+}
+
+/// Returns the regime of a forced system, judged from its exact stroboscopic section first.
+///
+/// # Formula
+/// 1. Too short: the section holds fewer points than the pattern test needs → `too-short` with
+///    the number of forcing periods needed.
+/// 2. The model exponent, when given, decides chaos: positive (λ > max(3σ, band)) → chaotic,
+///    unless the section is a finite set of points (an indicator conflict → undetermined,
+///    naming both).
+/// 3. The section's pattern decides the rest: periodic-n (exact, or with non-deterministic
+///    scatter) → periodic with period n; an invariant circle → quasi-periodic (with its rotation
+///    number), unless an exponent is clearly positive.
+/// 4. An irregular section: with a model exponent that is not positive → undetermined (a long
+///    transient or a period above the maximum; the reason says so); without one, chaotic when the
+///    data exponent is positive and the scatter deterministic (determinism ratio < 0.5), else
+///    stochastic (noise-like scatter or no exponential divergence).
+///
+/// # Units
+/// Exponents per forcing period.
+pub fn classify_forced(e: &ForcedEvidence<'_>) -> Verdict {
+    let v = |regime, period, reason: String| Verdict {
+        regime,
+        period,
+        reason,
+    };
+    let fmt = |x: &Exponent| format!("{:+.4} ± {:.4} per period", x.per_period, x.stderr_per_period);
+    let model = e.model_exponent.map(|m| (m, m.sign(e.zero_band)));
+    let data = e.data_exponent.map(|d| (d, d.sign(e.zero_band)));
+    let sec = e.section;
+    match sec.pattern {
+        SectionPattern::TooShort { points, needed } => v(
+            Regime::TooShort,
+            None,
+            format!(
+                "the steady window holds {points} forcing periods; a verdict needs at least {needed}: lengthen the run (run.periods or run.duration) or raise run.steady_fraction"
+            ),
+        ),
+        SectionPattern::Periodic { period, noisy } => {
+            if let Some((m, ExponentSign::Positive)) = model {
+                return v(
+                    Regime::Undetermined,
+                    None,
+                    format!(
+                        "indicators conflict: the section is periodic-{period} but the model exponent is {}",
+                        fmt(&m)
+                    ),
+                );
+            }
+            let how = if noisy {
+                format!(
+                    "with a non-deterministic scatter of {:.2} % of the extent (determinism ratio {:.2})",
+                    100.0 * sec.scatter,
+                    sec.determinism_ratio.unwrap_or(f64::NAN)
+                )
+            } else if let Some(rate) = sec.convergence_rate {
+                format!(
+                    "still converging in the window (return distance decays at {rate:.4} per period)"
+                )
+            } else {
+                format!("coinciding to {:.1e} of the extent", sec.scatter)
+            };
+            v(
+                Regime::Periodic,
+                Some(period as f64),
+                format!("the exact section visits {period} point(s) cyclically, {how}"),
+            )
+        }
+        SectionPattern::QuasiPeriodic { rotation_number } => {
+            let positive = [model, data]
+                .into_iter()
+                .flatten()
+                .find(|(_, s)| *s == ExponentSign::Positive);
+            if let Some((x, _)) = positive {
+                return v(
+                    Regime::Undetermined,
+                    None,
+                    format!(
+                        "indicators conflict: the section is a closed curve (rotation number {rotation_number:.4}) but an exponent is {}",
+                        fmt(&x)
+                    ),
+                );
+            }
+            v(
+                Regime::QuasiPeriodic,
+                None,
+                format!(
+                    "the exact section is a closed curve rotated by the map (rotation number {rotation_number:.4})"
+                ),
+            )
+        }
+        SectionPattern::Irregular => match (model, data) {
+            (Some((m, ExponentSign::Positive)), _) => v(
+                Regime::Chaotic,
+                None,
+                format!(
+                    "the model exponent is {} and the section is a cloud{}",
+                    fmt(&m),
+                    data.map_or(String::new(), |(d, _)| format!(
+                        " (data estimate {})",
+                        fmt(&d)
+                    ))
+                ),
+            ),
+            (Some((m, _)), _) => v(
+                Regime::Undetermined,
+                None,
+                format!(
+                    "indicators conflict: the section shows no period ≤ the maximum but the model exponent is {} (a long transient or a longer period)",
+                    fmt(&m)
+                ),
+            ),
+            (None, Some((d, ExponentSign::Positive)))
+                if sec.determinism_ratio.is_none_or(|r| r < 0.5) =>
+            {
+                v(
+                    Regime::Chaotic,
+                    None,
+                    format!(
+                        "the section is a deterministic cloud (determinism ratio {:.2}) diverging at {}",
+                        sec.determinism_ratio.unwrap_or(f64::NAN),
+                        fmt(&d)
+                    ),
+                )
+            }
+            (None, d) if sec.determinism_ratio.is_some_and(|r| r < 0.5) => v(
+                Regime::Undetermined,
+                None,
+                format!(
+                    "indicators conflict: the section is a deterministic cloud (determinism ratio {:.2}) but shows no resolved divergence{} (weak chaos, or a torus that is not star-shaped)",
+                    sec.determinism_ratio.unwrap_or(f64::NAN),
+                    d.map_or(String::new(), |(d, _)| format!(": data exponent {}", fmt(&d)))
+                ),
+            ),
+            (None, d) => v(
+                Regime::Stochastic,
+                None,
+                format!(
+                    "the section is a cloud without low-dimensional determinism (determinism ratio {:.2}{})",
+                    sec.determinism_ratio.unwrap_or(f64::NAN),
+                    d.map_or(String::new(), |(d, _)| format!(", data exponent {}", fmt(&d)))
+                ),
+            ),
+        },
+    }
 }
 
 /// Rounds to the nearest integer when within 0.1 % of it (periods of maps and strobed flows).

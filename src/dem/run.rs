@@ -140,6 +140,32 @@ pub struct StrobeRow {
     pub grain_z_m: f64,
     /// Box position (m).
     pub box_z_m: f64,
+    /// Grains' centre-of-mass velocity (m/s).
+    pub grain_v_m_s: f64,
+    /// Box velocity (m/s).
+    pub box_v_m_s: f64,
+}
+
+impl StrobeRow {
+    /// The state at `t_s`, interpolated linearly between the states `a` (before) and `b`
+    /// (after), each `(t, z_cm, v_cm, box_z, box_v)`.
+    fn interpolate(cycle: u64, t_s: f64, a: [f64; 5], b: [f64; 5]) -> StrobeRow {
+        let span = b[0] - a[0];
+        let w = if span > 0.0 {
+            ((t_s - a[0]) / span).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        let at = |k: usize| a[k] + w * (b[k] - a[k]);
+        StrobeRow {
+            cycle,
+            time_s: t_s,
+            grain_z_m: at(1),
+            grain_v_m_s: at(2),
+            box_z_m: at(3),
+            box_v_m_s: at(4),
+        }
+    }
 }
 
 /// Summary of a DEM run (`summary.json` keys).
@@ -376,7 +402,10 @@ pub fn run_dem(
     let mut steady_ledger: Option<(f64, EnergyLedger)> = None;
     let (mut zmin, mut zmax) = (f64::INFINITY, f64::NEG_INFINITY);
     let mut strobe = Vec::new();
-    let mut last_cycle = -1i64;
+    let strobe_state = |w: &DemWorld| {
+        let (z, v) = w.z_cm_state();
+        [w.t, z, v, w.box_z, w.box_v]
+    };
     let sample_now = |w: &DemWorld| cfg.samples && w.t >= cfg.sample_from_s - 0.5 * dt;
     if sample_now(&world) {
         obs.sample(&sample_of(&world, &e0))?;
@@ -388,6 +417,15 @@ pub fn run_dem(
     let cpu0 = thread_cpu_time_s();
     let mut aside = 0.0;
     for k in 1..=n_steps {
+        // a stroboscopic time nT inside (t, t + dt]: keep the state before the step and
+        // interpolate (the state, not a resampled series) once the step has landed
+        let strobe_before = (k >= steady_from && drive.frequency_hz > 0.0)
+            .then(|| {
+                let next = ((world.t + dt) * drive.frequency_hz).floor();
+                let now = (world.t * drive.frequency_hz).floor();
+                (next > now).then(|| (next, strobe_state(&world)))
+            })
+            .flatten();
         world.step();
         if k >= steady_from {
             if steady_ledger.is_none() {
@@ -395,18 +433,14 @@ pub fn run_dem(
             }
             zmin = zmin.min(world.box_z);
             zmax = zmax.max(world.box_z);
-            let cycle = (world.t * drive.frequency_hz).floor() as i64;
-            if cycle != last_cycle && drive.frequency_hz > 0.0 {
-                if last_cycle >= 0 {
-                    let (z, _, _) = world.z_stats();
-                    strobe.push(StrobeRow {
-                        cycle: cycle as u64,
-                        time_s: world.t,
-                        grain_z_m: z,
-                        box_z_m: world.box_z,
-                    });
-                }
-                last_cycle = cycle;
+            if let Some((cycle, before)) = strobe_before {
+                let t_s = cycle / drive.frequency_hz;
+                strobe.push(StrobeRow::interpolate(
+                    cycle as u64,
+                    t_s,
+                    before,
+                    strobe_state(&world),
+                ));
             }
         }
         let do_sample = k % per_sample == 0 || k == n_steps;

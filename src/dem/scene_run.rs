@@ -217,6 +217,8 @@ pub fn simulate(
                 time_s: r.time_s,
                 grain_z_m: r.grain_z_m,
                 box_z_m: r.box_z_m,
+                grain_v_m_s: r.grain_v_m_s,
+                box_v_m_s: r.box_v_m_s,
             })
             .collect(),
         analysis: None,

@@ -623,6 +623,17 @@ impl DemWorld {
         m
     }
 
+    /// Centre of mass height z_cm and vertical velocity v_cm of the grains (m, m/s).
+    pub fn z_cm_state(&self) -> (f64, f64) {
+        let (mut zm, mut vm, mut mt) = (0.0, 0.0, 0.0);
+        for ((p, v), m) in self.pos.iter().zip(&self.vel).zip(&self.mass) {
+            zm += m * p[2];
+            vm += m * v[2];
+            mt += m;
+        }
+        (zm / mt, vm / mt)
+    }
+
     /// Centre of mass height z_cm (lab frame) and the lowest/highest grain centre (m).
     pub fn z_stats(&self) -> (f64, f64, f64) {
         let (mut zm, mut mt, mut lo, mut hi) = (0.0, 0.0, f64::INFINITY, f64::NEG_INFINITY);

@@ -529,13 +529,19 @@ impl ImpactWorld {
                 if ts >= te || ts > self.duration {
                     break;
                 }
-                let (z, _) = motion.eval(&an, ts);
+                let (z, v) = motion.eval(&an, ts);
                 let y = self.particle_position(&st, z, ts);
+                let w = match st.mode {
+                    Mode::Flight => st.w - self.g * (ts - st.t),
+                    _ => v,
+                };
                 strobe.push(StrobePoint {
                     cycle: n_strobe,
                     time_s: ts,
                     grain_z_m: y,
                     box_z_m: z,
+                    grain_v_m_s: w,
+                    box_v_m_s: v,
                 });
                 n_strobe += 1;
             }

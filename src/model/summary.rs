@@ -45,7 +45,9 @@ impl RunOptions {
     }
 }
 
-/// One stroboscopic sample (once per forcing period, at t = n/f, in the steady state).
+/// One stroboscopic sample: the state at exactly t = n/f (once per forcing period, in the steady
+/// state). The impact model evaluates its closed forms at t = nT; the DEM interpolates the state
+/// linearly between the two time steps around nT (error O(dt²·acceleration)).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct StrobePoint {
     /// Forcing cycle index n (t = n T).
@@ -56,6 +58,12 @@ pub struct StrobePoint {
     pub grain_z_m: f64,
     /// Box position (m).
     pub box_z_m: f64,
+    /// Particle velocity / grains' centre-of-mass velocity (m/s).
+    #[serde(default)]
+    pub grain_v_m_s: f64,
+    /// Box velocity (m/s).
+    #[serde(default)]
+    pub box_v_m_s: f64,
 }
 
 /// Energy ledger of a whole run (J).

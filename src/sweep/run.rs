@@ -1,6 +1,6 @@
 //! Simulation dispatch: one scene → one [`RunSummary`], whatever the damper model.
 
-use crate::analysis::analyze::{analyze_series, AnalyzeOptions};
+use crate::analysis::analyze::{analyze_forced, AnalyzeOptions, ForcedRun};
 use crate::error::SimError;
 use crate::model::{RunOptions, RunSummary};
 use crate::observe::{Observer, SteadyCollector, Tee};
@@ -68,21 +68,69 @@ pub fn run_with_analysis(
     Ok(summary)
 }
 
-/// Runs the analysis chain ([`crate::analysis::analyze::analyze_series`], SPEC §4) on the
-/// collected steady-state grain series and stores the report (or why it failed) in `summary`.
+/// Runs the forced-system analysis ([`crate::analysis::analyze::analyze_forced`], SPEC §4) on
+/// the run's exact stroboscopic section (grain and box position and velocity at t = kT) with
+/// the collected steady-state grain series, and stores the report (or why it failed) in
+/// `summary`.
+///
+/// The section coordinates are scaled by the extents of the continuous motion: positions by
+/// the range of z(t) over the steady window, velocities by Ω times that range.
 fn analyze_into(summary: &mut RunSummary, collector: &SteadyCollector, forcing_hz: f64) {
-    let opts = AnalyzeOptions {
-        dt_s: collector.dt_s(),
-        forcing_hz: Some(forcing_hz),
-        ..AnalyzeOptions::default()
+    let (section, scales) = exact_section(summary, collector, forcing_hz);
+    let run = ForcedRun {
+        series: &collector.grain_z_m,
+        dt_s: collector.dt_s().unwrap_or(1.0 / (64.0 * forcing_hz)),
+        forcing_hz,
+        section: &section,
+        scales: &scales,
+        model_exponent: None,
     };
-    match analyze_series(&collector.grain_z_m, &opts) {
+    match analyze_forced(&run, &AnalyzeOptions::default()) {
         Ok(report) => match serde_json::to_value(&report) {
             Ok(v) => summary.analysis = Some(v),
             Err(e) => summary.analysis_error = Some(format!("analysis report: {e}")),
         },
         Err(e) => summary.analysis_error = Some(e.to_string()),
     }
+}
+
+/// The exact section rows (grain z, grain v, box z, box v) and their scales; coordinates that
+/// do not move along the trajectory are left out.
+fn exact_section(
+    summary: &RunSummary,
+    collector: &SteadyCollector,
+    forcing_hz: f64,
+) -> (Vec<Vec<f64>>, Vec<f64>) {
+    let omega = std::f64::consts::TAU * forcing_hz;
+    let range = |v: &mut dyn Iterator<Item = f64>| {
+        let (lo, hi) = v.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
+            (l.min(x), h.max(x))
+        });
+        if hi > lo {
+            hi - lo
+        } else {
+            0.0
+        }
+    };
+    let strobe = &summary.strobe;
+    let mut zg = range(&mut collector.grain_z_m.iter().copied());
+    let mut zb = range(&mut collector.box_z_m.iter().copied());
+    if zg == 0.0 {
+        zg = range(&mut strobe.iter().map(|p| p.grain_z_m));
+    }
+    if zb == 0.0 {
+        zb = range(&mut strobe.iter().map(|p| p.box_z_m));
+    }
+    let scales_all = [zg, omega * zg, zb, omega * zb];
+    let keep: Vec<usize> = (0..4).filter(|&d| scales_all[d] > 0.0).collect();
+    let rows = strobe
+        .iter()
+        .map(|p| {
+            let s = [p.grain_z_m, p.grain_v_m_s, p.box_z_m, p.box_v_m_s];
+            keep.iter().map(|&d| s[d]).collect()
+        })
+        .collect();
+    (rows, keep.iter().map(|&d| scales_all[d]).collect())
 }
 
 /// Passes every `stride`-th sample (with time ≥ the collector's start) to the inner observer.

@@ -48,13 +48,16 @@ const HEAD: [&str; 6] = [
     "energy_viscous_j_per_cycle",
     "energy_impact_j_per_cycle",
 ];
-const TAIL: [&str; 6] = [
+const TAIL: [&str; 9] = [
     "impacts_per_cycle",
     "energy_balance_relative_error",
     "regime",
     "period",
     "mle_per_s",
-    "mle_fit_r2",
+    "mle_stderr_per_s",
+    "model_mle_per_s",
+    "model_mle_stderr_per_s",
+    "section_points",
 ];
 
 /// One finished point, as stored in `points/<i>.json`. Cells are pre-formatted so that the CSV
@@ -279,39 +282,40 @@ fn run_point(
     for (k, v) in &s.extra {
         cells.insert(k.clone(), fmt_opt(Some(*v)));
     }
+    // the analysis report's fields by their exact names (AnalysisReport in
+    // src/analysis/analyze.rs); a missing field is an empty cell
     let a = s.analysis.as_ref();
-    let field = |names: &[&str]| -> String {
-        let Some(a) = a else { return String::new() };
-        for n in names {
-            match a.get(*n) {
-                Some(serde_json::Value::String(x)) => return x.clone(),
-                Some(serde_json::Value::Number(x)) => return x.to_string(),
-                Some(serde_json::Value::Object(o)) => {
-                    if let Some(serde_json::Value::Number(x)) = o.get("value") {
-                        return x.to_string();
-                    }
-                }
-                _ => {}
-            }
+    let field = |name: &str| -> String {
+        match a.and_then(|a| a.get(name)) {
+            Some(serde_json::Value::String(x)) => x.clone(),
+            Some(serde_json::Value::Number(x)) => x
+                .as_f64()
+                .map_or_else(|| x.to_string(), |v| fmt_opt(Some(v))),
+            _ => String::new(),
         }
-        String::new()
     };
-    cells.insert("regime".to_string(), field(&["regime"]));
-    cells.insert("period".to_string(), field(&["period"]));
-    cells.insert(
-        "mle_per_s".to_string(),
-        field(&["mle_per_time", "mle_per_s"]),
-    );
-    cells.insert("mle_fit_r2".to_string(), field(&["mle_fit_r2", "fit_r2"]));
+    for (col, name) in [
+        ("regime", "regime"),
+        ("period", "period"),
+        ("mle_per_s", "data_mle_per_s"),
+        ("mle_stderr_per_s", "data_mle_stderr_per_s"),
+        ("model_mle_per_s", "model_mle_per_s"),
+        ("model_mle_stderr_per_s", "model_mle_stderr_per_s"),
+        ("section_points", "poincare_section_points"),
+    ] {
+        cells.insert(col.to_string(), field(name));
+    }
     let strobe = s
         .strobe
         .iter()
         .map(|p| {
             format!(
-                "{},{},{}",
+                "{},{},{},{},{}",
                 p.cycle,
                 fmt_num(p.grain_z_m),
-                fmt_num(p.box_z_m)
+                fmt_num(p.box_z_m),
+                fmt_num(p.grain_v_m_s),
+                fmt_num(p.box_v_m_s)
             )
         })
         .collect();
@@ -359,7 +363,9 @@ fn sweep_csv(varies: &[Vary], records: &[Option<PointRecord>]) -> String {
 fn strobe_csv(varies: &[Vary], records: &[Option<PointRecord>]) -> String {
     let mut cols: Vec<String> = vec!["point".into(), "frequency_hz".into()];
     cols.extend(varies.iter().map(|v| v.key.clone()));
-    cols.extend(["cycle", "grain_z_m", "box_z_m"].map(String::from));
+    cols.extend(
+        ["cycle", "grain_z_m", "box_z_m", "grain_v_m_s", "box_v_m_s"].map(String::from),
+    );
     let mut out = cols.join(",");
     out.push('\n');
     for r in records.iter().flatten() {

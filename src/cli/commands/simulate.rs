@@ -107,14 +107,16 @@ fn write_outputs(
     }
     let json = serde_json::to_string_pretty(&value)?;
     crate::sweep::runner::atomic_write(&out.join("summary.json"), json.as_bytes())?;
-    let mut strobe = String::from("cycle,time_s,grain_z_m,box_z_m\n");
+    let mut strobe = String::from("cycle,time_s,grain_z_m,box_z_m,grain_v_m_s,box_v_m_s\n");
     for p in &summary.strobe {
         strobe.push_str(&format!(
-            "{},{},{},{}\n",
+            "{},{},{},{},{},{}\n",
             p.cycle,
             fmt_num(p.time_s),
             fmt_num(p.grain_z_m),
-            fmt_num(p.box_z_m)
+            fmt_num(p.box_z_m),
+            fmt_num(p.grain_v_m_s),
+            fmt_num(p.box_v_m_s)
         ));
     }
     crate::sweep::runner::atomic_write(&out.join("strobe.csv"), strobe.as_bytes())?;
