@@ -11,7 +11,7 @@
 use crate::analysis::false_nearest_neighbors::{
     false_nearest_neighbors, suggested_dimension, FnnOptions,
 };
-use crate::analysis::kantz::{estimate_max_lyapunov, KantzOptions, ScalingOptions};
+use crate::analysis::kantz_scan::{kantz_scan, KantzScanOptions};
 use crate::analysis::mutual_information::{mutual_information, MutualInformationOptions};
 use crate::analysis::poincare::{
     classify_section, period_in_samples, stroboscopic_section, ClusterOptions, SecondCoordinate,
@@ -360,6 +360,7 @@ pub fn analyze_series(x: &[f64], opts: &AnalyzeOptions) -> Result<AnalysisReport
 
     // Stroboscopic section.
     let mut strobe_points: Option<Vec<f64>> = None;
+    let mut forced_section: Option<Vec<Vec<f64>>> = None;
     if let Some(t_per) = forcing_period {
         match stroboscopic_section(
             x,
@@ -384,6 +385,7 @@ pub fn analyze_series(x: &[f64], opts: &AnalyzeOptions) -> Result<AnalysisReport
                     ));
                 }
                 strobe_points = Some(sec.points.iter().map(|p| p[0]).collect());
+                forced_section = Some(sec.points.iter().map(|p| p.to_vec()).collect());
                 evidence.section = Some(summary);
             }
             Err(e) => notes.push(format!("Poincaré section not computed: {e}")),
@@ -410,12 +412,43 @@ pub fn analyze_series(x: &[f64], opts: &AnalyzeOptions) -> Result<AnalysisReport
         Err(e) => notes.push(format!("0-1 test not computed: {e}")),
     }
 
-    let verdict = classify(&evidence, &opts.thresholds);
-    report.regime = verdict.regime;
-    report.period = verdict.period;
-    report.reason = verdict.reason;
-    report.evidence = evidence;
     report.notes = notes;
+    match (&forced_section, forcing_period) {
+        (Some(points), Some(t_per)) => {
+            // a user's own series of a forced system: judged from its section first (cubic
+            // interpolation of the given samples in delay coordinates, so exact to ~1e-4)
+            let sopts = SectionOptions {
+                exact_tol: 1e-4,
+                ..SectionOptions::default()
+            };
+            let forcing_hz = opts.forcing_hz.unwrap_or(1.0);
+            match analyze_section(points, &[1.0, 1.0], &sopts) {
+                Ok(sec) => {
+                    section_verdict(&mut report, sec, points, &[1.0, 1.0], forcing_hz, None, "interpolated");
+                    // the per-sample exponent of the report stays the series' Kantz estimate
+                    if let Some(l) = evidence.mle_per_sample {
+                        report.mle_per_sample = Some(l);
+                        report.mle_per_time = opts.dt_s.map(|dt| l / dt);
+                    }
+                    let _ = t_per;
+                }
+                Err(e) => {
+                    report.notes.push(format!("section not analysed: {e}"));
+                    let verdict = classify(&evidence, &opts.thresholds);
+                    report.regime = verdict.regime;
+                    report.period = verdict.period;
+                    report.reason = verdict.reason;
+                }
+            }
+        }
+        _ => {
+            let verdict = classify(&evidence, &opts.thresholds);
+            report.regime = verdict.regime;
+            report.period = verdict.period;
+            report.reason = verdict.reason;
+        }
+    }
+    report.evidence = evidence;
     Ok(report)
 }
 
@@ -710,7 +743,7 @@ fn choose_lag(x: &[f64], opts: &AnalyzeOptions, notes: &mut Vec<String>) -> usiz
     }
 }
 
-/// Kantz's exponent with an automatically found scaling region.
+/// Kantz's exponent from an ε-scan above the noise floor ([`kantz_scan`]), with its error bar.
 fn kantz_evidence(
     x: &[f64],
     lag: usize,
@@ -720,36 +753,53 @@ fn kantz_evidence(
     report: &mut AnalysisReport,
     notes: &mut Vec<String>,
 ) {
-    let steps = (25 * lag).clamp(20, 500).min(x.len() / 4);
-    let kopts = KantzOptions {
-        m_min: dim,
-        m_max: dim,
+    let sopts = KantzScanOptions {
+        m: dim,
         tau: lag,
-        steps,
-        references: Some(opts.kantz_references.max(1)),
-        theiler: Some(lag.max(10)),
-        ..KantzOptions::default()
+        references: opts.kantz_references.max(1),
+        ..Default::default()
     };
-    match estimate_max_lyapunov(x, &kopts, &ScalingOptions::default()) {
-        Ok(est) => {
-            evidence.mle_per_sample = Some(est.per_sample);
-            evidence.kantz_linear = est.fit.linear;
-            evidence.kantz_growth = Some(est.per_sample * (est.fit.end - est.fit.start) as f64);
-            report.mle_per_sample = Some(est.per_sample);
-            report.mle_per_time = opts.dt_s.map(|dt| est.per_sample / dt);
-            report.mle_fit_r2 = Some(est.fit.r2);
-            report.kantz_fit = Some(KantzFitReport {
-                start: est.fit.start,
-                end: est.fit.end,
-                r2: est.fit.r2,
-                linear: est.fit.linear,
-                m: est.m,
-                eps: est.eps,
-                steps,
-            });
-            if !est.fit.linear {
+    match kantz_scan(x, &sopts) {
+        Ok(scan) => {
+            let fit = scan
+                .curves
+                .iter()
+                .filter_map(|c| c.fit.map(|f| (c.eps, f)))
+                .min_by(|a, b| {
+                    (a.1.slope / scan.decimation as f64 - scan.per_sample)
+                        .abs()
+                        .total_cmp(&(b.1.slope / scan.decimation as f64 - scan.per_sample).abs())
+                });
+            evidence.mle_per_sample = Some(scan.per_sample);
+            evidence.mle_stderr_per_sample = Some(scan.stderr_per_sample);
+            evidence.kantz_linear = scan.linear;
+            evidence.kantz_growth = Some(scan.growth);
+            report.mle_per_sample = Some(scan.per_sample);
+            report.mle_per_time = opts.dt_s.map(|dt| scan.per_sample / dt);
+            report.data_mle_per_s = report.mle_per_time;
+            report.data_mle_stderr_per_s = opts.dt_s.map(|dt| scan.stderr_per_sample / dt);
+            if let Some((eps, f)) = fit {
+                report.mle_fit_r2 = Some(f.r2);
+                report.kantz_fit = Some(KantzFitReport {
+                    start: f.start * scan.decimation,
+                    end: f.end * scan.decimation,
+                    r2: f.r2,
+                    linear: f.linear,
+                    m: dim,
+                    eps,
+                    steps: scan.curves.first().map_or(0, |c| c.s.len().saturating_sub(1))
+                        * scan.decimation,
+                });
+            }
+            if scan.decimation > 1 {
+                notes.push(format!(
+                    "Kantz: series decimated by {} (lag {} → {} samples); radii from 1.5× the noise floor {:.3e} up",
+                    scan.decimation, lag, scan.tau_decimated, scan.noise_floor
+                ));
+            }
+            if !scan.linear {
                 notes.push(
-                    "Kantz: no linear scaling region; the exponent is a whole-curve fit".into(),
+                    "Kantz: no linear scaling region at any radius; the exponent is a whole-curve fit".into(),
                 );
             }
         }

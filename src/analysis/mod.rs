@@ -11,6 +11,7 @@ pub mod embedding;
 pub mod false_nearest_neighbors;
 pub mod frf_fit;
 pub mod kantz;
+pub mod kantz_scan;
 pub mod mutual_information;
 pub mod optimum;
 pub mod poincare;

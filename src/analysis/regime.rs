@@ -130,6 +130,11 @@ pub struct Evidence {
     pub forcing_period_samples: Option<f64>,
     /// Kantz exponent per sample.
     pub mle_per_sample: Option<f64>,
+    /// Standard error of the Kantz exponent per sample.
+    pub mle_stderr_per_sample: Option<f64>,
+    /// Whether a surrogate test rejected the linear-stochastic null hypothesis (nonlinear
+    /// determinism), when it ran.
+    pub surrogate_rejects: Option<bool>,
     /// Whether Kantz's curve had a linear scaling region (R² ≥ 0.99 over ≥ 5 points).
     pub kantz_linear: bool,
     /// Growth of S over the fitted region, slope × (end − start), in e-folds.
@@ -259,14 +264,55 @@ pub fn classify(e: &Evidence, t: &RegimeThresholds) -> Verdict {
                 );
             }
         }
-        if let (true, Some(p)) = (line_spectrum, e.harmonic_period_samples) {
+    }
+    // 2. Chaotic: a positive exponent over a linear scaling region of ≥ min_growth e-folds,
+    //    resolved against its error bar, from data that are deterministic (the surrogate test
+    //    rejects linear noise; without one, FNN converged and the 0–1 test, when run, irregular).
+    let scaling = e.kantz_linear
+        && e.mle_per_sample.is_some_and(|l| l > 0.0)
+        && e.kantz_growth.is_some_and(|g| g >= t.min_growth);
+    let resolved = match (e.mle_per_sample, e.mle_stderr_per_sample) {
+        (Some(l), Some(se)) => l > 2.0 * se,
+        (Some(l), None) => l > 0.0,
+        _ => false,
+    };
+    let deterministic = match e.surrogate_rejects {
+        Some(r) => r,
+        None => e.fnn_converged.unwrap_or(true) && !e.zero_one_k.is_some_and(|k| k < 0.1),
+    };
+    if scaling && resolved && deterministic {
+        return verdict(
+            Regime::Chaotic,
+            None,
+            format!(
+                "Kantz exponent {:.4} ± {:.4} per sample over a linear region of {:.1} e-folds; {}",
+                e.mle_per_sample.unwrap_or(f64::NAN),
+                e.mle_stderr_per_sample.unwrap_or(f64::NAN),
+                e.kantz_growth.unwrap_or(f64::NAN),
+                match e.surrogate_rejects {
+                    Some(_) => "surrogate data reject linear noise".to_string(),
+                    None => format!(
+                        "false nearest neighbours vanish (0-1 test K = {:.2})",
+                        e.zero_one_k.unwrap_or(f64::NAN)
+                    ),
+                }
+            ),
+        );
+    }
+    // 3. Periodic with noise: harmonic lines hold most of the power, the rest is broadband.
+    if !section_usable {
+        if let Some(p) = e.harmonic_period_samples {
             let period = in_forcing(p);
-            if period <= limit && k_regular {
+            let limit = match e.forcing_period_samples {
+                Some(_) => t.max_period as f64 + 0.5,
+                None => f64::INFINITY,
+            };
+            if e.line_count > 0 && e.line_power_fraction >= 0.5 && period <= limit {
                 return verdict(
                     Regime::Periodic,
                     Some(round_if_close(period)),
                     format!(
-                        "all {} spectral lines are harmonics of 1/{p:.4} per sample and carry {:.1} % of the power",
+                        "all {} spectral lines are harmonics of 1/{p:.4} per sample and carry {:.1} % of the power; the rest is broadband noise without a positive exponent",
                         e.line_count,
                         100.0 * e.line_power_fraction
                     ),
@@ -274,7 +320,7 @@ pub fn classify(e: &Evidence, t: &RegimeThresholds) -> Verdict {
             }
         }
     }
-    // 2. Quasi-periodic.
+    // 4. Quasi-periodic.
     if section_shape == Some(SectionShape::ClosedCurve) && k_regular {
         return verdict(
             Regime::QuasiPeriodic,
@@ -287,54 +333,45 @@ pub fn classify(e: &Evidence, t: &RegimeThresholds) -> Verdict {
         && e.line_count >= 2
         && e.harmonic_period_samples.is_none()
         && k_regular
+        && !resolved
     {
         return verdict(
             Regime::QuasiPeriodic,
             None,
             format!(
-                "{} spectral lines carry {:.1} % of the power but are not harmonics of one frequency",
+                "{} spectral lines carry {:.1} % of the power but are not harmonics of one frequency, and no exponent is positive",
                 e.line_count,
                 100.0 * e.line_power_fraction
             ),
         );
     }
-    // 3.–4. Irregular: chaos or noise.
-    let scaling = e.kantz_linear
-        && e.mle_per_sample.is_some_and(|l| l > 0.0)
-        && e.kantz_growth.is_some_and(|g| g >= t.min_growth);
-    let deterministic = e.fnn_converged.unwrap_or(true);
-    if k_irregular && scaling && deterministic {
-        return verdict(
-            Regime::Chaotic,
-            None,
-            format!(
-                "0-1 test K = {:.2}, Kantz exponent {:.4} per sample over a linear region of {:.1} e-folds",
-                e.zero_one_k.unwrap_or(f64::NAN),
-                e.mle_per_sample.unwrap_or(f64::NAN),
-                e.kantz_growth.unwrap_or(f64::NAN)
-            ),
-        );
-    }
-    let no_divergence = e.mle_per_sample.is_some() && !scaling;
-    if k_irregular && (no_divergence || !deterministic) {
-        let why = if !deterministic {
-            "false nearest neighbours do not vanish (no low-dimensional determinism)"
-        } else {
-            "no exponential-divergence region in Kantz's curve"
+    // 5. Noise: no determinism, or irregular without divergence.
+    if !deterministic || (k_irregular && !scaling) {
+        let why = match e.surrogate_rejects {
+            Some(false) => "surrogate data (linear Gaussian noise with the same spectrum and amplitudes) are not told apart",
+            _ if !deterministic => "false nearest neighbours do not vanish (no low-dimensional determinism)",
+            _ => "no exponential-divergence region in Kantz's curves",
         };
-        return verdict(
-            Regime::Stochastic,
-            None,
-            format!(
-                "irregular (0-1 test K = {:.2}) but {why}",
-                e.zero_one_k.unwrap_or(f64::NAN)
-            ),
-        );
+        return verdict(Regime::Stochastic, None, format!("irregular: {why}"));
+    }
+    let mut conflicts = Vec::new();
+    if scaling && !resolved {
+        conflicts.push("the Kantz exponent is not resolved against its error bar");
+    }
+    if !scaling && e.mle_per_sample.is_some() {
+        conflicts.push("Kantz's curves have no clear scaling region");
+    }
+    if line_spectrum {
+        conflicts.push("the spectrum is made of lines");
     }
     verdict(
         Regime::Undetermined,
         None,
-        "the indicators disagree or are missing".into(),
+        if conflicts.is_empty() {
+            "the indicators are missing".into()
+        } else {
+            format!("indicators conflict: {}", conflicts.join("; "))
+        },
     )
 }
 

@@ -33,6 +33,9 @@ pub struct DemRunConfig {
     pub sample_interval_s: f64,
     /// Fraction of the run treated as steady state for per-cycle figures (default 0.1).
     pub steady_fraction: f64,
+    /// Last fraction of the run recorded in the stroboscopic section (default 0.5, at least
+    /// `steady_fraction`).
+    pub analysis_fraction: f64,
     /// Time step.
     pub dt: DtChoice,
     /// dt / t_s with `DtChoice::Auto` (default 1/50).
@@ -51,6 +54,7 @@ impl Default for DemRunConfig {
             duration_s: 1.0,
             sample_interval_s: 1e-3,
             steady_fraction: 0.1,
+            analysis_fraction: 0.5,
             dt: DtChoice::Auto,
             dt_fraction: DEFAULT_DT_FRACTION,
             samples: true,
@@ -397,6 +401,8 @@ pub fn run_dem(
         .map(|s| ((s / dt).round() as u64).max(1));
     let steady_from = ((1.0 - cfg.steady_fraction) * n_steps as f64).floor() as u64;
     let steady_start_s = steady_from as f64 * dt;
+    let strobe_from = ((1.0 - cfg.analysis_fraction.max(cfg.steady_fraction)) * n_steps as f64)
+        .floor() as u64;
     let per_progress = ((1.0 / drive.frequency_hz.max(1e-3)) / dt).round().max(1.0) as u64;
     let abs_floor = 1e-3 * m_p * G * world.radius[0];
     let mut steady_ledger: Option<(f64, EnergyLedger)> = None;
@@ -419,7 +425,7 @@ pub fn run_dem(
     for k in 1..=n_steps {
         // a stroboscopic time nT inside (t, t + dt]: keep the state before the step and
         // interpolate (the state, not a resampled series) once the step has landed
-        let strobe_before = (k >= steady_from && drive.frequency_hz > 0.0)
+        let strobe_before = (k >= strobe_from && drive.frequency_hz > 0.0)
             .then(|| {
                 let next = ((world.t + dt) * drive.frequency_hz).floor();
                 let now = (world.t * drive.frequency_hz).floor();

@@ -119,6 +119,7 @@ pub fn simulate(
         duration_s: scene.duration_s(),
         sample_interval_s: opts.sample_interval_s.unwrap_or(scene.run.sample_interval),
         steady_fraction: scene.run.steady_fraction,
+        analysis_fraction: scene.run.analysis_fraction,
         dt: match scene.run.dt {
             Some(DtSpec::Seconds(s)) => DtChoice::Seconds(s),
             _ => DtChoice::Auto,

@@ -264,6 +264,8 @@ pub struct ImpactWorld {
     h_star: f64,
     duration: f64,
     steady_start: f64,
+    /// First stroboscopic time (s): the start of the analysis window.
+    strobe_start: f64,
     init: State,
     reference_amplitude: Option<f64>,
 }
@@ -356,6 +358,7 @@ impl ImpactWorld {
             h_star: 1e-11 * length,
             duration,
             steady_start: scene.steady_start_s(),
+            strobe_start: scene.analysis_start_s(),
             init: State {
                 t: 0.0,
                 z: 0.0,
@@ -470,7 +473,7 @@ impl ImpactWorld {
         let mut k_sample: u64 = ds.map_or(u64::MAX, |d| {
             (opts.sample_from_s / d - 1e-9).ceil().max(0.0) as u64
         });
-        let mut n_strobe: u64 = (self.steady_start / self.period - 1e-9).ceil().max(0.0) as u64;
+        let mut n_strobe: u64 = (self.strobe_start / self.period - 1e-9).ceil().max(0.0) as u64;
         let progress_every = (self.duration / 200.0).max(self.period);
         let mut next_progress = progress_every;
         let mut stall = 0u32;

@@ -22,17 +22,17 @@ impl RunOptions {
         }
     }
 
-    /// Samples of the steady state only, decimated so that at most `run.analysis_max_samples`
-    /// are produced (input of the nonlinear analysis in sweeps).
+    /// Samples of the analysis window only (`run.analysis_fraction`), decimated so that at
+    /// most `run.analysis_max_samples` are produced (input of the nonlinear analysis).
     pub fn steady_series(scene: &crate::scene::Scene) -> RunOptions {
-        let steady = scene.duration_s() - scene.steady_start_s();
+        let steady = scene.duration_s() - scene.analysis_start_s();
         let dt = scene
             .run
             .sample_interval
             .max(steady / scene.run.analysis_max_samples as f64);
         RunOptions {
             sample_interval_s: Some(dt),
-            sample_from_s: scene.steady_start_s(),
+            sample_from_s: scene.analysis_start_s(),
         }
     }
 
@@ -45,8 +45,8 @@ impl RunOptions {
     }
 }
 
-/// One stroboscopic sample: the state at exactly t = n/f (once per forcing period, in the steady
-/// state). The impact model evaluates its closed forms at t = nT; the DEM interpolates the state
+/// One stroboscopic sample: the state at exactly t = n/f (once per forcing period, over the
+/// analysis window `run.analysis_fraction`). The impact model evaluates its closed forms at t = nT; the DEM interpolates the state
 /// linearly between the two time steps around nT (error O(dt²·acceleration)).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct StrobePoint {

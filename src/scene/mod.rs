@@ -149,6 +149,12 @@ impl Scene {
         self.run.duration_s(self.excitation.frequency)
     }
 
+    /// Start of the regime-analysis window (s): duration × (1 − max(analysis_fraction,
+    /// steady_fraction)). The stroboscopic section and the analysed series start here.
+    pub fn analysis_start_s(&self) -> f64 {
+        self.duration_s() * (1.0 - self.run.analysis_fraction.max(self.run.steady_fraction))
+    }
+
     /// Start of the steady-state window (s): duration × (1 − steady_fraction).
     pub fn steady_start_s(&self) -> f64 {
         self.duration_s() * (1.0 - self.run.steady_fraction)

@@ -45,7 +45,7 @@ pub fn run_with_analysis(
         return run_scene(scene, obs, opts);
     }
     let steady = RunOptions::steady_series(scene);
-    let mut collector = SteadyCollector::new(scene.steady_start_s());
+    let mut collector = SteadyCollector::new(scene.analysis_start_s());
     // the analysis wants evenly spaced samples: use the coarser of the two clocks only when the
     // caller asked for none; otherwise decimate the caller's samples.
     let (run_opts, stride) = match opts.sample_interval_s {

@@ -1,0 +1,31 @@
+//! Scratch: verdicts of `analyze_series` on reference series (not a figure example).
+use pdamp::analysis::analyze::{analyze_series, AnalyzeOptions};
+use pdamp::systems::lorenz::lorenz_x;
+use pdamp::systems::roessler::roessler_x;
+use rand::SeedableRng;
+use rand_distr::{Distribution, Normal};
+
+fn main() {
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+    let nrm = Normal::new(0.0, 1.0).unwrap();
+    let mut cases: Vec<(String, Vec<f64>, f64)> = Vec::new();
+    cases.push(("roessler dt0.05 n20000".into(), roessler_x(20_000, 0.05), 0.05));
+    let lx = lorenz_x(20_000, 0.01);
+    let sd = { let m = lx.iter().sum::<f64>() / lx.len() as f64; (lx.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / lx.len() as f64).sqrt() };
+    for lvl in [0.05, 0.10] {
+        let x: Vec<f64> = lx.iter().map(|v| v + lvl * sd * nrm.sample(&mut rng)).collect();
+        cases.push((format!("lorenz noise {lvl}"), x, 0.01));
+    }
+    let sine: Vec<f64> = (0..20_000).map(|n| (std::f64::consts::TAU * n as f64 / 37.3).sin() + 0.2 * nrm.sample(&mut rng)).collect();
+    cases.push(("noisy sine 0.2".into(), sine, 1.0));
+    let white: Vec<f64> = (0..20_000).map(|_| nrm.sample(&mut rng)).collect();
+    cases.push(("white".into(), white, 1.0));
+    let mut a = 0.0;
+    let ar: Vec<f64> = (0..20_000).map(|_| { a = 0.95 * a + nrm.sample(&mut rng); a }).collect();
+    cases.push(("ar1 0.95".into(), ar, 1.0));
+    for (name, x, dt) in cases {
+        let t = std::time::Instant::now();
+        let r = analyze_series(&x, &AnalyzeOptions { dt_s: Some(dt), ..Default::default() }).unwrap();
+        println!("{name}: {} period {:?} mle/s {:?} lag {:?} m {:?} K {:?} | {} [{:.2}s]", r.regime, r.period, r.mle_per_time, r.lag, r.embedding_dim, r.zero_one_k, r.reason, t.elapsed().as_secs_f64());
+    }
+}
