@@ -15,6 +15,7 @@ pub mod false_nearest_neighbors;
 pub mod frf_fit;
 pub mod kantz;
 pub mod mutual_information;
+pub mod noise_reduction;
 pub mod optimum;
 pub mod poincare;
 pub mod prediction_error;
@@ -29,6 +30,9 @@ pub use embedding::DelayEmbedding;
 pub use false_nearest_neighbors::{false_nearest_neighbors, FnnOptions, FnnPoint};
 pub use kantz::{estimate_max_lyapunov, kantz, KantzDefinition, KantzOptions, KantzResult};
 pub use mutual_information::{mutual_information, MutualInformation, MutualInformationOptions};
+pub use noise_reduction::{
+    nonlinear_noise_reduction, Correction, NoiseReduction, NoiseReductionOptions,
+};
 pub use prediction_error::{prediction_error, PredictionErrorOptions};
 pub use surrogate_test::{surrogate_test, SurrogateTestOptions, SurrogateTestResult, Tail};
 pub use surrogates::{
