@@ -227,10 +227,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             r.rank,
             args.number + 1
         )?;
+        let label = format!("p-value ({tail:?})");
         writeln!(
             out,
-            "p-value ({:?})    {:.4} (smallest possible {:.4})",
-            tail, r.p_value, r.p_min
+            "{label:<21}{:.4} (smallest possible {:.4})",
+            r.p_value, r.p_min
         )?;
         writeln!(
             out,
