@@ -259,7 +259,7 @@ impl Prepared {
             if k == 0 {
                 continue; // the mean
             }
-            if k == last && n % 2 == 0 {
+            if k == last && n.is_multiple_of(2) {
                 // the Nyquist bin is real: only its sign is free
                 if rng.random::<bool>() {
                     *c = -*c;
@@ -314,7 +314,7 @@ impl Prepared {
                 .expect("buffer lengths come from the plan");
             for (k, c) in spec.iter_mut().enumerate() {
                 let a = self.amplitudes[k];
-                if k == 0 || (k == last && n % 2 == 0) {
+                if k == 0 || (k == last && n.is_multiple_of(2)) {
                     // real bins: DC keeps the data's mean, Nyquist keeps r's sign
                     let sign = if k == 0 {
                         self.spectrum[0].re.signum()
@@ -584,6 +584,6 @@ mod tests {
             .collect();
         let seg = end_to_end_segment(&x, 300).unwrap();
         assert!(seg.mismatch < 1e-3 * seg.mismatch_whole.max(1e-9) || seg.mismatch < 1e-6);
-        assert_eq!(seg.len % 40, 1 % 40, "{seg:?}");
+        assert_eq!(seg.len % 40, 1, "{seg:?}");
     }
 }
