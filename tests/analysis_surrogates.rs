@@ -13,7 +13,7 @@ use pdamp::analysis::surrogates::{
 };
 use pdamp::analysis::time_reversal::time_reversal_asymmetry;
 use pdamp::error::AnalysisError;
-use pdamp::systems::{henon, lorenz};
+use pdamp::systems::{henon, lorenz, roessler};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
@@ -256,6 +256,13 @@ fn linear_gaussian_ar1_is_not_rejected_more_often_than_nominal() {
     // mean 0.525, standard error of a mean of 20 values 0.065 (measured 0.53)
     let mean_p = ps.iter().sum::<f64>() / ps.len() as f64;
     assert!((0.3..=0.75).contains(&mean_p), "mean p {mean_p}");
+    // White noise (φ = 0): 10 series, Binomial(10, 0.05), P(≥ 4) = 0.001.
+    let white: Vec<f64> = (0..10)
+        .map(|seed| test_with(&ar1(0.0, 2000, 500 + seed), p, 19, seed).0)
+        .collect();
+    let rejected = white.iter().filter(|&&pv| pv <= 0.05).count();
+    eprintln!("white-noise negative control: {rejected}/10 rejected; p = {white:?}");
+    assert!(rejected <= 3, "{white:?}");
 }
 
 #[test]
@@ -276,6 +283,24 @@ fn chaos_is_rejected_clean_and_with_observational_noise() {
             (pv - 1.0 / (n as f64 + 1.0)).abs() < 1e-12,
             "{name}: p = {pv}"
         );
+    }
+    // Rössler x at dt = 0.1 (mean period 5.9 time units ≈ 59 samples; λ₁ = 0.071 is small,
+    // so the horizon must be a sizeable part of a period): τ = 8, h = 15, w = 100.
+    let r = roessler::roessler_x(5000, 0.1);
+    let pr = PredictionErrorOptions {
+        dim: 3,
+        delay: 8,
+        horizon: 15,
+        theiler: 100,
+        ..lorenz_statistic()
+    };
+    for (name, series) in [
+        ("Roessler x", r.clone()),
+        ("Roessler x + 10 % noise", with_noise(&r, 0.10, 4)),
+    ] {
+        let (pv, rank, sig) = test_with(&series, pr, 19, 9);
+        eprintln!("{name}: p = {pv:.4}, rank {rank}, {sig:.1} sigma");
+        assert_eq!(rank, 1, "{name}");
     }
     let h = henon::henon_x(3000);
     let p = PredictionErrorOptions {
