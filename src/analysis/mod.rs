@@ -1,30 +1,48 @@
 //! Nonlinear time-series analysis of a scalar series (SPEC §4): delay embedding (4.1.1),
 //! time-delayed mutual information (4.1.5), false nearest neighbours (4.1.4), Kantz's maximal
-//! Lyapunov exponent (4.1.7), spectra, Poincaré sections and the regime classifier.
+//! Lyapunov exponent (4.1.7), spectra, Poincaré sections and the regime classifier; surrogate
+//! data (IAAFT, FT, shuffle) with a rank test of discriminating statistics (time-reversal
+//! asymmetry, nonlinear prediction error).
 //!
 //! One file per estimator. This module holds the helpers they share: series validation
 //! ([`validate_series`]), rescaling to [0, 1] as TISEAN does ([`rescale_unit`]) and the Theiler
 //! window test ([`outside_theiler_window`]).
 
 pub mod analyze;
+pub mod box_grid;
 pub mod embedding;
 pub mod false_nearest_neighbors;
 pub mod frf_fit;
 pub mod kantz;
 pub mod kantz_scan;
 pub mod mutual_information;
+pub mod noise_reduction;
 pub mod optimum;
 pub mod poincare;
+pub mod prediction_error;
 pub mod regime;
 pub mod section;
 pub mod section_lyapunov;
 pub mod spectrum;
+pub mod surrogate_test;
+pub mod surrogates;
+pub mod time_reversal;
 pub mod zero_one_test;
 
 pub use embedding::DelayEmbedding;
 pub use false_nearest_neighbors::{false_nearest_neighbors, FnnOptions, FnnPoint};
 pub use kantz::{estimate_max_lyapunov, kantz, KantzDefinition, KantzOptions, KantzResult};
 pub use mutual_information::{mutual_information, MutualInformation, MutualInformationOptions};
+pub use noise_reduction::{
+    nonlinear_noise_reduction, Correction, NoiseReduction, NoiseReductionOptions,
+};
+pub use prediction_error::{prediction_error, PredictionErrorOptions};
+pub use surrogate_test::{surrogate_test, SurrogateTestOptions, SurrogateTestResult, Tail};
+pub use surrogates::{
+    end_to_end_segment, surrogate, surrogates, EndToEnd, Surrogate, SurrogateMethod,
+    SurrogateOptions,
+};
+pub use time_reversal::time_reversal_asymmetry;
 
 use crate::error::AnalysisError;
 

@@ -11,7 +11,7 @@ use clap::{Parser, Subcommand};
 ///
 /// Simulation: `simulate`, `sweep`, `check-scene`, `tradeoff`.
 /// Series analysis (TISEAN-like, reads plain text/CSV columns): `mutual`, `fnn`, `embed`,
-/// `spectrum`, `poincare`, `lyap-k`, `analyze`.
+/// `spectrum`, `poincare`, `lyap-k`, `analyze`, `surrogates`, `surrogate-test`, `nrlazy`.
 /// Studies and figures: `fit-frf`, `plot`, `reproduce`.
 #[derive(Debug, Parser)]
 #[command(name = "pdamp", version, about, long_about = None, propagate_version = true)]
@@ -45,6 +45,13 @@ pub enum Command {
     /// [analysis] Kantz's maximal Lyapunov exponent (TISEAN `lyap_k`).
     #[command(name = "lyap-k")]
     LyapK(commands::lyap_k::Args),
+    /// [analysis] Surrogate series: IAAFT, phase-randomised or shuffled (TISEAN `surrogates`).
+    Surrogates(commands::surrogates::Args),
+    /// [analysis] Surrogate test of nonlinearity by rank (prediction error, time reversal).
+    #[command(name = "surrogate-test")]
+    SurrogateTest(commands::surrogate_test::Args),
+    /// [analysis] Simple nonlinear noise reduction (Schreiber 1993; TISEAN `lazy`/`nrlazy`).
+    Nrlazy(commands::nrlazy::Args),
     /// [analysis] Whole analysis chain with automatic choices and a regime verdict.
     Analyze(commands::analyze::Args),
     /// [studies] Fit effective mass and damping to a frequency response (2.1.21).
@@ -69,6 +76,9 @@ pub fn run() -> anyhow::Result<()> {
         Command::Spectrum(a) => commands::spectrum::run(a),
         Command::Poincare(a) => commands::poincare::run(a),
         Command::LyapK(a) => commands::lyap_k::run(a),
+        Command::Surrogates(a) => commands::surrogates::run(a),
+        Command::SurrogateTest(a) => commands::surrogate_test::run(a),
+        Command::Nrlazy(a) => commands::nrlazy::run(a),
         Command::Analyze(a) => commands::analyze::run(a),
         Command::FitFrf(a) => commands::fit_frf::run(a),
         Command::Plot(a) => commands::plot::run(a),
