@@ -26,6 +26,18 @@ fn main() {
     for (name, x, dt) in cases {
         let t = std::time::Instant::now();
         let r = analyze_series(&x, &AnalyzeOptions { dt_s: Some(dt), ..Default::default() }).unwrap();
+        if std::env::var("DEBUG_SCAN").is_ok() { debug_scan(&x, r.embedding_dim.unwrap_or(3), r.lag.unwrap_or(1)); }
         println!("{name}: {} period {:?} mle/s {:?} lag {:?} m {:?} K {:?} | {} [{:.2}s]", r.regime, r.period, r.mle_per_time, r.lag, r.embedding_dim, r.zero_one_k, r.reason, t.elapsed().as_secs_f64());
+    }
+}
+
+#[allow(dead_code)]
+pub fn debug_scan(x: &[f64], m: usize, tau: usize) {
+    use pdamp::analysis::kantz_scan::{kantz_scan, KantzScanOptions};
+    let r = kantz_scan(x, &KantzScanOptions { m, tau, ..Default::default() }).unwrap();
+    println!("  scan: λ/sample {:.5} ± {:.5} d {} floor {:.3e} trend {:.2}", r.per_sample, r.stderr_per_sample, r.decimation, r.noise_floor, r.eps_trend);
+    for c in &r.curves {
+        let s: Vec<String> = c.s.iter().step_by(10).take(30).map(|v| v.map_or("-".into(), |v| format!("{v:.2}"))).collect();
+        println!("   eps {:.3e} fit {:?}\n     S: {}", c.eps, c.fit.map(|f| (f.start, f.end, f.slope, f.r2, f.linear)), s.join(" "));
     }
 }

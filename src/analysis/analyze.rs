@@ -12,6 +12,9 @@ use crate::analysis::false_nearest_neighbors::{
     false_nearest_neighbors, suggested_dimension, FnnOptions,
 };
 use crate::analysis::kantz_scan::{kantz_scan, KantzScanOptions};
+use crate::analysis::prediction_error::{prediction_error, PredictionErrorOptions};
+use crate::analysis::surrogate_test::{surrogate_test, SurrogateTestOptions, Tail};
+use crate::analysis::surrogates::SurrogateOptions;
 use crate::analysis::mutual_information::{mutual_information, MutualInformationOptions};
 use crate::analysis::poincare::{
     classify_section, period_in_samples, stroboscopic_section, ClusterOptions, SecondCoordinate,
@@ -353,6 +356,9 @@ pub fn analyze_series(x: &[f64], opts: &AnalyzeOptions) -> Result<AnalysisReport
         report.embedding_dim = Some(dim);
 
         kantz_evidence(x, lag, dim, opts, &mut evidence, &mut report, &mut notes);
+        if opts.forcing_hz.is_none() {
+            surrogate_evidence(x, lag, dim, opts, &mut evidence, &mut notes);
+        }
         if let Some(f) = report.kantz_fit.as_mut() {
             f.eps *= range;
         }
@@ -740,6 +746,43 @@ fn choose_lag(x: &[f64], opts: &AnalyzeOptions, notes: &mut Vec<String>) -> usiz
             notes.push(format!("mutual information not computed: {e}; lag = 1"));
             1
         }
+    }
+}
+
+/// Nonlinear determinism: the locally constant prediction error of the series against 19 IAAFT
+/// surrogates (one-sided rank test at p = 0.05), on the last 8192 samples; delay and horizon
+/// the lag τ, Theiler window 5τ.
+fn surrogate_evidence(
+    x: &[f64],
+    lag: usize,
+    dim: usize,
+    opts: &AnalyzeOptions,
+    evidence: &mut Evidence,
+    notes: &mut Vec<String>,
+) {
+    let tail = &x[x.len().saturating_sub(8192)..];
+    let popts = PredictionErrorOptions {
+        dim: dim.clamp(2, 6),
+        delay: lag.max(1),
+        horizon: lag.max(1),
+        theiler: 5 * lag.max(1),
+        ..PredictionErrorOptions::default()
+    };
+    let stat = |s: &[f64]| prediction_error(s, &popts);
+    let topts = SurrogateTestOptions {
+        n_surrogates: 19,
+        surrogate: SurrogateOptions {
+            seed: opts.seed,
+            ..SurrogateOptions::default()
+        },
+        tail: Tail::Lower,
+    };
+    match surrogate_test(tail, &stat, &topts) {
+        Ok(r) => {
+            evidence.surrogate_rejects = Some(r.rejects(0.05));
+            evidence.surrogate_p = Some(r.p_value);
+        }
+        Err(e) => notes.push(format!("surrogate test not run: {e}")),
     }
 }
 

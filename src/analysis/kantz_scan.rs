@@ -168,7 +168,7 @@ pub fn kantz_scan(x: &[f64], opts: &KantzScanOptions) -> Result<KantzScan, Analy
         .iter()
         .map(|c| ScanCurve {
             eps: c.eps,
-            fit: fit_scaling_region(below_saturation(&c.s), &ScalingOptions::default()),
+            fit: fit_after_alignment(&c.s, (m - 1) * tau_d),
             s: c.s.clone(),
         })
         .collect();
@@ -222,6 +222,21 @@ pub fn kantz_scan(x: &[f64], opts: &KantzScanOptions) -> Result<KantzScan, Analy
         curves_linear: linear.len(),
         curves,
     })
+}
+
+/// The scaling-region fit of the part of a curve between the end of the alignment transient
+/// (the first (m − 1)·τ steps, while the separation turns into the unstable direction and the
+/// noise's own jump decays) and saturation; Δn of the result are those of the whole curve.
+fn fit_after_alignment(s: &[Option<f64>], skip: usize) -> Option<SlopeFit> {
+    let head = below_saturation(s);
+    if head.len() < skip + 6 {
+        // saturated before the alignment transient is over: no scaling region
+        return None;
+    }
+    let mut f = fit_scaling_region(&head[skip..], &ScalingOptions::default())?;
+    f.start += skip;
+    f.end += skip;
+    Some(f)
 }
 
 /// The part of a curve before it comes within one e-fold of its plateau (the largest S): a

@@ -135,6 +135,8 @@ pub struct Evidence {
     /// Whether a surrogate test rejected the linear-stochastic null hypothesis (nonlinear
     /// determinism), when it ran.
     pub surrogate_rejects: Option<bool>,
+    /// p-value of that surrogate test.
+    pub surrogate_p: Option<f64>,
     /// Whether Kantz's curve had a linear scaling region (R² ≥ 0.99 over ≥ 5 points).
     pub kantz_linear: bool,
     /// Growth of S over the fitted region, slope × (end − start), in e-folds.
@@ -153,7 +155,8 @@ pub struct RegimeThresholds {
     pub line_fraction: f64,
     /// K above this is irregular (default 0.5, Gottwald & Melbourne's threshold).
     pub zero_one: f64,
-    /// Kantz's scaling region must grow by at least this many e-folds (default 1).
+    /// Kantz's scaling region must grow by at least this many e-folds (default 0.5: between
+    /// the noise floor and saturation, noisy flows leave a short region).
     pub min_growth: f64,
     /// Largest period reported in forcing periods (default 64); periods in samples (no forcing)
     /// are not limited.
@@ -165,7 +168,7 @@ impl Default for RegimeThresholds {
         RegimeThresholds {
             line_fraction: 0.95,
             zero_one: 0.5,
-            min_growth: 1.0,
+            min_growth: 0.5,
             max_period: 64,
         }
     }
