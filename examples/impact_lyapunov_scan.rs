@@ -6,8 +6,9 @@
 //!
 //! Run: `cargo run --release --example impact_lyapunov_scan`
 //! Options (positional, all optional): `<out.csv> <duration_s> <f_min> <f_max> <f_step>
-//! <restitutions, comma-separated>`; defaults `data/reference/impact_model_lyapunov.csv 200 2 30
-//! 0.5 0.8,0.5`. The steady window is the scene's last 10 %.
+//! <restitutions, comma-separated> <two-trajectory d0>`; defaults
+//! `data/reference/impact_model_lyapunov.csv 200 2 30 0.5 0.8,0.5 <ModelLyapunovOptions default>`.
+//! The steady window is the scene's last 10 %.
 
 use pdamp::impact::{ImpactWorld, ModelLyapunovOptions};
 use pdamp::scene::{Damper, Run, Scene};
@@ -43,7 +44,10 @@ fn main() -> anyhow::Result<()> {
             jobs.push((e, f_min + i as f64 * f_step));
         }
     }
-    let opts = ModelLyapunovOptions::default();
+    let opts = ModelLyapunovOptions {
+        separation: num(6, ModelLyapunovOptions::default().separation)?,
+        ..Default::default()
+    };
     let start = Instant::now();
     let rows: Vec<anyhow::Result<String>> = jobs
         .par_iter()
@@ -101,16 +105,18 @@ fn main() -> anyhow::Result<()> {
     )?;
     writeln!(
         text,
-        "# lambda_*: tangent dynamics with saltation matrices (ImpactWorld::model_lyapunov); stderr_per_s: batch means over 10 blocks; lambda_two_traj_per_s: two trajectories d0 = 1e-9 (scaled), renormalised every period (ImpactWorld::model_lyapunov_two_trajectory), stderr_two_traj_per_s likewise"
+        "# lambda_*: tangent dynamics with saltation matrices (ImpactWorld::model_lyapunov); stderr_per_s: batch means over 10 blocks; lambda_two_traj_per_s: two trajectories d0 = {:e} (scaled), renormalised every period (ImpactWorld::model_lyapunov_two_trajectory), stderr_two_traj_per_s likewise",
+        opts.separation
     )?;
     writeln!(
         text,
-        "# generator: cargo run --release --example impact_lyapunov_scan -- {out} {duration} {f_min} {f_max} {f_step} {} (pdamp {}; {elapsed:.0} s wall on this machine)",
+        "# generator: cargo run --release --example impact_lyapunov_scan -- {out} {duration} {f_min} {f_max} {f_step} {} {:e} (pdamp {}; {elapsed:.0} s wall on this machine)",
         restitutions
             .iter()
             .map(|e| e.to_string())
             .collect::<Vec<_>>()
             .join(","),
+        opts.separation,
         env!("CARGO_PKG_VERSION"),
     )?;
     writeln!(
