@@ -152,7 +152,12 @@ mod tests {
         for e in [0.5, 0.8] {
             let tr = period_one_trace(e, period_doubling_gamma(1, e)).unwrap();
             assert!((tr + 1.0 + e * e).abs() < 1e-12, "e {e}: tr {tr}");
-            assert!(period_one_lyapunov(e, period_doubling_gamma(1, e)).unwrap().abs() < 1e-7);
+            assert!(
+                period_one_lyapunov(e, period_doubling_gamma(1, e))
+                    .unwrap()
+                    .abs()
+                    < 1e-7
+            );
             // inside the complex band |μ| = e exactly
             let mid = 0.5 * (existence_gamma(1, e) + period_doubling_gamma(1, e));
             assert_eq!(period_one_lyapunov(e, mid), Some(e.ln()));
