@@ -432,10 +432,7 @@ impl ImpactWorld {
 
     /// The state A + d0 u (u in scaled components), kept on the constraint when A is stuck.
     fn perturbed(&self, a: &State, u: &[f64; 4], d0: f64, wt: &[f64; 4]) -> State {
-        let mut d = [0.0; 4];
-        for i in 0..4 {
-            d[i] = d0 * u[i] / wt[i];
-        }
+        let mut d: [f64; 4] = std::array::from_fn(|i| d0 * u[i] / wt[i]);
         if !self.box_mass.is_finite() {
             d[0] = 0.0;
             d[1] = 0.0;
@@ -548,9 +545,8 @@ impl<'a> Tangent<'a> {
 
     /// Unit vector along [`SEED`], on the constraint of the current mode.
     fn seed(&mut self) {
-        for i in 0..4 {
-            self.dx[i] = SEED[i] / self.wt[i];
-        }
+        let wt = self.wt;
+        self.dx = std::array::from_fn(|i| SEED[i] / wt[i]);
         if !self.w.box_mass.is_finite() {
             self.dx[0] = 0.0;
             self.dx[1] = 0.0;
@@ -680,7 +676,7 @@ impl<'a> Tangent<'a> {
                     let r = collide(w.box_mass, p.mass, e, vz, vp);
                     (r.box_v_m_s, r.particle_v_m_s)
                 };
-                if !(approach > 0.0) {
+                if approach <= 0.0 {
                     // contact at the very start of a flight, no collision: the cut only
                     // projects onto the constraint (box position kept, momentum velocity)
                     if plastic {
@@ -711,9 +707,7 @@ impl<'a> Tangent<'a> {
                 let q = grad_dx / grad_f;
                 let (dv, dw) = jg(d[1], d[3]);
                 let jd = [d[0], dv, d[2], dw];
-                for i in 0..4 {
-                    self.dx[i] = jd[i] + (fp[i] - jfm[i]) * q;
-                }
+                self.dx = std::array::from_fn(|i| jd[i] + (fp[i] - jfm[i]) * q);
             }
         }
     }

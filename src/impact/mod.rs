@@ -26,6 +26,10 @@
 //! remaining relative motion is removed by a plastic impact (its kinetic energy, ½ μ s², is
 //! booked as impact loss) and the particle sticks if (2.1.27) allows it. Stalled event sequences
 //! (no time progress) are detected and resolved, so a run always ends.
+//!
+//! [`lyapunov`] computes the largest Lyapunov exponent of the stroboscopic map from the model's
+//! own equations (tangent dynamics with saltation matrices, riding on the same segment loop
+//! through a hook; and two diverging copies of the model as a cross-check).
 
 pub mod collision;
 pub mod events;
