@@ -26,9 +26,14 @@
 //! remaining relative motion is removed by a plastic impact (its kinetic energy, ½ μ s², is
 //! booked as impact loss) and the particle sticks if (2.1.27) allows it. Stalled event sequences
 //! (no time progress) are detected and resolved, so a run always ends.
+//!
+//! [`lyapunov`] computes the largest Lyapunov exponent of the stroboscopic map from the model's
+//! own equations (tangent dynamics with saltation matrices, riding on the same segment loop
+//! through a hook; and two diverging copies of the model as a cross-check).
 
 pub mod collision;
 pub mod events;
+pub mod lyapunov;
 
 use crate::error::SimError;
 use crate::model::primary::base_motion;
@@ -38,6 +43,11 @@ use crate::scene::{Damper, Scene};
 use collision::collide;
 use events::{first_crossing, time_tolerance};
 use std::collections::BTreeMap;
+
+pub use lyapunov::{
+    model_lyapunov_of_scene, two_trajectory_lyapunov_of_scene, LyapunovMethod, ModelLyapunov,
+    ModelLyapunovOptions,
+};
 
 /// Names of the impact model's extra columns in `series.csv`.
 pub const IMPACT_COLUMNS: [&str; 2] = ["grain_v_m_s", "contact"];
@@ -150,6 +160,21 @@ enum Event {
     HitCeiling,
     Detach,
 }
+
+/// Receives the exact trajectory segment by segment and event by event ([`lyapunov`]'s tangent
+/// dynamics and two-trajectory estimate); a plain run uses [`NoHook`].
+trait SegmentHook {
+    /// The state moved from `from` to `to` along one closed-form segment (mode `from.mode`,
+    /// no event inside).
+    fn flow(&mut self, _from: &State, _to: &State) {}
+    /// An event was applied at `before.t`, turning `before` into `after`.
+    fn event(&mut self, _before: &State, _after: &State, _event: Event) {}
+}
+
+/// The hook of a plain run: does nothing.
+struct NoHook;
+
+impl SegmentHook for NoHook {}
 
 /// Compensated (Kahan–Babuška) sum, so that 1e6 forcing periods do not drift.
 #[derive(Debug, Clone, Copy, Default)]
@@ -454,6 +479,16 @@ impl ImpactWorld {
     /// [`SimError::Unstable`] if the state becomes non-finite or the event sequence stalls;
     /// [`SimError::Output`] if the observer fails.
     pub fn run(&self, obs: &mut dyn Observer, opts: &RunOptions) -> Result<RunSummary, SimError> {
+        self.run_hooked(obs, opts, &mut NoHook)
+    }
+
+    /// [`ImpactWorld::run`], reporting every segment and event to `hook`.
+    fn run_hooked<H: SegmentHook>(
+        &self,
+        obs: &mut dyn Observer,
+        opts: &RunOptions,
+        hook: &mut H,
+    ) -> Result<RunSummary, SimError> {
         let extra_names: &[&str] = if self.particle.is_some() {
             &IMPACT_COLUMNS
         } else {
@@ -569,6 +604,7 @@ impl ImpactWorld {
             }
             // advance to te
             let progressed = te - st.t > 10.0 * time_tolerance(te);
+            let from = st;
             let (y, w) = match st.mode {
                 Mode::Flight => {
                     let tau = te - st.t;
@@ -588,6 +624,7 @@ impl ImpactWorld {
                 mode: st.mode,
                 departing: if progressed { 0 } else { st.departing },
             };
+            hook.flow(&from, &st);
             if forced_stick {
                 stall = 0;
             }
@@ -602,7 +639,9 @@ impl ImpactWorld {
                     });
                 }
                 stall = if progressed { 0 } else { stall + 1 };
+                let before = st;
                 self.apply_event(&mut st, event, &mut led);
+                hook.event(&before, &st, event);
             }
             if st.t >= next_progress {
                 obs.progress(st.t, self.duration);

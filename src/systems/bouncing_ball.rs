@@ -47,6 +47,48 @@ pub fn fixed_point_phase(n: u32, e: f64, gamma: f64) -> Option<f64> {
     (s <= 1.0).then(|| -s.asin())
 }
 
+/// Trace of the Jacobian of the exact impact map at the stable period-1 fixed point (one impact
+/// per table period, [`fixed_point_phase`]).
+///
+/// # Formula
+/// In the impact-map variables (impact time t_k, take-off velocity v_k), with flight time
+/// τ = T, take-off speed V = gT/2 and approach speed p = gT/(1 + e) at the fixed point,
+/// J = [[1, τ/p], [B − e g, B τ/p − e]], B = (1 + e) s''(θ) + e g, so det J = e² and
+/// tr J = 1 + e² + (1 + e)² s''(θ)/g = 1 + e² − (1 + e)² sqrt(Γ² − Γ₁²)
+/// (s = A cos ωt decelerating upwards at impact: s''(θ)/g = −sqrt(Γ² − Γ₁²)). The multipliers
+/// μ solve μ² − tr J μ + e² = 0; tr J = −(1 + e²) (μ = −1) gives [`period_doubling_gamma`].
+///
+/// # Errors
+/// `None` when Γ < Γ₁ (the orbit does not exist).
+///
+/// # References
+/// Tufillaro, Abbott & Reilly (1992), ch. 3; Luck & Mehta (1993), PRE 48, 3988.
+pub fn period_one_trace(e: f64, gamma: f64) -> Option<f64> {
+    let g1 = existence_gamma(1, e);
+    (gamma >= g1).then(|| 1.0 + e * e - (1.0 + e) * (1.0 + e) * (gamma * gamma - g1 * g1).sqrt())
+}
+
+/// Largest Lyapunov exponent of the stable period-1 orbit (per table period, natural log):
+/// ln of the spectral radius of the exact impact map's Jacobian ([`period_one_trace`]).
+///
+/// # Formula
+/// ρ = e when tr² < 4e² (complex multipliers, |μ|² = det J = e²), otherwise
+/// ρ = (|tr| + sqrt(tr² − 4e²))/2; λ_T = ln ρ. λ_T = ln e on the whole complex band, and
+/// λ_T → 0 at the period-doubling threshold (μ = −1).
+///
+/// # Errors
+/// `None` when Γ < Γ₁ (the orbit does not exist).
+pub fn period_one_lyapunov(e: f64, gamma: f64) -> Option<f64> {
+    let tr = period_one_trace(e, gamma)?;
+    let disc = tr * tr - 4.0 * e * e;
+    let rho = if disc < 0.0 {
+        e
+    } else {
+        0.5 * (tr.abs() + disc.sqrt())
+    };
+    Some(rho.ln())
+}
+
 /// A scene of the bouncing ball with table amplitude `amplitude` (m), frequency `frequency`
 /// (Hz) scaled to Γ = `gamma`, restitution `e`, started exactly on the period-n orbit's fixed
 /// point (if it exists; otherwise resting on the table), for `periods` table periods.
@@ -102,5 +144,24 @@ mod tests {
         assert!((period_doubling_gamma(1, 0.5) - 1.52682).abs() < 5e-6);
         assert!((existence_gamma(1, 0.8) - 0.34907).abs() < 5e-6);
         assert!((period_doubling_gamma(1, 0.8) - 1.07084).abs() < 5e-6);
+    }
+
+    #[test]
+    fn period_one_multiplier_is_minus_one_at_period_doubling() {
+        // tr J = −(1 + e²) ⇔ μ = −1 (and μ = −e²): λ_T = 0 at Γ_pd (to rounding)
+        for e in [0.5, 0.8] {
+            let tr = period_one_trace(e, period_doubling_gamma(1, e)).unwrap();
+            assert!((tr + 1.0 + e * e).abs() < 1e-12, "e {e}: tr {tr}");
+            assert!(
+                period_one_lyapunov(e, period_doubling_gamma(1, e))
+                    .unwrap()
+                    .abs()
+                    < 1e-7
+            );
+            // inside the complex band |μ| = e exactly
+            let mid = 0.5 * (existence_gamma(1, e) + period_doubling_gamma(1, e));
+            assert_eq!(period_one_lyapunov(e, mid), Some(e.ln()));
+        }
+        assert_eq!(period_one_trace(0.5, 1.0), None);
     }
 }
