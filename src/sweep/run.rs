@@ -1,6 +1,8 @@
 //! Simulation dispatch: one scene → one [`RunSummary`], whatever the damper model.
 
 use crate::analysis::analyze::{analyze_forced, AnalyzeOptions, ForcedRun};
+use crate::analysis::regime::Exponent;
+use crate::impact::lyapunov::{model_lyapunov_of_scene, ModelLyapunovOptions};
 use crate::error::SimError;
 use crate::model::{RunOptions, RunSummary};
 use crate::observe::{Observer, SteadyCollector, Tee};
@@ -64,7 +66,8 @@ pub fn run_with_analysis(
         observers: vec![obs, &mut decimator],
     };
     let mut summary = run_scene(scene, &mut tee, &run_opts)?;
-    analyze_into(&mut summary, &collector, scene.frequency_hz());
+    let model = model_exponent(scene, &mut summary);
+    analyze_into(&mut summary, &collector, scene.frequency_hz(), model);
     Ok(summary)
 }
 
@@ -75,7 +78,12 @@ pub fn run_with_analysis(
 ///
 /// The section coordinates are scaled by the extents of the continuous motion: positions by
 /// the range of z(t) over the steady window, velocities by Ω times that range.
-fn analyze_into(summary: &mut RunSummary, collector: &SteadyCollector, forcing_hz: f64) {
+fn analyze_into(
+    summary: &mut RunSummary,
+    collector: &SteadyCollector,
+    forcing_hz: f64,
+    model_exponent: Option<Exponent>,
+) {
     let (section, scales) = exact_section(summary, collector, forcing_hz);
     let run = ForcedRun {
         series: &collector.grain_z_m,
@@ -83,7 +91,7 @@ fn analyze_into(summary: &mut RunSummary, collector: &SteadyCollector, forcing_h
         forcing_hz,
         section: &section,
         scales: &scales,
-        model_exponent: None,
+        model_exponent,
     };
     match analyze_forced(&run, &AnalyzeOptions::default()) {
         Ok(report) => match serde_json::to_value(&report) {
@@ -91,6 +99,28 @@ fn analyze_into(summary: &mut RunSummary, collector: &SteadyCollector, forcing_h
             Err(e) => summary.analysis_error = Some(format!("analysis report: {e}")),
         },
         Err(e) => summary.analysis_error = Some(e.to_string()),
+    }
+}
+
+/// The impact model's own exponent (tangent dynamics with saltation matrices,
+/// [`crate::impact::lyapunov`]) over the analysis window; `None` for other models. A failure
+/// is noted in `summary.analysis_error` and does not stop the run.
+fn model_exponent(scene: &Scene, summary: &mut RunSummary) -> Option<Exponent> {
+    let mut window = scene.clone();
+    window.run.steady_fraction = scene.run.analysis_fraction.max(scene.run.steady_fraction);
+    match model_lyapunov_of_scene(&window, &ModelLyapunovOptions::default()) {
+        Ok(Some(m)) if m.per_period.is_finite() => Some(Exponent {
+            per_period: m.per_period,
+            stderr_per_period: m.stderr_per_period,
+        }),
+        // a locked kinematic ball: every perturbation dies (λ = −∞); no finite exponent to
+        // report, the exact section (a fixed point) decides
+        Ok(Some(_)) => None,
+        Ok(None) => None,
+        Err(e) => {
+            summary.analysis_error = Some(format!("model exponent: {e}"));
+            None
+        }
     }
 }
 
