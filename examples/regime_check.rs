@@ -9,35 +9,92 @@ fn main() {
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
     let nrm = Normal::new(0.0, 1.0).unwrap();
     let mut cases: Vec<(String, Vec<f64>, f64)> = Vec::new();
-    cases.push(("roessler dt0.05 n20000".into(), roessler_x(20_000, 0.05), 0.05));
+    cases.push((
+        "roessler dt0.05 n20000".into(),
+        roessler_x(20_000, 0.05),
+        0.05,
+    ));
     let lx = lorenz_x(20_000, 0.01);
-    let sd = { let m = lx.iter().sum::<f64>() / lx.len() as f64; (lx.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / lx.len() as f64).sqrt() };
+    let sd = {
+        let m = lx.iter().sum::<f64>() / lx.len() as f64;
+        (lx.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / lx.len() as f64).sqrt()
+    };
     for lvl in [0.05, 0.10] {
-        let x: Vec<f64> = lx.iter().map(|v| v + lvl * sd * nrm.sample(&mut rng)).collect();
+        let x: Vec<f64> = lx
+            .iter()
+            .map(|v| v + lvl * sd * nrm.sample(&mut rng))
+            .collect();
         cases.push((format!("lorenz noise {lvl}"), x, 0.01));
     }
-    let sine: Vec<f64> = (0..20_000).map(|n| (std::f64::consts::TAU * n as f64 / 37.3).sin() + 0.2 * nrm.sample(&mut rng)).collect();
+    let sine: Vec<f64> = (0..20_000)
+        .map(|n| (std::f64::consts::TAU * n as f64 / 37.3).sin() + 0.2 * nrm.sample(&mut rng))
+        .collect();
     cases.push(("noisy sine 0.2".into(), sine, 1.0));
     let white: Vec<f64> = (0..20_000).map(|_| nrm.sample(&mut rng)).collect();
     cases.push(("white".into(), white, 1.0));
     let mut a = 0.0;
-    let ar: Vec<f64> = (0..20_000).map(|_| { a = 0.95 * a + nrm.sample(&mut rng); a }).collect();
+    let ar: Vec<f64> = (0..20_000)
+        .map(|_| {
+            a = 0.95 * a + nrm.sample(&mut rng);
+            a
+        })
+        .collect();
     cases.push(("ar1 0.95".into(), ar, 1.0));
     for (name, x, dt) in cases {
         let t = std::time::Instant::now();
-        let r = analyze_series(&x, &AnalyzeOptions { dt_s: Some(dt), ..Default::default() }).unwrap();
-        if std::env::var("DEBUG_SCAN").is_ok() { debug_scan(&x, r.embedding_dim.unwrap_or(3), r.lag.unwrap_or(1)); }
-        println!("{name}: {} period {:?} mle/s {:?} lag {:?} m {:?} K {:?} | {} [{:.2}s]", r.regime, r.period, r.mle_per_time, r.lag, r.embedding_dim, r.zero_one_k, r.reason, t.elapsed().as_secs_f64());
+        let r = analyze_series(
+            &x,
+            &AnalyzeOptions {
+                dt_s: Some(dt),
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        if std::env::var("DEBUG_SCAN").is_ok() {
+            debug_scan(&x, r.embedding_dim.unwrap_or(3), r.lag.unwrap_or(1));
+        }
+        println!(
+            "{name}: {} period {:?} mle/s {:?} lag {:?} m {:?} K {:?} | {} [{:.2}s]",
+            r.regime,
+            r.period,
+            r.mle_per_time,
+            r.lag,
+            r.embedding_dim,
+            r.zero_one_k,
+            r.reason,
+            t.elapsed().as_secs_f64()
+        );
     }
 }
 
 #[allow(dead_code)]
 pub fn debug_scan(x: &[f64], m: usize, tau: usize) {
     use pdamp::analysis::kantz_scan::{kantz_scan, KantzScanOptions};
-    let r = kantz_scan(x, &KantzScanOptions { m, tau, ..Default::default() }).unwrap();
-    println!("  scan: λ/sample {:.5} ± {:.5} d {} floor {:.3e} trend {:.2}", r.per_sample, r.stderr_per_sample, r.decimation, r.noise_floor, r.eps_trend);
+    let r = kantz_scan(
+        x,
+        &KantzScanOptions {
+            m,
+            tau,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    println!(
+        "  scan: λ/sample {:.5} ± {:.5} d {} floor {:.3e} trend {:.2}",
+        r.per_sample, r.stderr_per_sample, r.decimation, r.noise_floor, r.eps_trend
+    );
     for c in &r.curves {
-        let s: Vec<String> = c.s.iter().step_by(10).take(30).map(|v| v.map_or("-".into(), |v| format!("{v:.2}"))).collect();
-        println!("   eps {:.3e} fit {:?}\n     S: {}", c.eps, c.fit.map(|f| (f.start, f.end, f.slope, f.r2, f.linear)), s.join(" "));
+        let s: Vec<String> =
+            c.s.iter()
+                .step_by(10)
+                .take(30)
+                .map(|v| v.map_or("-".into(), |v| format!("{v:.2}")))
+                .collect();
+        println!(
+            "   eps {:.3e} fit {:?}\n     S: {}",
+            c.eps,
+            c.fit.map(|f| (f.start, f.end, f.slope, f.r2, f.linear)),
+            s.join(" ")
+        );
     }
 }

@@ -11,6 +11,7 @@ use pdamp::analysis::zero_one_test::{zero_one_test, ZeroOneOptions};
 use pdamp::systems::henon::henon_x;
 use pdamp::systems::logistic::logistic_series;
 use pdamp::systems::lorenz::lorenz_x;
+use pdamp::systems::roessler::roessler_x;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
@@ -238,4 +239,77 @@ fn pathological_series_never_panic() {
             Err(e) => eprintln!("{name}: error {e}"),
         }
     }
+}
+
+fn with_noise(x: &[f64], level: f64, seed: u64) -> Vec<f64> {
+    // observational noise: Gaussian with σ = level × the series' standard deviation
+    let n = x.len() as f64;
+    let mean = x.iter().sum::<f64>() / n;
+    let sd = (x.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n).sqrt();
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let normal = Normal::new(0.0, level * sd).unwrap();
+    x.iter().map(|v| v + normal.sample(&mut rng)).collect()
+}
+
+#[test]
+fn roessler_x_is_chaotic_despite_its_sharp_lines() {
+    // Phase-coherent chaos: Rössler x has sharp spectral lines (the old line rule called it
+    // quasi-periodic). λ = 0.0714 per time unit (SPEC §9, Sprott). Kantz's mean-distance curve
+    // on x alone grows with the orbit's non-uniform stretching and gives 0.052 (measured, m = 3
+    // from FNN); the verdict must be chaotic with λ within 40 % — the sign and the order of
+    // magnitude, not the value (Rosenstein's estimator is the one to use for the value).
+    let dt = 0.05;
+    let x = roessler_x(20_000, dt);
+    let rep = analyze(&x, Some(dt), None);
+    assert_eq!(rep.regime, Regime::Chaotic, "{}", rep.reason);
+    let l = rep.mle_per_time.unwrap();
+    assert!((l - 0.0714).abs() < 0.4 * 0.0714, "{l}");
+}
+
+#[test]
+fn lorenz_with_five_percent_noise_is_chaotic_with_its_exponent() {
+    // 5 % observational noise (σ = 0.05 sd): the ε scan starts above the noise floor, the
+    // alignment transient is skipped; λ₁ = 0.9056 per time unit (SPEC §9) within 15 % (the
+    // issue's band). Measured 1.005 (+11 %).
+    let dt = 0.01;
+    let x = with_noise(&lorenz_x(20_000, dt), 0.05, 7);
+    let rep = analyze(&x, Some(dt), None);
+    assert_eq!(rep.regime, Regime::Chaotic, "{}", rep.reason);
+    let l = rep.mle_per_time.unwrap();
+    assert!((l - 0.9056).abs() < 0.15 * 0.9056, "{l}");
+    assert_eq!(rep.evidence.surrogate_rejects, Some(true));
+}
+
+#[test]
+fn noisy_sine_is_periodic() {
+    // A sine with σ = 0.2 Gaussian noise: one harmonic line with 92 % of the power, the rest
+    // broadband; no positive exponent → periodic with the sine's period (37.3 samples, within
+    // the Hann interpolation bias).
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let normal = Normal::new(0.0, 0.2).unwrap();
+    let x: Vec<f64> = (0..20_000)
+        .map(|n| (TAU * n as f64 / 37.3).sin() + normal.sample(&mut rng))
+        .collect();
+    let rep = analyze(&x, None, None);
+    assert_eq!(rep.regime, Regime::Periodic, "{}", rep.reason);
+    let p = rep.period.unwrap();
+    assert!((p - 37.3).abs() < 1e-2 * 37.3, "{p}");
+}
+
+#[test]
+fn ar1_noise_is_never_chaotic() {
+    // Negative control: a linear Gaussian AR(1) process (φ = 0.95, strongly coloured) is
+    // noise; IAAFT surrogates share its spectrum and amplitudes, so the prediction-error test
+    // cannot reject (p > 0.05) and the verdict is stochastic, never chaotic.
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let normal = Normal::new(0.0, 1.0).unwrap();
+    let mut a = 0.0;
+    let x: Vec<f64> = (0..20_000)
+        .map(|_| {
+            a = 0.95 * a + normal.sample(&mut rng);
+            a
+        })
+        .collect();
+    let rep = analyze(&x, Some(1.0), None);
+    assert_eq!(rep.regime, Regime::Stochastic, "{}", rep.reason);
 }

@@ -95,7 +95,8 @@ fn analysis_columns_are_thread_independent_too() {
             "quasi-periodic",
             "chaotic",
             "stochastic",
-            "undetermined"
+            "undetermined",
+            "too-short"
         ]
         .iter()
         .any(|r| row.contains(r)),

@@ -12,25 +12,25 @@ use crate::analysis::false_nearest_neighbors::{
     false_nearest_neighbors, suggested_dimension, FnnOptions,
 };
 use crate::analysis::kantz_scan::{kantz_scan, KantzScanOptions};
-use crate::analysis::prediction_error::{prediction_error, PredictionErrorOptions};
-use crate::analysis::surrogate_test::{surrogate_test, SurrogateTestOptions, Tail};
-use crate::analysis::surrogates::SurrogateOptions;
 use crate::analysis::mutual_information::{mutual_information, MutualInformationOptions};
 use crate::analysis::poincare::{
     classify_section, period_in_samples, stroboscopic_section, ClusterOptions, SecondCoordinate,
     SectionShape, StrobeOptions,
 };
+use crate::analysis::prediction_error::{prediction_error, PredictionErrorOptions};
 use crate::analysis::regime::{
     classify, harmonic_fundamental, recurrence_period, Evidence, Regime, RegimeThresholds,
-};
-use crate::analysis::spectrum::{
-    check_finite, line_power_fraction, power_spectrum, spectral_lines, LineOptions, SpectrumOptions,
 };
 use crate::analysis::regime::{classify_forced, Exponent, ForcedEvidence};
 use crate::analysis::section::{analyze_section, SectionAnalysis, SectionOptions};
 use crate::analysis::section_lyapunov::{
     section_lyapunov, SectionLyapunov, SectionLyapunovOptions,
 };
+use crate::analysis::spectrum::{
+    check_finite, line_power_fraction, power_spectrum, spectral_lines, LineOptions, SpectrumOptions,
+};
+use crate::analysis::surrogate_test::{surrogate_test, SurrogateTestOptions, Tail};
+use crate::analysis::surrogates::SurrogateOptions;
 use crate::analysis::zero_one_test::{zero_one_test, ZeroOneOptions};
 use crate::error::AnalysisError;
 use serde::Serialize;
@@ -430,7 +430,15 @@ pub fn analyze_series(x: &[f64], opts: &AnalyzeOptions) -> Result<AnalysisReport
             let forcing_hz = opts.forcing_hz.unwrap_or(1.0);
             match analyze_section(points, &[1.0, 1.0], &sopts) {
                 Ok(sec) => {
-                    section_verdict(&mut report, sec, points, &[1.0, 1.0], forcing_hz, None, "interpolated");
+                    section_verdict(
+                        &mut report,
+                        sec,
+                        points,
+                        &[1.0, 1.0],
+                        forcing_hz,
+                        None,
+                        "interpolated",
+                    );
                     // the per-sample exponent of the report stays the series' Kantz estimate
                     if let Some(l) = evidence.mle_per_sample {
                         report.mle_per_sample = Some(l);
@@ -494,9 +502,16 @@ pub struct ForcedRun<'a> {
 ///
 /// # Errors
 /// Bad section rows or scales (see [`analyze_section`]); `forcing_hz` or `dt_s` not positive.
-pub fn analyze_forced(run: &ForcedRun<'_>, opts: &AnalyzeOptions) -> Result<AnalysisReport, AnalysisError> {
+pub fn analyze_forced(
+    run: &ForcedRun<'_>,
+    opts: &AnalyzeOptions,
+) -> Result<AnalysisReport, AnalysisError> {
     if !(run.forcing_hz.is_finite() && run.forcing_hz > 0.0) {
-        return Err(AnalysisError::bad("forcing_hz", run.forcing_hz, "must be > 0 Hz"));
+        return Err(AnalysisError::bad(
+            "forcing_hz",
+            run.forcing_hz,
+            "must be > 0 Hz",
+        ));
     }
     if !(run.dt_s.is_finite() && run.dt_s > 0.0) {
         return Err(AnalysisError::bad("dt", run.dt_s, "must be > 0 s"));
@@ -550,7 +565,9 @@ fn section_verdict(
             match section_lyapunov(points, scales, &SectionLyapunovOptions::default()) {
                 Ok(l) => Some(l),
                 Err(e) => {
-                    report.notes.push(format!("section exponent not computed: {e}"));
+                    report
+                        .notes
+                        .push(format!("section exponent not computed: {e}"));
                     None
                 }
             }
@@ -607,7 +624,11 @@ fn empty_report(n: usize, dt_s: Option<f64>) -> AnalysisReport {
         period: None,
         reason: String::new(),
         spectral_lines: Vec::new(),
-        frequency_unit: if dt_s.is_some() { "hz" } else { "cycles/sample" },
+        frequency_unit: if dt_s.is_some() {
+            "hz"
+        } else {
+            "cycles/sample"
+        },
         line_power_fraction: 0.0,
         poincare_distinct_points: None,
         poincare_section_points: None,
@@ -830,7 +851,10 @@ fn kantz_evidence(
                     linear: f.linear,
                     m: dim,
                     eps,
-                    steps: scan.curves.first().map_or(0, |c| c.s.len().saturating_sub(1))
+                    steps: scan
+                        .curves
+                        .first()
+                        .map_or(0, |c| c.s.len().saturating_sub(1))
                         * scan.decimation,
                 });
             }

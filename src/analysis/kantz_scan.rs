@@ -94,7 +94,8 @@ pub struct KantzScan {
     pub stderr_per_sample: f64,
     /// Whether at least one curve had a linear scaling region.
     pub linear: bool,
-    /// Growth of S over the median curve's linear region (e-folds).
+    /// Largest growth of S over a linear region among the curves whose slope lies within 2σ of
+    /// the median (e-folds).
     pub growth: f64,
     /// Relative change of λ across the radii: (λ(ε_max) − λ(ε_min)) / |λ|.
     pub eps_trend: f64,
@@ -201,7 +202,14 @@ pub fn kantz_scan(x: &[f64], opts: &KantzScanOptions) -> Result<KantzScan, Analy
         .min_by(|a, b| (a.1.slope - med).abs().total_cmp(&(b.1.slope - med).abs()))
         .map(|p| p.1)
         .expect("non-empty pool");
-    let growth = median_fit.slope * (median_fit.end - median_fit.start) as f64;
+    let _ = median_fit;
+    // evidence of exponential divergence: the largest growth over a linear region among the
+    // curves whose slope is within the error bar of the median
+    let growth = pool
+        .iter()
+        .filter(|p| (p.1.slope - med).abs() <= 2.0 * se.max(1e-12) || pool.len() == 1)
+        .map(|p| p.1.slope * (p.1.end - p.1.start) as f64)
+        .fold(0.0, f64::max);
     let trend = if pool.len() >= 2 {
         let pts: Vec<(f64, f64)> = pool.iter().map(|p| (p.0.ln(), p.1.slope)).collect();
         let (b, _) = line(&pts);
@@ -242,10 +250,7 @@ fn fit_after_alignment(s: &[Option<f64>], skip: usize) -> Option<SlopeFit> {
 /// The part of a curve before it comes within one e-fold of its plateau (the largest S): a
 /// saturated plateau drifting slowly can look linear over a long window and must not be fitted.
 fn below_saturation(s: &[Option<f64>]) -> &[Option<f64>] {
-    let top = s
-        .iter()
-        .flatten()
-        .fold(f64::NEG_INFINITY, |a, &b| a.max(b));
+    let top = s.iter().flatten().fold(f64::NEG_INFINITY, |a, &b| a.max(b));
     let cut = s
         .iter()
         .position(|v| v.is_some_and(|v| v >= top - 1.0))

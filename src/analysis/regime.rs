@@ -452,7 +452,12 @@ pub fn classify_forced(e: &ForcedEvidence<'_>) -> Verdict {
         period,
         reason,
     };
-    let fmt = |x: &Exponent| format!("{:+.4} ± {:.4} per period", x.per_period, x.stderr_per_period);
+    let fmt = |x: &Exponent| {
+        format!(
+            "{:+.4} ± {:.4} per period",
+            x.per_period, x.stderr_per_period
+        )
+    };
     let model = e.model_exponent.map(|m| (m, m.sign(e.zero_band)));
     let data = e.data_exponent.map(|d| (d, d.sign(e.zero_band)));
     let sec = e.section;

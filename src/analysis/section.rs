@@ -282,7 +282,10 @@ fn median(v: &[f64]) -> f64 {
 }
 
 /// Points divided by their extents, checked.
-pub(crate) fn normalise(points: &[Vec<f64>], scales: &[f64]) -> Result<Vec<Vec<f64>>, AnalysisError> {
+pub(crate) fn normalise(
+    points: &[Vec<f64>],
+    scales: &[f64],
+) -> Result<Vec<Vec<f64>>, AnalysisError> {
     let dim = scales.len();
     if dim == 0 {
         return Err(AnalysisError::bad(
@@ -436,9 +439,7 @@ fn circle_rotation(u: &[Vec<f64>]) -> Option<Rotation> {
     // radial thickness: deviation of r from the median of its 5 angular neighbours
     let mut dev2 = 0.0;
     for r in 0..n {
-        let mut win: Vec<f64> = (0..5)
-            .map(|o| radius[order[(r + n + o - 2) % n]])
-            .collect();
+        let mut win: Vec<f64> = (0..5).map(|o| radius[order[(r + n + o - 2) % n]]).collect();
         win.sort_by(f64::total_cmp);
         let d = radius[order[r]] - win[2];
         dev2 += d * d;
@@ -566,7 +567,10 @@ mod tests {
             SectionPattern::QuasiPeriodic { rotation_number } => {
                 // the golden-mean rotation, folded to (0, ½]: 1 − 0.618 = 0.382 (the angle's
                 // distortion by the ellipse averages out over the orbit)
-                assert!((rotation_number - (1.0 - rho)).abs() < 0.01, "{rotation_number}")
+                assert!(
+                    (rotation_number - (1.0 - rho)).abs() < 0.01,
+                    "{rotation_number}"
+                )
             }
             p => panic!("{p:?} {a:?}"),
         }
@@ -587,7 +591,10 @@ mod tests {
     fn too_few_points_and_bad_scales() {
         let pts = vec![vec![0.0, 1.0]; 10];
         let a = analyze_section(&pts, &[1.0, 1.0], &SectionOptions::default()).unwrap();
-        assert!(matches!(a.pattern, SectionPattern::TooShort { points: 10, .. }));
+        assert!(matches!(
+            a.pattern,
+            SectionPattern::TooShort { points: 10, .. }
+        ));
         assert!(analyze_section(&pts, &[1.0, 0.0], &SectionOptions::default()).is_err());
         assert!(analyze_section(&pts, &[1.0], &SectionOptions::default()).is_err());
     }

@@ -401,8 +401,8 @@ pub fn run_dem(
         .map(|s| ((s / dt).round() as u64).max(1));
     let steady_from = ((1.0 - cfg.steady_fraction) * n_steps as f64).floor() as u64;
     let steady_start_s = steady_from as f64 * dt;
-    let strobe_from = ((1.0 - cfg.analysis_fraction.max(cfg.steady_fraction)) * n_steps as f64)
-        .floor() as u64;
+    let strobe_from =
+        ((1.0 - cfg.analysis_fraction.max(cfg.steady_fraction)) * n_steps as f64).floor() as u64;
     let per_progress = ((1.0 / drive.frequency_hz.max(1e-3)) / dt).round().max(1.0) as u64;
     let abs_floor = 1e-3 * m_p * G * world.radius[0];
     let mut steady_ledger: Option<(f64, EnergyLedger)> = None;

@@ -2,8 +2,8 @@
 
 use crate::analysis::analyze::{analyze_forced, AnalyzeOptions, ForcedRun};
 use crate::analysis::regime::Exponent;
-use crate::impact::lyapunov::{model_lyapunov_of_scene, ModelLyapunovOptions};
 use crate::error::SimError;
+use crate::impact::lyapunov::{model_lyapunov_of_scene, ModelLyapunovOptions};
 use crate::model::{RunOptions, RunSummary};
 use crate::observe::{Observer, SteadyCollector, Tee};
 use crate::scene::{Damper, Scene};

@@ -363,9 +363,7 @@ fn sweep_csv(varies: &[Vary], records: &[Option<PointRecord>]) -> String {
 fn strobe_csv(varies: &[Vary], records: &[Option<PointRecord>]) -> String {
     let mut cols: Vec<String> = vec!["point".into(), "frequency_hz".into()];
     cols.extend(varies.iter().map(|v| v.key.clone()));
-    cols.extend(
-        ["cycle", "grain_z_m", "box_z_m", "grain_v_m_s", "box_v_m_s"].map(String::from),
-    );
+    cols.extend(["cycle", "grain_z_m", "box_z_m", "grain_v_m_s", "box_v_m_s"].map(String::from));
     let mut out = cols.join(",");
     out.push('\n');
     for r in records.iter().flatten() {
