@@ -25,7 +25,9 @@
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use rayon::prelude::*;
 
-use crate::analysis::{outside_theiler_window, require_positive, rescale_unit, validate_series};
+use crate::analysis::{
+    outside_theiler_window, reject_monotonic, require_positive, rescale_unit, validate_series,
+};
 use crate::error::AnalysisError;
 
 /// Largest embedding dimension supported by [`kantz`].
@@ -155,7 +157,7 @@ pub struct KantzResult {
 /// [`AnalysisError::BadParameter`] for m_min = 0, m_min > m_max, m_max > 16, τ = 0,
 /// eps_count = 0, non-positive or non-finite ε, `references = Some(0)`;
 /// [`AnalysisError::TooShort`] when `steps + (m_max−1)τ ≥ N`; [`AnalysisError::NonFinite`],
-/// [`AnalysisError::Constant`].
+/// [`AnalysisError::Constant`], [`AnalysisError::Monotonic`] (a time column).
 ///
 /// # Pitfalls
 /// S grows linearly only between the initial alignment transient and saturation at the
@@ -188,6 +190,7 @@ pub fn kantz(x: &[f64], opts: &KantzOptions) -> Result<KantzResult, AnalysisErro
             x.len()
         )));
     }
+    reject_monotonic(x)?;
     let rescaled = rescale_unit(x)?;
     let eps = radii(opts, rescaled.range)?;
     let n_cand = x.len() - span;
