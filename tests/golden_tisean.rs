@@ -254,3 +254,30 @@ fn lyap_k_henon_equals_tisean() {
         "henon_x_n20000.lyap",
     );
 }
+
+#[test]
+fn outputs_do_not_depend_on_thread_count() {
+    let lorenz = golden("lorenz_x_n10000.dat");
+    let lorenz = lorenz.to_str().unwrap();
+    let runs: [&[&str]; 2] = [
+        &[
+            "fnn", lorenz, "--tisean", "-m1", "-M1,8", "-d17", "-f10", "-t100",
+        ],
+        &[
+            "lyap-k", lorenz, "--tisean", "-m2", "-M6", "-d17", "-r0.05", "-R0.5", "-#4", "-s300",
+            "-t100",
+        ],
+    ];
+    for args in runs {
+        let out = |threads: &str| {
+            let o = Command::new(env!("CARGO_BIN_EXE_pdamp"))
+                .args(args)
+                .env("RAYON_NUM_THREADS", threads)
+                .output()
+                .expect("run pdamp");
+            assert!(o.status.success());
+            o.stdout
+        };
+        assert!(out("1") == out("3"), "{args:?}: 1 and 3 threads differ");
+    }
+}

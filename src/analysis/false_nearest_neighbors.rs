@@ -8,7 +8,11 @@
 //! the cells within its current bound, columns outward from its own. The bound starts at
 //! the smallest of σ/R_t (farther neighbours are never accepted), the distance to the
 //! nearest indices outside the Theiler window, and the distance to the previous dimension's
-//! neighbour, and shrinks with every closer candidate, so a query visits a few cells.
+//! neighbour, and shrinks with every closer candidate, so a query visits a few cells. The
+//! queries of one dimension run in parallel (rayon); each answer depends only on its query,
+//! so the results do not depend on the thread count.
+
+use rayon::prelude::*;
 
 use crate::analysis::{outside_theiler_window, require_positive, rescale_unit, standard_deviation};
 use crate::error::AnalysisError;
@@ -284,6 +288,9 @@ impl Tally {
     }
 }
 
+/// Queries per parallel work unit (at least).
+const QUERY_BLOCK: usize = 2048;
+
 /// Marks "no neighbour found" in the previous-dimension list.
 const NONE: u32 = u32::MAX;
 
@@ -302,18 +309,32 @@ fn fnn_in_dimension(setup: &Setup, m: usize, prev: &mut [u32]) -> Result<FnnPoin
 fn fnn_k<const K: usize>(setup: &Setup, prev: &mut [u32]) -> FnnPoint {
     let grid = Grid::<K>::new(setup);
     // Queries in the grid's cell order (neighbouring queries read the same cells: cache
-    // friendly); results are stored per n and tallied in n order (sums as in a plain loop).
+    // friendly), in parallel over fixed blocks of that order; each query's answer depends
+    // only on its own n, so results do not depend on the thread count. They are stored per
+    // n and tallied in n order (sums as in a plain loop).
+    let n_grid = grid.index.len();
+    let found: Vec<Option<(u32, f64)>> = (0..setup.n_ref)
+        .into_par_iter()
+        .with_min_len(QUERY_BLOCK)
+        .map(|k| {
+            let (n, q) = if k < n_grid {
+                (grid.index[k] as usize, grid.points[k])
+            } else {
+                let n = setup.n_cand + (k - n_grid);
+                (n, std::array::from_fn(|c| setup.s[n + c * setup.tau]))
+            };
+            nearest(&grid, setup, n, q, prev[n])
+        })
+        .collect();
     let mut dist = vec![0.0f64; setup.n_ref];
-    let mut query = |n: usize, q: [f64; K]| {
-        let found = nearest(&grid, setup, n, q, prev[n]);
-        prev[n] = found.map_or(NONE, |(j, _)| j);
-        dist[n] = found.map_or(0.0, |(_, d)| d);
-    };
-    for (p, &n) in grid.points.iter().zip(&grid.index) {
-        query(n as usize, *p);
-    }
-    for n in setup.n_cand..setup.n_ref {
-        query(n, std::array::from_fn(|k| setup.s[n + k * setup.tau]));
+    for (k, f) in found.into_iter().enumerate() {
+        let n = if k < n_grid {
+            grid.index[k] as usize
+        } else {
+            setup.n_cand + (k - n_grid)
+        };
+        prev[n] = f.map_or(NONE, |(j, _)| j);
+        dist[n] = f.map_or(0.0, |(_, d)| d);
     }
     let mut tally = Tally::default();
     for (n, (&j, &d)) in prev.iter().zip(&dist).enumerate() {
