@@ -556,7 +556,7 @@ fn chunk<const K: usize>(
 #[inline(always)]
 fn in_product_range(a: &[f64]) -> bool {
     a.iter()
-        .fold(true, |ok, &v| ok & (v >= PROD_LO) & (v <= PROD_HI))
+        .fold(true, |ok, &v| ok & (PROD_LO..=PROD_HI).contains(&v))
 }
 
 /// `e_t = (a_t − b_t)²`; returns the number of exact zeros.
