@@ -2,8 +2,9 @@
 //! `lorenz_x_dt0.01_n10000.txt` (Lorenz x, σ = 10, ρ = 28, β = 8/3, sampled every 0.01 time
 //! units after a 50-unit transient, RK4 with internal step 1e-3 — see `pdamp::systems::lorenz`).
 //!
-//! Run: `cargo run --release --example gen_series [N]` (default N = 10000). Larger N
-//! (e.g. 50000 for the TISEAN comparison) are written next to it with N in the name.
+//! Run: `cargo run --release --example gen_series [N] [OUT]` (default N = 10000). Larger N
+//! (e.g. 50000 for the TISEAN comparison) are written next to it with N in the name, or to
+//! the file OUT if given (`bench/vs_tisean.sh` writes its series to a scratch directory).
 
 use std::fmt::Write as _;
 
@@ -12,6 +13,7 @@ use pdamp::systems::lorenz::lorenz_x;
 
 fn main() -> anyhow::Result<()> {
     let n: usize = std::env::args().nth(1).map_or(Ok(10_000), |s| s.parse())?;
+    let out = std::env::args().nth(2);
     let dt = 0.01;
     let x = lorenz_x(n, dt);
     let mut text = String::new();
@@ -26,8 +28,13 @@ fn main() -> anyhow::Result<()> {
     for v in &x {
         writeln!(text, "{v:.12e}")?;
     }
-    std::fs::create_dir_all("data/series")?;
-    let path = format!("data/series/lorenz_x_dt0.01_n{n}.txt");
+    let path = match out {
+        Some(p) => p,
+        None => {
+            std::fs::create_dir_all("data/series")?;
+            format!("data/series/lorenz_x_dt0.01_n{n}.txt")
+        }
+    };
     atomic_write(std::path::Path::new(&path), text.as_bytes())?;
     eprintln!("wrote {path}");
     Ok(())

@@ -95,6 +95,21 @@ pub enum AnalysisError {
     /// The series is constant (zero range), so it cannot be rescaled or embedded.
     #[error("series is constant: nothing to analyse")]
     Constant,
+    /// The series rises (or falls) at every sample: a time or index column, not a signal.
+    #[error(
+        "series {direction} at every one of its {len} samples (from {first} to {last}): this looks \
+         like a time or index column, not data; select the signal's column (e.g. -c 2)"
+    )]
+    Monotonic {
+        /// "increases" or "decreases".
+        direction: &'static str,
+        /// Number of samples.
+        len: usize,
+        /// First sample.
+        first: f64,
+        /// Last sample.
+        last: f64,
+    },
     /// A numerical procedure did not converge or found nothing (e.g. no MI minimum, fit failed).
     #[error("{0}")]
     NoResult(String),

@@ -2,18 +2,19 @@
 //! against an independent O(N²) brute force, the Lorenz/Hénon dimensions, and noise.
 
 use pdamp::analysis::false_nearest_neighbors::suggested_dimension;
-use pdamp::analysis::{false_nearest_neighbors, FnnOptions};
+use pdamp::analysis::{false_nearest_neighbors, FnnOptions, FnnVectors};
 use pdamp::systems::{henon, lorenz};
 
 /// Brute force of SPEC §8 written independently: rescale; σ = population std of the
 /// rescaled data; references n < N − M·d, candidates j < N − (M+1)·d; nearest j in the max
-/// norm with |n − j| > t and distance > 0; accepted if dist ≤ σ/f; false if
-/// |x_{n+md} − x_{j+md}| / dist > f. Returns (m, accepted, false, mean distance rescaled).
+/// norm over the coordinates x_{n+ik}, i < m, with |n − j| > t and distance > 0; accepted if
+/// dist ≤ σ/f; false if |x_{n+mk} − x_{j+mk}| / dist > f. The coordinate spacing k is d for
+/// delay vectors and 1 for TISEAN's univariate vectors. Returns (m, accepted, false, mean
+/// distance in data units).
 fn brute_force(
     x: &[f64],
-    m_min: usize,
-    m_max: usize,
-    d: usize,
+    (m_min, m_max): (usize, usize),
+    (d, k): (usize, usize),
     f: f64,
     t: usize,
 ) -> Vec<(usize, usize, usize, f64)> {
@@ -33,7 +34,7 @@ fn brute_force(
                     continue;
                 }
                 let dist = (0..m)
-                    .map(|k| (s[i + k * d] - s[j + k * d]).abs())
+                    .map(|c| (s[i + c * k] - s[j + c * k]).abs())
                     .fold(0.0, f64::max);
                 if dist > 0.0 && best.is_none_or(|(_, b)| dist < b) {
                     best = Some((j, dist));
@@ -43,7 +44,7 @@ fn brute_force(
                 if dist <= sigma / f {
                     acc += 1;
                     sum += dist;
-                    if (s[i + m * d] - s[j + m * d]).abs() / dist > f {
+                    if (s[i + m * k] - s[j + m * k]).abs() / dist > f {
                         fals += 1;
                     }
                 }
@@ -56,7 +57,13 @@ fn brute_force(
 
 fn check_against_brute_force(x: &[f64], o: &FnnOptions) {
     let got = false_nearest_neighbors(x, o).unwrap();
-    let want = brute_force(x, o.m_min, o.m_max, o.tau, o.ratio, o.theiler_window());
+    let want = brute_force(
+        x,
+        (o.m_min, o.m_max),
+        (o.tau, o.stride()),
+        o.ratio,
+        o.theiler_window(),
+    );
     for (g, w) in got.iter().zip(&want) {
         // counts must be identical (same neighbour, same tests); the mean distance agrees to
         // rounding (1e-12 relative); 1e-6 is TISEAN's printed precision.
@@ -99,6 +106,16 @@ fn tisean_definition_matches_brute_force() {
         &FnnOptions {
             m_max: 5,
             tau: 16,
+            ..FnnOptions::tisean()
+        },
+    );
+    // TISEAN's ratio and window with true delay vectors
+    check_against_brute_force(
+        &l,
+        &FnnOptions {
+            m_max: 5,
+            tau: 16,
+            vectors: FnnVectors::Delay,
             ..FnnOptions::tisean()
         },
     );

@@ -124,3 +124,61 @@ fn spectrum_and_poincare_csv() {
     assert!(out.starts_with("cycle,time_samples,s,s_delayed\n"));
     assert!(err.contains("1 distinct point"), "{err}");
 }
+
+#[test]
+fn tisean_verbs_name_bad_input() {
+    // mutual, fnn and lyap-k on a time column, a constant series, a NaN and a too short
+    // series: an error that names the problem, never output.
+    let dir = tempfile::tempdir().unwrap();
+    let x: Vec<f64> = (0..3000).map(|i| (i as f64 * 0.37).sin()).collect();
+    let two = dir.path().join("t_x.txt");
+    let mut f = std::fs::File::create(&two).unwrap();
+    for (i, v) in x.iter().enumerate() {
+        writeln!(f, "{} {v}", i as f64 * 0.01).unwrap();
+    }
+    let two = two.to_str().unwrap();
+    let constant = write_series(&dir, "c.txt", &[2.5; 3000]);
+    let mut with_nan = x.clone();
+    with_nan[1234] = f64::NAN;
+    let nan = write_series(&dir, "nan.txt", &with_nan);
+    let short = write_series(&dir, "short.txt", &x[..12]);
+    for verb in [
+        vec!["mutual"],
+        vec!["fnn", "--tisean", "-M1,4", "-d5"],
+        vec!["lyap-k", "--tisean", "-m2", "-M4", "-d5", "-s30"],
+    ] {
+        let run = |file: &str, extra: &[&str]| {
+            let mut args: Vec<&str> = verb.clone();
+            args.insert(1, file);
+            args.extend_from_slice(extra);
+            pdamp(&args)
+        };
+        let (_, err, ok) = run(two, &[]);
+        assert!(
+            !ok && err.contains("time or index column"),
+            "{verb:?}: {err}"
+        );
+        // the second column of the same file is fine
+        let (_, err, ok) = run(two, &["-c", "2"]);
+        assert!(ok, "{verb:?} -c 2: {err}");
+        let (_, err, ok) = run(&constant, &[]);
+        assert!(!ok && err.contains("constant"), "{verb:?}: {err}");
+        let (_, err, ok) = run(&nan, &[]);
+        // the reader refuses it, naming the line (1234 + the comment line + 1)
+        assert!(
+            !ok && err.contains("non-finite value") && err.contains(":1236:"),
+            "{verb:?}: {err}"
+        );
+        if verb[0] != "mutual" {
+            let (_, err, ok) = run(&short, &[]);
+            assert!(!ok && err.contains("too short"), "{verb:?}: {err}");
+        }
+    }
+    // mutual on 12 points: it prints I(τ), but any first minimum comes with a warning
+    let (_, err, ok) = pdamp(&["mutual", &short]);
+    assert!(ok, "{err}");
+    assert!(err.contains("warning") && err.contains("too few"), "{err}");
+    for line in err.lines().filter(|l| l.contains("first minimum")) {
+        assert!(line.contains("unreliable"), "{err}");
+    }
+}

@@ -8,7 +8,11 @@
 //! the cells within its current bound, columns outward from its own. The bound starts at
 //! the smallest of σ/R_t (farther neighbours are never accepted), the distance to the
 //! nearest indices outside the Theiler window, and the distance to the previous dimension's
-//! neighbour, and shrinks with every closer candidate, so a query visits a few cells.
+//! neighbour, and shrinks with every closer candidate, so a query visits a few cells. The
+//! queries of one dimension run in parallel (rayon); each answer depends only on its query,
+//! so the results do not depend on the thread count.
+
+use rayon::prelude::*;
 
 use crate::analysis::{outside_theiler_window, require_positive, rescale_unit, standard_deviation};
 use crate::error::AnalysisError;
@@ -34,6 +38,24 @@ pub struct FnnOptions {
     /// Theiler window `w` in samples: neighbours need `|n − j| > w` (TISEAN `-t`).
     /// pdamp default `None` = one lag τ; TISEAN's default is 0.
     pub theiler: Option<usize>,
+    /// Which coordinates make up the vectors. Default [`FnnVectors::Delay`] (Kennel et al.);
+    /// [`FnnOptions::tisean`] uses [`FnnVectors::TiseanUnivariate`].
+    pub vectors: FnnVectors,
+}
+
+/// The coordinates of the vectors compared by [`false_nearest_neighbors`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FnnVectors {
+    /// Delay vectors `(s_n, s_{n+τ}, …, s_{n+(m−1)τ})`, escape coordinate `s_{n+mτ}` (Kennel
+    /// et al. 1992, SPEC (4.1.4)). pdamp's default.
+    #[default]
+    Delay,
+    /// TISEAN 3.0.1 `false_nearest` on a univariate series: the vectors are *consecutive*
+    /// samples `(s_n, s_{n+1}, …, s_{n+m−1})` and the escape coordinate is `s_{n+m}`, whatever
+    /// the delay τ — its code sets the offsets `vemb[i] = i` for one component (and
+    /// `(i/comp)·delay` only for several). τ still sets the index ranges: references
+    /// `n < N − M·τ`, candidates `j < N − (M+1)·τ`. With τ = 1 both choices are the same.
+    TiseanUnivariate,
 }
 
 impl Default for FnnOptions {
@@ -44,12 +66,14 @@ impl Default for FnnOptions {
             tau: 1,
             ratio: 10.0,
             theiler: None,
+            vectors: FnnVectors::Delay,
         }
     }
 }
 
 impl FnnOptions {
-    /// TISEAN `false_nearest`'s defaults: `-m1 -M1,5 -d1 -f2 -t0`.
+    /// TISEAN `false_nearest`'s defaults and definition: `-m1 -M1,5 -d1 -f2 -t0`, and
+    /// [`FnnVectors::TiseanUnivariate`] (TISEAN ignores `-d` inside the vectors).
     pub fn tisean() -> Self {
         Self {
             m_min: 1,
@@ -57,6 +81,15 @@ impl FnnOptions {
             tau: 1,
             ratio: 2.0,
             theiler: Some(0),
+            vectors: FnnVectors::TiseanUnivariate,
+        }
+    }
+
+    /// Spacing in samples of the vectors' coordinates: τ, or 1 for TISEAN's univariate vectors.
+    pub fn stride(&self) -> usize {
+        match self.vectors {
+            FnnVectors::Delay => self.tau,
+            FnnVectors::TiseanUnivariate => 1,
         }
     }
 
@@ -88,11 +121,14 @@ pub struct FnnPoint {
 ///
 /// # Formula
 /// (4.1.4), with TISEAN's conventions (SPEC §8): the series is rescaled to [0, 1]; vectors
-/// `x_n = (s_n, s_{n+τ}, …, s_{n+(m−1)τ})` for `n < N − m_max·τ` (the same points for every m);
+/// `x_n = (s_n, s_{n+k}, …, s_{n+(m−1)k})` for `n < N − m_max·τ` (the same points for every m);
 /// candidate neighbours `j < N − (m_max+1)·τ` (TISEAN's range). The nearest neighbour `j` of
 /// `n` in the maximum norm with `|n − j| > w` and distance `δ > 0` (exact duplicates are
 /// ignored) is accepted if `δ ≤ σ/R_t` (σ: standard deviation of the rescaled series); the
-/// pair is false if `|s_{n+mτ} − s_{j+mτ}| / δ > R_t`. Fraction = false / accepted.
+/// pair is false if `|s_{n+mk} − s_{j+mk}| / δ > R_t`. Fraction = false / accepted. The
+/// coordinate spacing is `k = τ` for [`FnnVectors::Delay`] (pdamp's default) and `k = 1` for
+/// [`FnnVectors::TiseanUnivariate`] (TISEAN 3.0.1, which ignores `-d` inside the vectors of a
+/// univariate series: only the ranges depend on τ).
 ///
 /// # Units
 /// Input in any units; τ and w in samples; distances reported in data units.
@@ -104,10 +140,13 @@ pub struct FnnPoint {
 /// # Errors
 /// [`AnalysisError::BadParameter`] for `m_min = 0`, `m_min > m_max`, `m_max > 12`, `τ = 0`,
 /// `R_t ≤ 0` or non-finite; [`AnalysisError::TooShort`] if `N ≤ (m_max+1)τ + 1`;
-/// [`AnalysisError::NonFinite`]; [`AnalysisError::Constant`].
+/// [`AnalysisError::NonFinite`]; [`AnalysisError::Constant`]; [`AnalysisError::Monotonic`]
+/// (a time column).
 ///
 /// # Pitfalls
-/// Noisy data never reach 0 % (noise fills every dimension). With `w = 0` and a finely
+/// TISEAN's `false_nearest -d τ` with τ > 1 tests the unit-delay embedding (see
+/// [`FnnVectors::TiseanUnivariate`]); for a flow sampled finely that is a different and much
+/// less informative test than Kennel's. Noisy data never reach 0 % (noise fills every dimension). With `w = 0` and a finely
 /// sampled flow the nearest neighbour is often the next sample on the same trajectory, which
 /// is rarely false: use a Theiler window of at least τ. Ties (several neighbours at exactly the
 /// same distance) may pick a different neighbour than TISEAN's box scan.
@@ -135,11 +174,12 @@ pub fn false_nearest_neighbors(
     validate_options(opts)?;
     let needed = (opts.m_max + 1) * opts.tau + 2;
     crate::analysis::validate_series(x, needed, "false nearest neighbours")?;
+    crate::analysis::reject_monotonic(x)?;
     let rescaled = rescale_unit(x)?;
     let sigma = standard_deviation(&rescaled.values);
     let setup = Setup {
         s: &rescaled.values,
-        tau: opts.tau,
+        tau: opts.stride(),
         n_ref: x.len() - opts.m_max * opts.tau,
         n_cand: x.len() - (opts.m_max + 1) * opts.tau,
         theiler: opts.theiler_window(),
@@ -195,6 +235,7 @@ fn validate_options(opts: &FnnOptions) -> Result<(), AnalysisError> {
 /// Everything fixed across dimensions.
 struct Setup<'a> {
     s: &'a [f64],
+    /// Spacing of the vectors' coordinates ([`FnnOptions::stride`]).
     tau: usize,
     n_ref: usize,
     n_cand: usize,
@@ -247,6 +288,9 @@ impl Tally {
     }
 }
 
+/// Queries per parallel work unit (at least).
+const QUERY_BLOCK: usize = 2048;
+
 /// Marks "no neighbour found" in the previous-dimension list.
 const NONE: u32 = u32::MAX;
 
@@ -265,18 +309,32 @@ fn fnn_in_dimension(setup: &Setup, m: usize, prev: &mut [u32]) -> Result<FnnPoin
 fn fnn_k<const K: usize>(setup: &Setup, prev: &mut [u32]) -> FnnPoint {
     let grid = Grid::<K>::new(setup);
     // Queries in the grid's cell order (neighbouring queries read the same cells: cache
-    // friendly); results are stored per n and tallied in n order (sums as in a plain loop).
+    // friendly), in parallel over fixed blocks of that order; each query's answer depends
+    // only on its own n, so results do not depend on the thread count. They are stored per
+    // n and tallied in n order (sums as in a plain loop).
+    let n_grid = grid.index.len();
+    let found: Vec<Option<(u32, f64)>> = (0..setup.n_ref)
+        .into_par_iter()
+        .with_min_len(QUERY_BLOCK)
+        .map(|k| {
+            let (n, q) = if k < n_grid {
+                (grid.index[k] as usize, grid.points[k])
+            } else {
+                let n = setup.n_cand + (k - n_grid);
+                (n, std::array::from_fn(|c| setup.s[n + c * setup.tau]))
+            };
+            nearest(&grid, setup, n, q, prev[n])
+        })
+        .collect();
     let mut dist = vec![0.0f64; setup.n_ref];
-    let mut query = |n: usize, q: [f64; K]| {
-        let found = nearest(&grid, setup, n, q, prev[n]);
-        prev[n] = found.map_or(NONE, |(j, _)| j);
-        dist[n] = found.map_or(0.0, |(_, d)| d);
-    };
-    for (p, &n) in grid.points.iter().zip(&grid.index) {
-        query(n as usize, *p);
-    }
-    for n in setup.n_cand..setup.n_ref {
-        query(n, std::array::from_fn(|k| setup.s[n + k * setup.tau]));
+    for (k, f) in found.into_iter().enumerate() {
+        let n = if k < n_grid {
+            grid.index[k] as usize
+        } else {
+            setup.n_cand + (k - n_grid)
+        };
+        prev[n] = f.map_or(NONE, |(j, _)| j);
+        dist[n] = f.map_or(0.0, |(_, d)| d);
     }
     let mut tally = Tally::default();
     for (n, (&j, &d)) in prev.iter().zip(&dist).enumerate() {

@@ -25,7 +25,9 @@
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use rayon::prelude::*;
 
-use crate::analysis::{outside_theiler_window, require_positive, rescale_unit, validate_series};
+use crate::analysis::{
+    outside_theiler_window, reject_monotonic, require_positive, rescale_unit, validate_series,
+};
 use crate::error::AnalysisError;
 
 /// Largest embedding dimension supported by [`kantz`].
@@ -155,7 +157,7 @@ pub struct KantzResult {
 /// [`AnalysisError::BadParameter`] for m_min = 0, m_min > m_max, m_max > 16, τ = 0,
 /// eps_count = 0, non-positive or non-finite ε, `references = Some(0)`;
 /// [`AnalysisError::TooShort`] when `steps + (m_max−1)τ ≥ N`; [`AnalysisError::NonFinite`],
-/// [`AnalysisError::Constant`].
+/// [`AnalysisError::Constant`], [`AnalysisError::Monotonic`] (a time column).
 ///
 /// # Pitfalls
 /// S grows linearly only between the initial alignment transient and saturation at the
@@ -188,6 +190,7 @@ pub fn kantz(x: &[f64], opts: &KantzOptions) -> Result<KantzResult, AnalysisErro
             x.len()
         )));
     }
+    reject_monotonic(x)?;
     let rescaled = rescale_unit(x)?;
     let eps = radii(opts, rescaled.range)?;
     let n_cand = x.len() - span;
@@ -199,6 +202,7 @@ pub fn kantz(x: &[f64], opts: &KantzOptions) -> Result<KantzResult, AnalysisErro
         n_cand,
         n_ref,
         theiler: opts.theiler_window(),
+        distinct: all_differences_square_nonzero(&rescaled.values),
     };
     let totals = if opts.m_min == 1 {
         run::<1>(&job)?
@@ -247,6 +251,17 @@ fn validate_options(o: &KantzOptions) -> Result<(), AnalysisError> {
     Ok(())
 }
 
+/// Whether `(a − b)² > 0` for every two samples `a`, `b` at different indices: all values
+/// distinct and the smallest gap between sorted values does not square to 0.
+fn all_differences_square_nonzero(s: &[f64]) -> bool {
+    let mut v = s.to_vec();
+    v.sort_unstable_by(f64::total_cmp);
+    v.windows(2).all(|w| {
+        let d = w[1] - w[0];
+        d * d > 0.0
+    })
+}
+
 /// Radii in rescaled units, TISEAN's way: ε_l = ε_min·f^l, f = (ε_max/ε_min)^{1/(count−1)};
 /// a single radius ε_min if ε_min ≥ ε_max.
 fn radii(o: &KantzOptions, range: f64) -> Result<Vec<f64>, AnalysisError> {
@@ -268,6 +283,9 @@ struct Job<'a> {
     n_cand: usize,
     n_ref: usize,
     theiler: usize,
+    /// No two samples of the (rescaled) series are equal and no difference of two squares to 0:
+    /// then no pair has `e_t = 0` and the RMS path skips looking for zeros.
+    distinct: bool,
 }
 
 impl Job<'_> {
@@ -362,6 +380,7 @@ impl Products {
 
     /// Multiplies the factors `a` (all in [PROD_LO, PROD_HI]) of one reference with `c`
     /// neighbours into row `r`.
+    #[inline(always)]
     fn multiply(&mut self, r: usize, a: &[f64], c: u32) {
         let len = a.len();
         let p = &mut self.p[r * len..(r + 1) * len];
@@ -419,7 +438,39 @@ struct Scratch {
     zero_slot: Vec<bool>,
     /// Smallest ε bin of each dimension slot touched by the current reference.
     first_bin: Vec<usize>,
+    /// The RMS (TISEAN) path's buffers.
+    grouped: Grouped,
 }
+
+/// Buffers of the RMS path ([`reference_rms`]). With the TISEAN definition the per-reference
+/// sum over neighbours of `‖y_{i+Δn} − y_{j+Δn}‖²_m = Σ_{k<m} e_{Δn+kτ}` is linear in the
+/// pair's `e`, so the `e` of all pairs that fall in the same ε bins in every dimension (the
+/// same "bin pattern") are summed first — one pass over `e` per pair — and the patterns are
+/// then spread over the (m, ε) bins and shifted into distances once per reference.
+struct Grouped {
+    /// Length of an `e` row: `steps + (m_max−1)τ + 1`.
+    width: usize,
+    /// Bin pattern code → group number + 1 (0: not seen for this reference). Empty when the
+    /// code space `(n_eps+1)^n_dims` is too large; then every pair is spread on its own.
+    table: Vec<u32>,
+    /// Codes in use (to reset `table`).
+    codes: Vec<usize>,
+    /// ε bin of each group in each dimension slot (`n_eps`: not a neighbour), [group][slot].
+    bins: Vec<u16>,
+    /// Largest dimension of each group (its `e` rows are `steps + (m_top−1)τ + 1` long).
+    m_top: Vec<usize>,
+    /// Pairs in each group.
+    npairs: Vec<u32>,
+    /// Σ e over the pairs of each group, [group][width].
+    sum: Vec<f64>,
+    /// Σ e over the pairs of each (slot, ε) bin, [row][width] (rows as `acc`).
+    bsum: Vec<f64>,
+    /// Rows of `bsum` in use.
+    touched: Vec<bool>,
+}
+
+/// Largest bin-pattern table (entries) of the RMS path.
+const MAX_PATTERN_TABLE: usize = 1 << 16;
 
 fn run<const K: usize>(job: &Job) -> Result<Totals, AnalysisError> {
     let tau = job.opts.tau;
@@ -466,7 +517,10 @@ fn chunk<const K: usize>(
         zeros: vec![0; job.total_len()],
         zero_slot: vec![false; job.n_dims()],
         first_bin: vec![usize::MAX; job.n_dims()],
+        grouped: Grouped::new(job, span + 1),
     };
+    let tisean = o.definition == KantzDefinition::TiseanRms;
+    let simd = Simd::detect();
     let mut totals = Totals::new(job.total_len());
     let mut products = Products::new(rows, job.len());
     // Query radius slightly above ε_max² so that kiddo's rounding cannot drop a pair that the
@@ -487,14 +541,26 @@ fn chunk<const K: usize>(
             continue;
         }
         sc.nb.sort_unstable();
-        reference(job, i, &mut sc);
-        finish_reference(job, &mut sc, &mut products, &mut totals);
+        if tisean {
+            reference_rms(job, i, &mut sc, simd);
+        } else {
+            reference(job, i, &mut sc);
+        }
+        finish_reference(job, &mut sc, &mut products, &mut totals, simd);
     }
     products.fold_into(&mut totals, job.half(), job.len());
     totals
 }
 
+/// Whether every value is in [`PROD_LO`, `PROD_HI`] (no early exit: the loop vectorises).
+#[inline(always)]
+fn in_product_range(a: &[f64]) -> bool {
+    a.iter()
+        .fold(true, |ok, &v| ok & (PROD_LO..=PROD_HI).contains(&v))
+}
+
 /// `e_t = (a_t − b_t)²`; returns the number of exact zeros.
+#[inline(always)]
 fn squared_differences(a: &[f64], b: &[f64], e: &mut [f64]) -> usize {
     let mut zeros = 0;
     for ((e, x), y) in e.iter_mut().zip(a).zip(b) {
@@ -506,6 +572,7 @@ fn squared_differences(a: &[f64], b: &[f64], e: &mut [f64]) -> usize {
 }
 
 /// `d += e` (the pair's squared distance gains one coordinate, every Δn at once).
+#[inline(always)]
 fn extend(d: &mut [f64], e: &[f64]) {
     for (x, y) in d.iter_mut().zip(e) {
         *x += y;
@@ -603,9 +670,306 @@ fn reference(job: &Job, i: usize, sc: &mut Scratch) {
     }
 }
 
+impl Grouped {
+    fn new(job: &Job, width: usize) -> Self {
+        let n_eps = job.eps2.len();
+        let n_dims = job.n_dims();
+        let space = (n_eps + 1).checked_pow(n_dims as u32);
+        let table = match space {
+            Some(sp) if sp <= MAX_PATTERN_TABLE && n_eps < usize::from(u16::MAX) => vec![0; sp],
+            _ => Vec::new(),
+        };
+        let rows = n_dims * n_eps;
+        Self {
+            width,
+            table,
+            codes: Vec::new(),
+            bins: Vec::new(),
+            m_top: Vec::new(),
+            npairs: Vec::new(),
+            sum: Vec::new(),
+            bsum: vec![0.0; rows * width],
+            touched: vec![false; rows],
+        }
+    }
+
+    /// Adds `e` (length `steps + (m_top−1)τ + 1`) of `pairs` pairs with the bin pattern
+    /// `bins` (one entry per slot, `n_eps` = absent) to the (slot, ε) sums.
+    #[inline(always)]
+    fn spread(
+        &mut self,
+        job: &Job,
+        bins: &[u16],
+        m_top: usize,
+        e: &[f64],
+        pairs: u32,
+        sc: &mut SpreadTarget,
+    ) {
+        let (o, n_eps) = (job.opts, job.eps2.len());
+        for (slot, &l) in bins.iter().enumerate() {
+            let m = o.m_min + slot;
+            if m > m_top || usize::from(l) >= n_eps {
+                break;
+            }
+            let l = usize::from(l);
+            let r = slot * n_eps + l;
+            let n = o.steps + (m - 1) * o.tau + 1;
+            extend(&mut self.bsum[r * self.width..r * self.width + n], &e[..n]);
+            self.touched[r] = true;
+            sc.pairs[r] += pairs;
+            sc.first_bin[slot] = sc.first_bin[slot].min(l);
+        }
+    }
+}
+
+/// The parts of [`Scratch`] that [`Grouped::spread`] updates.
+struct SpreadTarget<'a> {
+    pairs: &'a mut [u32],
+    first_bin: &'a mut [usize],
+}
+
+/// `g += (a − b)²` elementwise; returns the number of exact zeros of `a − b` if `count`
+/// (else 0: the caller knows there are none).
+#[inline(always)]
+fn accumulate_squared_differences(a: &[f64], b: &[f64], g: &mut [f64], count: bool) -> usize {
+    if !count {
+        for ((g, x), y) in g.iter_mut().zip(a).zip(b) {
+            let v = x - y;
+            *g += v * v;
+        }
+        return 0;
+    }
+    let mut zeros = 0;
+    for ((g, x), y) in g.iter_mut().zip(a).zip(b) {
+        let v = (x - y) * (x - y);
+        *g += v;
+        zeros += usize::from(v == 0.0);
+    }
+    zeros
+}
+
+/// [`reference`] for the TISEAN (RMS) definition: the same bins and sums, but each pair's
+/// `e` is added once into the sum of its bin pattern ([`Grouped`]) instead of once per
+/// dimension, and the shifted sums `Σ_{k<m} e_{Δn+kτ}` are formed once per (m, ε) bin.
+/// Exactly the same pairs and counts as [`reference`]; the sums differ only in the order of
+/// the additions (rounding, ~1e-16 relative).
+fn reference_rms(job: &Job, i: usize, sc: &mut Scratch, simd: Simd) {
+    match simd {
+        #[cfg(target_arch = "x86_64")]
+        // SAFETY: `Simd::Avx2` is only constructed after `is_x86_feature_detected!("avx2")`.
+        Simd::Avx2 => unsafe { reference_rms_avx2(job, i, sc) },
+        Simd::Baseline => reference_rms_impl(job, i, sc),
+    }
+}
+
+/// [`reference_rms_impl`] compiled for AVX2 (4 f64 lanes; no FMA, so the sums are bitwise
+/// those of the baseline build).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn reference_rms_avx2(job: &Job, i: usize, sc: &mut Scratch) {
+    reference_rms_impl(job, i, sc);
+}
+
+/// Instruction set for the pair loops, detected once per run.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Simd {
+    /// The target's baseline (SSE2 on x86-64).
+    Baseline,
+    /// AVX2 available at run time.
+    #[cfg(target_arch = "x86_64")]
+    Avx2,
+}
+
+impl Simd {
+    fn detect() -> Self {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            return Simd::Avx2;
+        }
+        Simd::Baseline
+    }
+}
+
+#[inline(always)]
+fn reference_rms_impl(job: &Job, i: usize, sc: &mut Scratch) {
+    let o = job.opts;
+    let s = job.s;
+    let (tau, len) = (o.tau, job.len());
+    let n_eps = job.eps2.len();
+    let n_dims = job.n_dims();
+    let eps2_max = job.eps2[n_eps - 1];
+    let g = &mut sc.grouped;
+    let width = g.width;
+    sc.first_bin.fill(usize::MAX);
+    sc.zero_slot.fill(false);
+    let mut bins = [0u16; MAX_DIMENSION];
+    let use_table = !g.table.is_empty();
+    for idx in 0..sc.nb.len() {
+        let j = sc.nb[idx] as usize;
+        // Squared distance in dimension m, extended coordinate by coordinate (TISEAN order),
+        // and the pair's ε bin in each dimension slot.
+        let mut d2 = 0.0;
+        let mut m_top = 0;
+        let mut code = 0usize;
+        let mut weight = 1usize;
+        for k in 0..o.m_max {
+            let dk = s[i + k * tau] - s[j + k * tau];
+            d2 += dk * dk;
+            if d2 > eps2_max {
+                break;
+            }
+            m_top = k + 1;
+            if m_top >= o.m_min {
+                let l = job.eps2.partition_point(|&e2| e2 < d2);
+                bins[m_top - o.m_min] = l as u16;
+                code += l * weight;
+                weight *= n_eps + 1;
+            }
+        }
+        if m_top < o.m_min {
+            continue;
+        }
+        for b in &mut bins[m_top + 1 - o.m_min..n_dims] {
+            *b = n_eps as u16;
+            code += n_eps * weight;
+            weight *= n_eps + 1;
+        }
+        let t_max = o.steps + (m_top - 1) * tau;
+        let (a, b) = (&s[i..=i + t_max], &s[j..=j + t_max]);
+        let zeros = if use_table {
+            let slot = &mut g.table[code];
+            if *slot == 0 {
+                g.codes.push(code);
+                g.bins.extend_from_slice(&bins[..n_dims]);
+                g.m_top.push(m_top);
+                g.npairs.push(0);
+                g.sum.resize(g.sum.len() + width, 0.0);
+                *slot = g.npairs.len() as u32;
+            }
+            let grp = *slot as usize - 1;
+            g.npairs[grp] += 1;
+            let row = &mut g.sum[grp * width..grp * width + t_max + 1];
+            accumulate_squared_differences(a, b, row, !job.distinct)
+        } else {
+            let e = &mut sc.e[..=t_max];
+            let z = squared_differences(a, b, e);
+            let mut target = SpreadTarget {
+                pairs: &mut sc.pairs,
+                first_bin: &mut sc.first_bin,
+            };
+            g.spread(job, &bins[..n_dims], m_top, e, 1, &mut target);
+            z
+        };
+        if zeros > 0 {
+            // rare: a repeated value; count the Δn at which the pair's distance is exactly 0
+            let e = &mut sc.e[..=t_max];
+            squared_differences(a, b, e);
+            sc.d.copy_from_slice(&e[..len]);
+            for m in 1..=m_top {
+                let off = (m - 1) * tau;
+                if m > 1 {
+                    extend(&mut sc.d, &e[off..off + len]);
+                }
+                if m < o.m_min {
+                    continue;
+                }
+                let slot = m - o.m_min;
+                let r = slot * n_eps + usize::from(bins[slot]);
+                sc.zero_slot[slot] = true;
+                for (z, &dv) in sc.zeros[r * len..(r + 1) * len].iter_mut().zip(&sc.d) {
+                    *z += u32::from(dv == 0.0);
+                }
+            }
+        }
+    }
+    // spread the groups over the (slot, ε) bins, in the order they were first seen
+    if use_table {
+        let mut target = SpreadTarget {
+            pairs: &mut sc.pairs,
+            first_bin: &mut sc.first_bin,
+        };
+        let gsum = std::mem::take(&mut g.sum);
+        let gbins = std::mem::take(&mut g.bins);
+        for grp in 0..g.npairs.len() {
+            let m_top = g.m_top[grp];
+            let n = o.steps + (m_top - 1) * tau + 1;
+            g.spread(
+                job,
+                &gbins[grp * n_dims..(grp + 1) * n_dims],
+                m_top,
+                &gsum[grp * width..grp * width + n],
+                g.npairs[grp],
+                &mut target,
+            );
+        }
+        g.sum = gsum;
+        g.bins = gbins;
+        for &c in &g.codes {
+            g.table[c] = 0;
+        }
+        g.codes.clear();
+        g.bins.clear();
+        g.m_top.clear();
+        g.npairs.clear();
+        g.sum.clear();
+    }
+    // per (slot, ε) bin: Σ over its pairs of ‖·‖²_m at every Δn = Σ_{k<m} bsum_{Δn+kτ}
+    for slot in 0..n_dims {
+        let m = o.m_min + slot;
+        for l in 0..n_eps {
+            let r = slot * n_eps + l;
+            if !g.touched[r] {
+                continue;
+            }
+            g.touched[r] = false;
+            let n = o.steps + (m - 1) * tau + 1;
+            let row = &mut g.bsum[r * width..r * width + n];
+            let acc = &mut sc.acc[r * len..(r + 1) * len];
+            acc.copy_from_slice(&row[..len]);
+            for k in 1..m {
+                extend(acc, &row[k * tau..k * tau + len]);
+            }
+            row.fill(0.0);
+        }
+    }
+}
+
 /// Accumulates the bins of the current reference over increasing ε and adds its
 /// `ln(sum/count)` terms (through `products`, or directly), then clears the scratch rows.
-fn finish_reference(job: &Job, sc: &mut Scratch, products: &mut Products, totals: &mut Totals) {
+fn finish_reference(
+    job: &Job,
+    sc: &mut Scratch,
+    products: &mut Products,
+    totals: &mut Totals,
+    simd: Simd,
+) {
+    match simd {
+        #[cfg(target_arch = "x86_64")]
+        // SAFETY: `Simd::Avx2` is only constructed after `is_x86_feature_detected!("avx2")`.
+        Simd::Avx2 => unsafe { finish_reference_avx2(job, sc, products, totals) },
+        Simd::Baseline => finish_reference_impl(job, sc, products, totals),
+    }
+}
+
+/// [`finish_reference_impl`] compiled for AVX2 (no FMA: bitwise the baseline's results).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn finish_reference_avx2(
+    job: &Job,
+    sc: &mut Scratch,
+    products: &mut Products,
+    totals: &mut Totals,
+) {
+    finish_reference_impl(job, sc, products, totals);
+}
+
+#[inline(always)]
+fn finish_reference_impl(
+    job: &Job,
+    sc: &mut Scratch,
+    products: &mut Products,
+    totals: &mut Totals,
+) {
     let len = job.len();
     let n_eps = job.eps2.len();
     let half = job.half();
@@ -644,7 +1008,7 @@ fn finish_reference(job: &Job, sc: &mut Scratch, products: &mut Products, totals
                         count[t] += 1;
                     }
                 }
-            } else if a.iter().all(|&v| (PROD_LO..=PROD_HI).contains(&v)) {
+            } else if in_product_range(a) {
                 products.multiply(r, a, c);
             } else {
                 for (t, &at) in a.iter().enumerate() {

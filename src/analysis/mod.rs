@@ -30,7 +30,7 @@ pub mod time_reversal;
 pub mod zero_one_test;
 
 pub use embedding::DelayEmbedding;
-pub use false_nearest_neighbors::{false_nearest_neighbors, FnnOptions, FnnPoint};
+pub use false_nearest_neighbors::{false_nearest_neighbors, FnnOptions, FnnPoint, FnnVectors};
 pub use kantz::{estimate_max_lyapunov, kantz, KantzDefinition, KantzOptions, KantzResult};
 pub use mutual_information::{mutual_information, MutualInformation, MutualInformationOptions};
 pub use noise_reduction::{
@@ -50,7 +50,7 @@ use crate::error::AnalysisError;
 ///
 /// # Errors
 /// [`AnalysisError::TooShort`] (naming `what` and both lengths), [`AnalysisError::NonFinite`]
-/// (first offending index) or [`AnalysisError::Constant`].
+/// (first offending index) or [`AnalysisError::Constant`]. See also [`reject_monotonic`].
 pub fn validate_series(x: &[f64], min_len: usize, what: &str) -> Result<(), AnalysisError> {
     if x.len() < min_len {
         return Err(AnalysisError::TooShort(format!(
@@ -64,6 +64,25 @@ pub fn validate_series(x: &[f64], min_len: usize, what: &str) -> Result<(), Anal
     let (lo, hi) = min_max(x);
     if x.is_empty() || hi <= lo {
         return Err(AnalysisError::Constant);
+    }
+    Ok(())
+}
+
+/// Refuses a series that rises (or falls) at every sample: a time or index column read
+/// instead of the signal (nothing recurs, so no estimator here has anything to measure).
+/// Called by the estimators after their length checks.
+///
+/// # Errors
+/// [`AnalysisError::Monotonic`] for such a series of at least 3 samples.
+pub fn reject_monotonic(x: &[f64]) -> Result<(), AnalysisError> {
+    let rising = x.windows(2).all(|w| w[1] > w[0]);
+    if x.len() >= 3 && (rising || x.windows(2).all(|w| w[1] < w[0])) {
+        return Err(AnalysisError::Monotonic {
+            direction: if rising { "increases" } else { "decreases" },
+            len: x.len(),
+            first: x[0],
+            last: x[x.len() - 1],
+        });
     }
     Ok(())
 }

@@ -1,7 +1,7 @@
 //! Time-delayed mutual information I(τ) with a fixed-bin histogram (Fraser & Swinney 1986;
 //! SPEC (4.1.5)), computed exactly as TISEAN 3.0.1's `mutual` (SPEC §8).
 
-use crate::analysis::{rescale_unit, validate_series};
+use crate::analysis::{reject_monotonic, rescale_unit, validate_series};
 use crate::error::AnalysisError;
 
 /// Options of [`mutual_information`]; the defaults are TISEAN `mutual`'s.
@@ -51,12 +51,14 @@ pub struct MutualInformation {
 ///
 /// # Errors
 /// [`AnalysisError::BadParameter`] for `bins < 2`; [`AnalysisError::TooShort`] for fewer than
-/// 2 samples; [`AnalysisError::NonFinite`], [`AnalysisError::Constant`].
+/// 2 samples; [`AnalysisError::NonFinite`], [`AnalysisError::Constant`],
+/// [`AnalysisError::Monotonic`] (a time column).
 ///
 /// # Pitfalls
 /// The fixed-bin estimator is biased upwards for short series and many bins (roughly
 /// `(b−1)²/(2N)` nats); the position of the first minimum is much less affected than its
-/// value. A monotonically decaying I(τ) (e.g. noise, or `D` too small) has no first minimum:
+/// value; see [`small_sample_bias`] (with 10 samples and 16 bins the curve is all bias).
+/// A monotonically decaying I(τ) (e.g. noise, or `D` too small) has no first minimum:
 /// `first_minimum` is `None`.
 ///
 /// # References
@@ -87,6 +89,7 @@ pub fn mutual_information(
         ));
     }
     validate_series(x, 2, "mutual information")?;
+    reject_monotonic(x)?;
     let b = opts.bins;
     let rescaled = rescale_unit(x)?;
     let binned: Vec<u32> = rescaled
@@ -167,6 +170,15 @@ impl Histograms {
     }
 }
 
+/// Leading small-sample bias of the fixed-bin estimate of I(τ), in nats:
+/// `(b − 1)² / (2·n_pairs)` (the Miller–Madow term of the joint histogram minus those of the
+/// two marginals, for independent variables). When it is comparable with I(τ) itself the
+/// curve, and its first minimum, are dominated by the estimator, not by the data.
+pub fn small_sample_bias(n_pairs: usize, bins: usize) -> f64 {
+    let b1 = bins.saturating_sub(1) as f64;
+    b1 * b1 / (2.0 * n_pairs.max(1) as f64)
+}
+
 /// Index of the first local minimum of a curve: the first `τ ≥ 1` with
 /// `I(τ) < I(τ−1)` and `I(τ) ≤ I(τ+1)`. `None` if there is none (the last point never counts,
 /// since the curve might still be decreasing).
@@ -196,8 +208,9 @@ mod tests {
 
     #[test]
     fn mi_at_zero_is_entropy_of_uniform_bins() {
-        // 4 values, one per bin with b = 4 → entropy ln 4 exactly.
-        let x = [0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0];
+        // 4 values, one per bin with b = 4 → entropy ln 4 exactly (not in increasing order:
+        // a series that rises at every sample is refused as a time column).
+        let x = [1.0 / 3.0, 0.0, 1.0, 2.0 / 3.0];
         let mi = mutual_information(
             &x,
             &MutualInformationOptions {

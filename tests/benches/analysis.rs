@@ -1,22 +1,19 @@
-//! Benchmarks of the core estimators on Lorenz x (dt = 0.01), single-threaded (a 1-thread
-//! rayon pool), against the issue author's TISEAN 3.0.1 timings:
-//! - `lyap_k` on 50 000 points, every point a reference, m = 2..6, 4 ε (default range/1000 ..
-//!   range/100), 600 steps: TISEAN 51 s. pdamp: `analysis/kantz/50000` (TISEAN definition,
-//!   Theiler 0, τ = 17).
-//! - `false_nearest` on 200 000 points, m = 1..8: TISEAN 6.5 s. pdamp: `analysis/fnn/200000`
-//!   (TISEAN definition and defaults f = 2, t = 0, τ = 17).
-//! - `mutual` (no TISEAN timing given): `analysis/mi/{50000,200000}`, 16 bins, D = 20.
+//! Benchmarks of the core estimators on Lorenz x (dt = 0.01, `lorenz_x`, the series of
+//! `examples/gen_series.rs`), single-threaded (a 1-thread rayon pool). Each benchmark does the
+//! work of exactly one CLI command; the side-by-side comparison with TISEAN 3.0.1 (same
+//! commands, same machine, same run, outputs checked equal) is `bench/vs_tisean.sh`, and its
+//! measured table is in `bench/README.md`.
+//! - `analysis/kantz/50000`: `pdamp lyap-k lorenz_x_n50000.dat --tisean -m2 -M6 -d17
+//!   -r0.0755099 -R0.755099 -#4 -s600 -t100`, i.e. TISEAN's `lyap_k` with the same options
+//!   (ε = 0.002…0.02 of the range 37.755, Theiler window 100).
+//! - `analysis/fnn/{50000,200000}`: `pdamp fnn lorenz_x_n<N>.dat --tisean -m1 -M1,8 -d17 -f10
+//!   -t100`, i.e. TISEAN's `false_nearest` with the same options.
+//! - `analysis/mi/{50000,200000}`: `pdamp mutual lorenz_x_n<N>.dat` (16 bins, D = 20).
 //!
-//! Run: `cargo bench --bench analysis`.
+//! The benches use `lorenz_x(N, 0.01)` directly; the files hold the same values to 13 digits.
 //!
-//! Measured 2026-11-22 (AMD EPYC, 1 thread, machine shared with other jobs; CPU times of the
-//! CLI with `taskset -c 0`, the same code paths):
-//! - kantz/50000: 2.59 s (criterion median; CLI 2.55 s user, before this tuning 5.57 s):
-//!   51 s / 2.6 s ≈ 20× TISEAN. At 200 000 points 38.0 s (before: 84.8 s): ×14.9 for ×4 data,
-//!   i.e. ∝ N² — at a fixed ε the neighbour pairs grow as N² (TISEAN's lyap_k alike); the
-//!   neighbour search itself is N log N.
-//! - fnn/200000: 0.73 s (criterion median; CLI 0.71 s user, before 1.56 s): 6.5 s / 0.73 s
-//!   ≈ 9× TISEAN; fnn/50000 0.165 s, ×4.4 for ×4 data (N log N: ×4.5).
+//! Run: `cargo bench --bench analysis`. Figures (1 thread, CPU seconds of the CLI) are in
+//! `bench/README.md`; criterion's medians of these benches exclude reading the file.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use pdamp::analysis::kantz::{kantz, KantzOptions};
@@ -49,10 +46,13 @@ fn benches(c: &mut Criterion) {
 
     let mut g = c.benchmark_group("analysis/fnn");
     g.sample_size(10).measurement_time(Duration::from_secs(10));
+    // pdamp fnn --tisean -m1 -M1,8 -d17 -f10 -t100
     let fo = FnnOptions {
         m_min: 1,
         m_max: 8,
         tau: 17,
+        ratio: 10.0,
+        theiler: Some(100),
         ..FnnOptions::tisean()
     };
     for (name, x) in [("50000", &x50), ("200000", &x200)] {
@@ -64,12 +64,16 @@ fn benches(c: &mut Criterion) {
 
     let mut g = c.benchmark_group("analysis/kantz");
     g.sample_size(10).measurement_time(Duration::from_secs(20));
+    // pdamp lyap-k --tisean -m2 -M6 -d17 -r0.0755099 -R0.755099 -#4 -s600 -t100
     let ko = KantzOptions {
         m_min: 2,
         m_max: 6,
         tau: 17,
+        eps_min: Some(0.0755099),
+        eps_max: Some(0.755099),
         eps_count: 4,
         steps: 600,
+        theiler: Some(100),
         ..KantzOptions::tisean()
     };
     g.bench_function("50000", |b| {

@@ -16,8 +16,11 @@ use crate::cli::commands::mutual::SeriesInput;
 ///
 /// Definition = TISEAN 3.0.1 (max norm, neighbour accepted if within σ/f, duplicates
 /// ignored). Defaults differ: pdamp uses Kennel's ratio f = 10 and a Theiler window of one
-/// delay; TISEAN uses f = 2 and no window. `--tisean` switches to TISEAN's defaults (explicit
-/// flags still win), and then the numbers match TISEAN's.
+/// delay; TISEAN uses f = 2 and no window. The vectors differ when τ > 1: pdamp embeds with
+/// delay τ (Kennel et al.), while TISEAN 3.0.1's false_nearest on one column uses consecutive
+/// samples (s_n, s_{n+1}, …) and the escape coordinate s_{n+m} whatever -d says (-d only
+/// shortens the index ranges). `--tisean` switches to TISEAN's defaults and its vectors
+/// (explicit flags still win), and then the numbers match TISEAN's.
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// Input series.
@@ -46,7 +49,8 @@ pub struct Args {
     /// τ; TISEAN: 0.
     #[arg(short = 't', long = "theiler", help_heading = "Estimator")]
     pub theiler: Option<usize>,
-    /// Start from TISEAN false_nearest's defaults (-m1 -M1,5 -f2 -t0).
+    /// TISEAN false_nearest's defaults (-m1 -M1,5 -f2 -t0) and vectors (unit spacing: -d
+    /// only sets the ranges, as in TISEAN 3.0.1).
     #[arg(long, help_heading = "Estimator")]
     pub tisean: bool,
 }
@@ -83,7 +87,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         tau: args.tau,
         ratio: args.ratio.unwrap_or(base.ratio),
         theiler: args.theiler.or(base.theiler),
+        vectors: base.vectors,
     };
+    if args.tisean && opts.tau > 1 {
+        eprintln!(
+            "note: as TISEAN 3.0.1 false_nearest, --tisean compares vectors of consecutive samples \
+             (s_n, s_n+1, …) and ignores -d {} inside them (it only shortens the ranges); \
+             drop --tisean for delay vectors",
+            opts.tau
+        );
+    }
     let fnn = false_nearest_neighbors(&x, &opts)
         .with_context(|| format!("false nearest neighbours of {}", args.input.file))?;
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());

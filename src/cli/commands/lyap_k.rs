@@ -90,7 +90,8 @@ pub struct Args {
     /// Average inside the log. Default: mean (TISEAN: tisean).
     #[arg(long, value_enum, help_heading = "Estimator")]
     pub definition: Option<Definition>,
-    /// TISEAN lyap_k's choices: Theiler window 0 and the RMS definition (explicit flags win).
+    /// TISEAN lyap_k's choices: Theiler window 0 and the RMS definition (explicit flags win);
+    /// -m and -M below 2 are raised to 2 and -M below -m to -m, as lyap_k does.
     #[arg(long, help_heading = "Estimator")]
     pub tisean: bool,
     /// Sampling interval in seconds, to report the exponent per second too.
@@ -114,9 +115,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         Some(Definition::Tisean) => KantzDefinition::TiseanRms,
         None => base.definition,
     };
+    // TISEAN lyap_k raises -m and -M below 2 to 2, and -M below -m to -m
+    let (m_min, m_max) = if args.tisean {
+        let m_min = args.m_min.max(2);
+        (m_min, args.m_max.max(m_min))
+    } else {
+        (args.m_min, args.m_max)
+    };
     let opts = KantzOptions {
-        m_min: args.m_min,
-        m_max: args.m_max,
+        m_min,
+        m_max,
         tau: args.tau,
         eps_min: args.eps_min,
         eps_max: args.eps_max,

@@ -2,6 +2,7 @@
 
 use std::io::Write;
 
+use crate::analysis::mutual_information::small_sample_bias;
 use crate::analysis::{mutual_information, MutualInformationOptions};
 use crate::io::{read_series, Column, SeriesReadOptions};
 use anyhow::Context;
@@ -92,7 +93,24 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         writeln!(out, "{tau},{v:.10e}")?;
     }
     out.flush()?;
+    // the estimator's bias at the largest lag (fewest pairs) against the entropy I(0)
+    let max_lag = mi.values.len() - 1;
+    let bias = small_sample_bias(x.len() - max_lag, mi.bins);
+    let unreliable = bias > 0.05 * mi.values[0];
+    if unreliable {
+        eprintln!(
+            "warning: {} samples are too few for {b}×{b} bins: the small-sample bias of I(tau), \
+             (b−1)²/(2(N−D)) = {bias:.3} nats, exceeds 5 % of I(0) = {:.3} nats, so the curve and \
+             its minimum reflect the estimator, not the data; use a longer series or fewer bins (-b)",
+            x.len(),
+            mi.values[0],
+            b = mi.bins
+        );
+    }
     match mi.first_minimum {
+        Some(t) if unreliable => {
+            eprintln!("first minimum of I(tau) at tau = {t} samples (unreliable: see the warning)")
+        }
         Some(t) => eprintln!("first minimum of I(tau) at tau = {t} samples"),
         None => eprintln!(
             "no first minimum up to D = {}: raise -D (the curve still decreases)",

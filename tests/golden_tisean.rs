@@ -1,0 +1,283 @@
+//! `pdamp mutual`, `pdamp fnn --tisean` and `pdamp lyap-k --tisean` against the outputs of the
+//! real TISEAN 3.0.1 (`tests/golden/tisean/`, provenance in `tests/golden/README.md`): every
+//! row, to TISEAN's print precision (`%e`: 7 significant digits), with the same options.
+//!
+//! A value `g` printed by TISEAN stands for the interval `g ± ½·10^(e−6)` (e its decimal
+//! exponent); pdamp's value must lie inside it (plus 1e-12 relative for rounding in either
+//! program). Integer columns (m, Δn, counts) must be equal. The worst difference of each file
+//! is printed in units of TISEAN's last digit (`cargo test --release --test golden_tisean --
+//! --nocapture`).
+
+use std::path::PathBuf;
+use std::process::Command;
+
+fn golden(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/golden/tisean")
+        .join(name)
+}
+
+fn pdamp(args: &[&str]) -> String {
+    let out = Command::new(env!("CARGO_BIN_EXE_pdamp"))
+        .args(args)
+        .output()
+        .expect("run pdamp");
+    assert!(
+        out.status.success(),
+        "pdamp {args:?} failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).expect("utf-8")
+}
+
+/// Data rows of a pdamp CSV (header dropped), split at commas.
+fn csv_rows(text: &str) -> Vec<Vec<String>> {
+    text.lines()
+        .skip(1)
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect()
+}
+
+/// Rows of a TISEAN output (comment and blank lines dropped), split at whitespace.
+fn tisean_rows(text: &str) -> Vec<Vec<String>> {
+    text.lines()
+        .filter(|l| !l.trim().is_empty() && !l.starts_with('#'))
+        .map(|l| l.split_whitespace().map(str::to_string).collect())
+        .collect()
+}
+
+/// Half a unit in the last place of a value printed with `%e` (7 significant digits).
+fn half_ulp(printed: &str) -> f64 {
+    let exp: i32 = printed
+        .split(['e', 'E'])
+        .nth(1)
+        .and_then(|e| e.parse().ok())
+        .unwrap_or_else(|| panic!("{printed} is not in %e format"));
+    0.5 * 10f64.powi(exp - 6)
+}
+
+/// Whether pdamp's value printed as TISEAN prints it (`%e`) is TISEAN's string.
+fn same_print(ours: f64, printed: &str) -> bool {
+    let mine = format!("{ours:.6e}");
+    let (m1, e1) = mine.split_once('e').unwrap();
+    let (m2, e2) = printed.split_once('e').unwrap();
+    m1 == m2 && e1.parse::<i32>().ok() == e2.parse::<i32>().ok()
+}
+
+/// Worst difference (units of TISEAN's last digit), values compared, values printing the same.
+#[derive(Default)]
+struct Score(f64, usize, usize);
+
+impl Score {
+    fn add(&mut self, what: &str, ours: f64, printed: &str) {
+        self.0 = self.0.max(check(what, ours, printed));
+        self.1 += 1;
+        self.2 += usize::from(same_print(ours, printed));
+    }
+    fn report(&self, file: &str) {
+        eprintln!(
+            "{file}: {} values, worst difference {:.3} of TISEAN's last digit, {} print identically",
+            self.1, self.0, self.2
+        );
+    }
+}
+
+/// Compares pdamp's value with TISEAN's printed one; returns the difference in units of
+/// TISEAN's last printed digit (≤ 0.5 when equal to print precision).
+fn check(what: &str, ours: f64, printed: &str) -> f64 {
+    let g: f64 = printed.parse().expect("number");
+    let h = half_ulp(printed);
+    let diff = (ours - g).abs();
+    assert!(
+        diff <= h + 1e-12 * g.abs(),
+        "{what}: pdamp {ours:.10e}, TISEAN {printed} (differs by {:.2} of its last digit)",
+        diff / (2.0 * h)
+    );
+    diff / (2.0 * h)
+}
+
+fn mutual_file(series: &str, mut_file: &str) -> f64 {
+    let path = golden(series);
+    let out = pdamp(&["mutual", path.to_str().unwrap(), "-D100"]);
+    let ours = csv_rows(&out);
+    let want = tisean_rows(&std::fs::read_to_string(golden(mut_file)).unwrap());
+    assert_eq!(ours.len(), want.len(), "{mut_file}: number of lags");
+    let mut score = Score::default();
+    for (o, w) in ours.iter().zip(&want) {
+        assert_eq!(o[0], w[0], "{mut_file}: lag");
+        let v: f64 = o[1].parse().unwrap();
+        score.add(&format!("{mut_file} τ = {}", w[0]), v, &w[1]);
+    }
+    score.report(mut_file);
+    score.0
+}
+
+#[test]
+fn mutual_equals_tisean() {
+    for s in ["lorenz_x_n10000", "henon_x_n20000", "noisy_sine_n8000"] {
+        let series = if s.starts_with("lorenz") {
+            format!("{s}.dat")
+        } else {
+            format!("{s}.txt")
+        };
+        mutual_file(&series, &format!("{s}.mut"));
+    }
+}
+
+fn fnn_file(series: &str, opts: &[&str], fnn_file: &str) -> f64 {
+    let path = golden(series);
+    let mut args = vec!["fnn", path.to_str().unwrap(), "--tisean"];
+    args.extend_from_slice(opts);
+    let ours = csv_rows(&pdamp(&args));
+    let want = tisean_rows(&std::fs::read_to_string(golden(fnn_file)).unwrap());
+    assert_eq!(ours.len(), want.len(), "{fnn_file}: number of dimensions");
+    let mut score = Score::default();
+    // pdamp: m,false_fraction,accepted,false_count,mean_distance,rms_distance;
+    // TISEAN: m, fraction, mean distance, RMS distance
+    for (o, w) in ours.iter().zip(&want) {
+        assert_eq!(o[0], w[0], "{fnn_file}: m");
+        let at = |c: usize| -> f64 { o[c].parse().unwrap() };
+        for (col, (ours, printed)) in [(at(1), &w[1]), (at(4), &w[2]), (at(5), &w[3])]
+            .into_iter()
+            .enumerate()
+        {
+            let what = format!("{fnn_file} m = {} column {}", w[0], col + 2);
+            score.add(&what, ours, printed);
+        }
+    }
+    score.report(fnn_file);
+    score.0
+}
+
+#[test]
+fn fnn_lorenz_delay_17_equals_tisean() {
+    fnn_file(
+        "lorenz_x_n10000.dat",
+        &["-m1", "-M1,8", "-d17", "-f10", "-t100"],
+        "lorenz_x_n10000.d17_f10_t100.fnn",
+    );
+    fnn_file(
+        "lorenz_x_n10000.dat",
+        &["-m1", "-M1,8", "-d17", "-f2", "-t0"],
+        "lorenz_x_n10000.d17_f2_t0.fnn",
+    );
+}
+
+#[test]
+fn fnn_henon_equals_tisean() {
+    fnn_file(
+        "henon_x_n20000.txt",
+        &["-m1", "-M1,6", "-d1", "-f10", "-t0"],
+        "henon_x_n20000.d1_f10_t0.fnn",
+    );
+}
+
+#[test]
+fn fnn_noisy_sine_equals_tisean() {
+    fnn_file(
+        "noisy_sine_n8000.txt",
+        &["-m1", "-M1,6", "-d9", "-f10", "-t20"],
+        "noisy_sine_n8000.d9_f10_t20.fnn",
+    );
+}
+
+/// TISEAN `lyap_k` output: (ε, m, rows (Δn, S, count)) per block.
+type LyapBlock = (String, usize, Vec<(usize, String, u64)>);
+
+fn parse_lyap(text: &str) -> Vec<LyapBlock> {
+    let mut blocks: Vec<LyapBlock> = Vec::new();
+    for line in text.lines() {
+        if let Some(rest) = line.strip_prefix("#epsilon=") {
+            let mut it = rest.split_whitespace();
+            let eps = it.next().unwrap().to_string();
+            assert_eq!(it.next(), Some("dim="));
+            let m = it.next().unwrap().parse().unwrap();
+            blocks.push((eps, m, Vec::new()));
+        } else if !line.trim().is_empty() {
+            let f: Vec<&str> = line.split_whitespace().collect();
+            let block = blocks.last_mut().expect("row before a block header");
+            block.2.push((
+                f[0].parse().unwrap(),
+                f[1].to_string(),
+                f[2].parse().unwrap(),
+            ));
+        }
+    }
+    blocks
+}
+
+fn lyap_file(series: &str, opts: &[&str], lyap_file: &str) -> f64 {
+    let path = golden(series);
+    let mut args = vec!["lyap-k", path.to_str().unwrap(), "--tisean"];
+    args.extend_from_slice(opts);
+    // pdamp: eps,m,dn_samples,s,count, blocks in TISEAN's order (ε outer, m inner)
+    let ours = csv_rows(&pdamp(&args));
+    let want = parse_lyap(&std::fs::read_to_string(golden(lyap_file)).unwrap());
+    let n_rows: usize = want.iter().map(|b| b.2.len()).sum();
+    assert_eq!(ours.len(), n_rows, "{lyap_file}: number of rows");
+    let mut score = Score::default();
+    let mut o = ours.iter();
+    for (eps, m, rows) in &want {
+        for (dn, s, count) in rows {
+            let r = o.next().unwrap();
+            let what = format!("{lyap_file} ε = {eps} m = {m} Δn = {dn}");
+            score.add(&what, r[0].parse().unwrap(), eps);
+            assert_eq!(r[1].parse::<usize>().unwrap(), *m, "{what}: m");
+            assert_eq!(r[2].parse::<usize>().unwrap(), *dn, "{what}: Δn");
+            assert_eq!(r[4].parse::<u64>().unwrap(), *count, "{what}: count");
+            score.add(&what, r[3].parse().unwrap(), s);
+        }
+    }
+    eprintln!("{lyap_file}: {n_rows} rows (ε and S compared)");
+    score.report(lyap_file);
+    score.0
+}
+
+#[test]
+fn lyap_k_lorenz_equals_tisean() {
+    lyap_file(
+        "lorenz_x_n10000.dat",
+        &[
+            "-m2", "-M6", "-d17", "-r0.05", "-R0.5", "-#4", "-s300", "-t100",
+        ],
+        "lorenz_x_n10000.lyap",
+    );
+}
+
+#[test]
+fn lyap_k_henon_equals_tisean() {
+    lyap_file(
+        "henon_x_n20000.txt",
+        &[
+            "-m2", "-M4", "-d1", "-r0.001", "-R0.01", "-#3", "-s30", "-t0",
+        ],
+        "henon_x_n20000.lyap",
+    );
+}
+
+#[test]
+fn outputs_do_not_depend_on_thread_count() {
+    let lorenz = golden("lorenz_x_n10000.dat");
+    let lorenz = lorenz.to_str().unwrap();
+    let runs: [&[&str]; 2] = [
+        &[
+            "fnn", lorenz, "--tisean", "-m1", "-M1,8", "-d17", "-f10", "-t100",
+        ],
+        &[
+            "lyap-k", lorenz, "--tisean", "-m2", "-M6", "-d17", "-r0.05", "-R0.5", "-#4", "-s300",
+            "-t100",
+        ],
+    ];
+    for args in runs {
+        let out = |threads: &str| {
+            let o = Command::new(env!("CARGO_BIN_EXE_pdamp"))
+                .args(args)
+                .env("RAYON_NUM_THREADS", threads)
+                .output()
+                .expect("run pdamp");
+            assert!(o.status.success());
+            o.stdout
+        };
+        assert!(out("1") == out("3"), "{args:?}: 1 and 3 threads differ");
+    }
+}
