@@ -1,12 +1,16 @@
 //! Nonlinear time-series analysis of a scalar series (SPEC §4): delay embedding (4.1.1),
 //! time-delayed mutual information (4.1.5), false nearest neighbours (4.1.4), Kantz's maximal
-//! Lyapunov exponent (4.1.7), spectra, Poincaré sections and the regime classifier.
+//! Lyapunov exponent (4.1.7), spectra, Poincaré sections and the regime classifier; the
+//! correlation dimension (Grassberger–Procaccia), Cao's embedding dimension, Rosenstein's
+//! maximal exponent and recurrence quantification analysis.
 //!
 //! One file per estimator. This module holds the helpers they share: series validation
 //! ([`validate_series`]), rescaling to [0, 1] as TISEAN does ([`rescale_unit`]) and the Theiler
 //! window test ([`outside_theiler_window`]).
 
 pub mod analyze;
+//TODO pub mod cao;
+pub mod correlation_dimension;
 pub mod embedding;
 pub mod false_nearest_neighbors;
 pub mod frf_fit;
@@ -14,14 +18,23 @@ pub mod kantz;
 pub mod mutual_information;
 pub mod optimum;
 pub mod poincare;
+//TODO pub mod recurrence;
 pub mod regime;
+//TODO pub mod rosenstein;
 pub mod spectrum;
 pub mod zero_one_test;
 
+//TODO pub use cao::{cao, CaoOptions, CaoResult};
+pub use correlation_dimension::{
+    correlation_dimension, correlation_sum, estimate_d2, CorrelationSums, D2Estimate, D2Options,
+    PlateauOptions,
+};
 pub use embedding::DelayEmbedding;
 pub use false_nearest_neighbors::{false_nearest_neighbors, FnnOptions, FnnPoint};
 pub use kantz::{estimate_max_lyapunov, kantz, KantzDefinition, KantzOptions, KantzResult};
 pub use mutual_information::{mutual_information, MutualInformation, MutualInformationOptions};
+//TODO pub use recurrence::{rqa, RecurrenceOptions, RecurrenceThreshold, RqaMeasures};
+//TODO pub use rosenstein::{rosenstein, RosensteinOptions, RosensteinResult};
 
 use crate::error::AnalysisError;
 
