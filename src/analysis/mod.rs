@@ -9,7 +9,7 @@
 //! window test ([`outside_theiler_window`]).
 
 pub mod analyze;
-//TODO pub mod cao;
+pub mod cao;
 pub mod correlation_dimension;
 pub mod embedding;
 pub mod false_nearest_neighbors;
@@ -24,7 +24,7 @@ pub mod regime;
 pub mod spectrum;
 pub mod zero_one_test;
 
-//TODO pub use cao::{cao, CaoOptions, CaoResult};
+pub use cao::{cao, CaoOptions, CaoResult};
 pub use correlation_dimension::{
     correlation_dimension, correlation_sum, estimate_d2, CorrelationSums, D2Estimate, D2Options,
     PlateauOptions,

@@ -51,7 +51,7 @@ pub enum Command {
     /// [analysis] Correlation sum and dimension D2 (Grassberger–Procaccia; TISEAN `d2`).
     D2(commands::d2::Args),
     /// [analysis] Cao's minimum embedding dimension E1(m), E2(m) (Cao 1997).
-    //TODO Cao(commands::cao::Args),
+    Cao(commands::cao::Args),
     /// [analysis] Recurrence quantification analysis: RR, DET, LAM, L, L_max, entropy.
     //TODO Rqa(commands::rqa::Args),
     /// [analysis] Whole analysis chain with automatic choices and a regime verdict.
@@ -80,7 +80,7 @@ pub fn run() -> anyhow::Result<()> {
         Command::LyapK(a) => commands::lyap_k::run(a),
         //TODO Command::LyapR(a) => commands::lyap_r::run(a),
         Command::D2(a) => commands::d2::run(a),
-        //TODO Command::Cao(a) => commands::cao::run(a),
+        Command::Cao(a) => commands::cao::run(a),
         //TODO Command::Rqa(a) => commands::rqa::run(a),
         Command::Analyze(a) => commands::analyze::run(a),
         Command::FitFrf(a) => commands::fit_frf::run(a),

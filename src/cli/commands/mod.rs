@@ -1,6 +1,6 @@
 //! One module per subcommand: each has `Args` (clap) and `run(Args)`.
 pub mod analyze;
-//TODO pub mod cao;
+pub mod cao;
 pub mod check_scene;
 pub mod d2;
 pub mod embed;
