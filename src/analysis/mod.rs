@@ -18,9 +18,9 @@ pub mod kantz;
 pub mod mutual_information;
 pub mod optimum;
 pub mod poincare;
-//TODO pub mod recurrence;
+pub mod recurrence;
 pub mod regime;
-//TODO pub mod rosenstein;
+pub mod rosenstein;
 pub mod spectrum;
 pub mod zero_one_test;
 
@@ -33,8 +33,8 @@ pub use embedding::DelayEmbedding;
 pub use false_nearest_neighbors::{false_nearest_neighbors, FnnOptions, FnnPoint};
 pub use kantz::{estimate_max_lyapunov, kantz, KantzDefinition, KantzOptions, KantzResult};
 pub use mutual_information::{mutual_information, MutualInformation, MutualInformationOptions};
-//TODO pub use recurrence::{rqa, RecurrenceOptions, RecurrenceThreshold, RqaMeasures};
-//TODO pub use rosenstein::{rosenstein, RosensteinOptions, RosensteinResult};
+pub use recurrence::{rqa, RecurrenceOptions, RecurrenceThreshold, RqaMeasures};
+pub use rosenstein::{rosenstein, RosensteinOptions, RosensteinResult};
 
 use crate::error::AnalysisError;
 
