@@ -46,14 +46,14 @@ pub enum Command {
     #[command(name = "lyap-k")]
     LyapK(commands::lyap_k::Args),
     /// [analysis] Rosenstein's maximal Lyapunov exponent (TISEAN `lyap_r`).
-    //TODO #[command(name = "lyap-r")]
-    //TODO LyapR(commands::lyap_r::Args),
+    #[command(name = "lyap-r")]
+    LyapR(commands::lyap_r::Args),
     /// [analysis] Correlation sum and dimension D2 (Grassberger–Procaccia; TISEAN `d2`).
     D2(commands::d2::Args),
     /// [analysis] Cao's minimum embedding dimension E1(m), E2(m) (Cao 1997).
     Cao(commands::cao::Args),
     /// [analysis] Recurrence quantification analysis: RR, DET, LAM, L, L_max, entropy.
-    //TODO Rqa(commands::rqa::Args),
+    Rqa(commands::rqa::Args),
     /// [analysis] Whole analysis chain with automatic choices and a regime verdict.
     Analyze(commands::analyze::Args),
     /// [studies] Fit effective mass and damping to a frequency response (2.1.21).
@@ -78,10 +78,10 @@ pub fn run() -> anyhow::Result<()> {
         Command::Spectrum(a) => commands::spectrum::run(a),
         Command::Poincare(a) => commands::poincare::run(a),
         Command::LyapK(a) => commands::lyap_k::run(a),
-        //TODO Command::LyapR(a) => commands::lyap_r::run(a),
+        Command::LyapR(a) => commands::lyap_r::run(a),
         Command::D2(a) => commands::d2::run(a),
         Command::Cao(a) => commands::cao::run(a),
-        //TODO Command::Rqa(a) => commands::rqa::run(a),
+        Command::Rqa(a) => commands::rqa::run(a),
         Command::Analyze(a) => commands::analyze::run(a),
         Command::FitFrf(a) => commands::fit_frf::run(a),
         Command::Plot(a) => commands::plot::run(a),
