@@ -328,16 +328,24 @@ fn measures(emb: &Embedded, eps: f64, o: &RecurrenceOptions) -> RqaMeasures {
     let diagonal_lines: Vec<u64> = diag_upper.iter().map(|c| 2 * c).collect();
     let pairs = 2 * emb.upper_pairs();
     let recurrences = 2 * rec_upper;
-    summarise(
-        n,
+    let d = line_stats(&diagonal_lines, o.l_min);
+    let v = line_stats(&vert, o.v_min);
+    RqaMeasures {
+        vectors: n,
         eps,
         pairs,
         recurrences,
+        recurrence_rate: recurrences as f64 / pairs as f64,
+        determinism: d.fraction,
+        mean_diagonal: d.mean,
+        max_diagonal: d.max,
+        diagonal_entropy: d.entropy,
+        laminarity: v.fraction,
+        trapping_time: v.mean,
+        max_vertical: v.max,
         diagonal_lines,
-        vert,
-        o.l_min,
-        o.v_min,
-    )
+        vertical_lines: vert,
+    }
 }
 
 /// Line statistics from the histograms.
@@ -374,37 +382,6 @@ fn line_stats(hist: &[u64], min: usize) -> LineStats {
         mean: (long_lines > 0).then(|| long_points as f64 / long_lines as f64),
         max,
         entropy,
-    }
-}
-
-#[allow(clippy::too_many_arguments)]
-fn summarise(
-    vectors: usize,
-    eps: f64,
-    pairs: u64,
-    recurrences: u64,
-    diagonal_lines: Vec<u64>,
-    vertical_lines: Vec<u64>,
-    l_min: usize,
-    v_min: usize,
-) -> RqaMeasures {
-    let d = line_stats(&diagonal_lines, l_min);
-    let v = line_stats(&vertical_lines, v_min);
-    RqaMeasures {
-        vectors,
-        eps,
-        pairs,
-        recurrences,
-        recurrence_rate: recurrences as f64 / pairs as f64,
-        determinism: d.fraction,
-        mean_diagonal: d.mean,
-        max_diagonal: d.max,
-        diagonal_entropy: d.entropy,
-        laminarity: v.fraction,
-        trapping_time: v.mean,
-        max_vertical: v.max,
-        diagonal_lines,
-        vertical_lines,
     }
 }
 
