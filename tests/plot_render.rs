@@ -464,3 +464,47 @@ fn mismatched_lengths_empty_data_and_bad_extension_are_errors() {
         .to_string()
         .contains("power"));
 }
+
+#[test]
+fn recurrence_plot_downsampled() {
+    use pdamp::analysis::recurrence::{recurrence_grid, RecurrenceOptions, RecurrenceThreshold};
+    use pdamp::plot::recurrence::RecurrenceFigure;
+    // a sine's recurrence plot is diagonal stripes: many fully recurrent (black) cells, far
+    // more than the axes and text contribute
+    let x: Vec<f64> = (0..1200).map(|i| (i as f64 * 0.1).sin()).collect();
+    let o = RecurrenceOptions {
+        m: 2,
+        tau: 16,
+        threshold: RecurrenceThreshold::Fixed(0.2),
+        ..Default::default()
+    };
+    let grid = recurrence_grid(&x, &o, 400).unwrap();
+    assert_eq!(grid.block, 3, "1184 vectors in ≤ 400 cells per side");
+    let fig = RecurrenceFigure {
+        grid: &grid,
+        embedding: (2, 16),
+    };
+    assert!(fig.default_title().contains("RR"));
+    check_renders(&fig, "recurrence", [0, 0, 0], 3000);
+}
+
+#[test]
+fn d2_local_slopes_with_plateau() {
+    use pdamp::analysis::correlation_dimension::{correlation_dimension, D2Options};
+    let x = pdamp::systems::henon::henon_x(3000);
+    let o = D2Options {
+        m_min: 1,
+        m_max: 3,
+        eps_max: Some(0.5),
+        eps_count: 30,
+        ..D2Options::default()
+    };
+    let (sums, est) = correlation_dimension(&x, &o, &Default::default()).unwrap();
+    let fig = pdamp::plot::correlation_dimension::D2Figure {
+        sums: &sums,
+        estimate: Some(&est),
+    };
+    assert!(fig.default_title().contains("D2 ="));
+    // the m = 1 curve is drawn in the first palette colour
+    check_renders(&fig, "d2", BLUE, 200);
+}

@@ -2,7 +2,8 @@
 //! time-delayed mutual information (4.1.5), false nearest neighbours (4.1.4), Kantz's maximal
 //! Lyapunov exponent (4.1.7), spectra, Poincaré sections and the regime classifier; surrogate
 //! data (IAAFT, FT, shuffle) with a rank test of discriminating statistics (time-reversal
-//! asymmetry, nonlinear prediction error).
+//! asymmetry, nonlinear prediction error); the correlation dimension (Grassberger–Procaccia),
+//! Cao's embedding dimension, Rosenstein's maximal exponent and recurrence quantification.
 //!
 //! One file per estimator. This module holds the helpers they share: series validation
 //! ([`validate_series`]), rescaling to [0, 1] as TISEAN does ([`rescale_unit`]) and the Theiler
@@ -10,6 +11,8 @@
 
 pub mod analyze;
 pub mod box_grid;
+pub mod cao;
+pub mod correlation_dimension;
 pub mod embedding;
 pub mod false_nearest_neighbors;
 pub mod frf_fit;
@@ -20,7 +23,9 @@ pub mod noise_reduction;
 pub mod optimum;
 pub mod poincare;
 pub mod prediction_error;
+pub mod recurrence;
 pub mod regime;
+pub mod rosenstein;
 pub mod section;
 pub mod section_lyapunov;
 pub mod spectrum;
@@ -29,6 +34,11 @@ pub mod surrogates;
 pub mod time_reversal;
 pub mod zero_one_test;
 
+pub use cao::{cao, CaoOptions, CaoResult};
+pub use correlation_dimension::{
+    correlation_dimension, correlation_sum, estimate_d2, CorrelationSums, D2Estimate, D2Options,
+    PlateauOptions,
+};
 pub use embedding::DelayEmbedding;
 pub use false_nearest_neighbors::{false_nearest_neighbors, FnnOptions, FnnPoint, FnnVectors};
 pub use kantz::{estimate_max_lyapunov, kantz, KantzDefinition, KantzOptions, KantzResult};
@@ -43,6 +53,8 @@ pub use surrogates::{
     SurrogateOptions,
 };
 pub use time_reversal::time_reversal_asymmetry;
+pub use recurrence::{rqa, RecurrenceOptions, RecurrenceThreshold, RqaMeasures};
+pub use rosenstein::{rosenstein, RosensteinOptions, RosensteinResult};
 
 use crate::error::AnalysisError;
 

@@ -11,7 +11,8 @@ use clap::{Parser, Subcommand};
 ///
 /// Simulation: `simulate`, `sweep`, `check-scene`, `tradeoff`.
 /// Series analysis (TISEAN-like, reads plain text/CSV columns): `mutual`, `fnn`, `embed`,
-/// `spectrum`, `poincare`, `lyap-k`, `analyze`, `surrogates`, `surrogate-test`, `nrlazy`.
+/// `spectrum`, `poincare`, `lyap-k`, `lyap-r`, `d2`, `cao`, `rqa`, `analyze`, `surrogates`,
+/// `surrogate-test`, `nrlazy`.
 /// Studies and figures: `fit-frf`, `plot`, `reproduce`.
 #[derive(Debug, Parser)]
 #[command(name = "pdamp", version, about, long_about = None, propagate_version = true)]
@@ -52,6 +53,15 @@ pub enum Command {
     SurrogateTest(commands::surrogate_test::Args),
     /// [analysis] Simple nonlinear noise reduction (Schreiber 1993; TISEAN `lazy`/`nrlazy`).
     Nrlazy(commands::nrlazy::Args),
+    /// [analysis] Rosenstein's maximal Lyapunov exponent (TISEAN `lyap_r`).
+    #[command(name = "lyap-r")]
+    LyapR(commands::lyap_r::Args),
+    /// [analysis] Correlation sum and dimension D2 (Grassberger–Procaccia; TISEAN `d2`).
+    D2(commands::d2::Args),
+    /// [analysis] Cao's minimum embedding dimension E1(m), E2(m) (Cao 1997).
+    Cao(commands::cao::Args),
+    /// [analysis] Recurrence quantification analysis: RR, DET, LAM, L, L_max, entropy.
+    Rqa(commands::rqa::Args),
     /// [analysis] Whole analysis chain with automatic choices and a regime verdict.
     Analyze(commands::analyze::Args),
     /// [studies] Fit effective mass and damping to a frequency response (2.1.21).
@@ -79,6 +89,10 @@ pub fn run() -> anyhow::Result<()> {
         Command::Surrogates(a) => commands::surrogates::run(a),
         Command::SurrogateTest(a) => commands::surrogate_test::run(a),
         Command::Nrlazy(a) => commands::nrlazy::run(a),
+        Command::LyapR(a) => commands::lyap_r::run(a),
+        Command::D2(a) => commands::d2::run(a),
+        Command::Cao(a) => commands::cao::run(a),
+        Command::Rqa(a) => commands::rqa::run(a),
         Command::Analyze(a) => commands::analyze::run(a),
         Command::FitFrf(a) => commands::fit_frf::run(a),
         Command::Plot(a) => commands::plot::run(a),

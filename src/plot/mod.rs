@@ -5,6 +5,7 @@
 pub mod bed_motion;
 pub mod bifurcation;
 pub mod common;
+pub mod correlation_dimension;
 pub mod effective;
 pub mod energy;
 pub mod frf;
@@ -12,6 +13,7 @@ pub mod lines;
 pub mod pareto;
 pub mod poincare;
 pub mod reconstruction;
+pub mod recurrence;
 pub mod regime_frf;
 pub mod regime_map;
 pub mod resonance;

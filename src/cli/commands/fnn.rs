@@ -55,7 +55,7 @@ pub struct Args {
     pub tisean: bool,
 }
 
-fn parse_max_dim(s: &str) -> anyhow::Result<usize> {
+pub(crate) fn parse_max_dim(s: &str) -> anyhow::Result<usize> {
     let parts: Vec<&str> = s.split(',').collect();
     let (comp, m) = match parts.as_slice() {
         [m] => ("1", *m),

@@ -1,15 +1,19 @@
 //! One module per subcommand: each has `Args` (clap) and `run(Args)`.
 pub mod analyze;
+pub mod cao;
 pub mod check_scene;
+pub mod d2;
 pub mod embed;
 pub mod fit_frf;
 pub mod fnn;
 pub mod lyap_k;
+pub mod lyap_r;
 pub mod mutual;
 pub mod nrlazy;
 pub mod plot;
 pub mod poincare;
 pub mod reproduce;
+pub mod rqa;
 pub mod simulate;
 pub mod spectrum;
 pub mod surrogate_test;

@@ -5,13 +5,19 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context};
 
+use crate::analysis::correlation_dimension::{
+    estimate_d2, local_slopes, CorrelationCurve, CorrelationSums, PlateauOptions,
+};
+use crate::analysis::recurrence::{recurrence_grid, RecurrenceOptions};
 use crate::plot::bed_motion::BedMotionFigure;
 use crate::plot::bifurcation::BifurcationFigure;
+use crate::plot::correlation_dimension::D2Figure;
 use crate::plot::effective::EffectiveFigure;
 use crate::plot::energy::{energy_figure, energy_label};
 use crate::plot::frf::{FrfFigure, FrfReference};
 use crate::plot::poincare::PoincareFigure;
 use crate::plot::reconstruction::ReconstructionFigure;
+use crate::plot::recurrence::RecurrenceFigure;
 use crate::plot::regime_frf::RegimeFrfFigure;
 use crate::plot::regime_map::RegimeMapFigure;
 use crate::plot::resonance::{resonance_amplitudes, resonance_figure};
@@ -53,6 +59,14 @@ pub enum Kind {
     /// sweep.csv with two varied keys --x and --y: cells coloured by `regime`, annotated with
     /// `mle_per_s`.
     RegimeMap,
+    /// Recurrence plot of a series (CSV column --column or 1-based column of a plain file):
+    /// embedding --dim (default 1) and --lag (default 1), threshold --eps (data units) or
+    /// --rate (default 0.05), --theiler; downsampled to --max-cells pixels per side (stated on
+    /// the figure).
+    Recurrence,
+    /// Output of `pdamp d2` (columns m, eps, c, pairs, slope): local slopes versus ε (log
+    /// axis) per m, with the automatic plateaus and D2 marked.
+    D2,
 }
 
 /// Arguments of `pdamp plot`.
@@ -129,6 +143,22 @@ pub struct PlotOptions {
     /// Base amplitude U (m) for the FRF reference curves.
     #[arg(long)]
     pub base_amplitude: Option<f64>,
+    /// Embedding dimension for recurrence (default 1).
+    #[arg(long)]
+    pub dim: Option<usize>,
+    /// Recurrence threshold ε in data units (recurrence).
+    #[arg(long, conflicts_with = "rate")]
+    pub eps: Option<f64>,
+    /// Recurrence rate in (0, 1) fixing ε (recurrence; default 0.05).
+    #[arg(long)]
+    pub rate: Option<f64>,
+    /// Theiler window in samples for recurrence (RR excludes |i − j| ≤ w).
+    #[arg(long)]
+    pub theiler: Option<usize>,
+    /// Largest number of pixels per side of the recurrence plot (longer series are
+    /// downsampled in blocks).
+    #[arg(long, default_value_t = 600)]
+    pub max_cells: usize,
 }
 
 /// Run `pdamp plot`.
@@ -352,6 +382,34 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 .collect();
             draw(&resonance_figure(series, &axis_label(&xn)), out, &opts)
         }
+        Kind::Recurrence => {
+            one()?;
+            let (s, _) = read_series(&args.inputs[0], first, o.column.as_deref())?;
+            let ro = RecurrenceOptions {
+                m: o.dim.unwrap_or(1),
+                tau: o.lag.unwrap_or(1),
+                theiler: o.theiler.unwrap_or(0),
+                threshold: crate::cli::commands::rqa::threshold(o.eps, o.rate)?,
+                ..RecurrenceOptions::default()
+            };
+            let grid = recurrence_grid(&s, &ro, o.max_cells)
+                .with_context(|| format!("recurrence plot of {}", args.inputs[0].display()))?;
+            let fig = RecurrenceFigure {
+                grid: &grid,
+                embedding: (ro.m, ro.tau),
+            };
+            draw(&fig, out, &opts)
+        }
+        Kind::D2 => {
+            one()?;
+            let sums = d2_curves(first)?;
+            let est = estimate_d2(&sums, &PlateauOptions::default()).ok();
+            let fig = D2Figure {
+                sums: &sums,
+                estimate: est.as_ref(),
+            };
+            draw(&fig, out, &opts)
+        }
         Kind::RegimeMap => {
             one()?;
             let xn =
@@ -376,6 +434,48 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             draw(&fig, out, &opts)
         }
     }
+}
+
+/// Curves of `pdamp d2`'s CSV (rows grouped by m, ε increasing).
+fn d2_curves(t: &Table) -> anyhow::Result<CorrelationSums> {
+    let (m, eps, c) = (t.f64_column("m")?, t.f64_column("eps")?, t.f64_column("c")?);
+    let pairs = t.f64_column("pairs")?;
+    let mut curves: Vec<CorrelationCurve> = Vec::new();
+    for k in 0..m.len() {
+        let mk = m[k] as usize;
+        if curves.last().is_none_or(|c| c.m != mk) {
+            curves.push(CorrelationCurve {
+                m: mk,
+                eps: Vec::new(),
+                pairs: Vec::new(),
+                c: Vec::new(),
+                slope: Vec::new(),
+            });
+        }
+        let cur = curves.last_mut().context("no rows")?;
+        cur.eps.push(eps[k]);
+        cur.c.push(c[k]);
+        cur.pairs.push(pairs[k] as u64);
+    }
+    if curves.is_empty() {
+        bail!("{}: no rows of `pdamp d2` output", t.path);
+    }
+    for cur in &mut curves {
+        cur.slope = local_slopes(&cur.eps, &cur.c);
+    }
+    let last = &curves[0];
+    let total = last
+        .c
+        .iter()
+        .zip(&last.pairs)
+        .rev()
+        .find(|(c, _)| **c > 0.0)
+        .map_or(0, |(c, p)| (*p as f64 / c).round() as u64);
+    Ok(CorrelationSums {
+        curves,
+        total_pairs: total,
+        vectors: 0,
+    })
 }
 
 fn draw<F: Figure>(fig: &F, out: &Path, opts: &FigureOptions) -> anyhow::Result<()> {

@@ -1,0 +1,151 @@
+//! `pdamp d2`: correlation sum and correlation dimension (Grassberger & Procaccia 1983;
+//! TISEAN `d2`).
+
+use std::io::Write;
+
+use anyhow::Context;
+
+use crate::analysis::correlation_dimension::{
+    correlation_sum, estimate_d2, D2Options, PlateauOptions,
+};
+use crate::cli::commands::fnn::parse_max_dim;
+use crate::cli::commands::mutual::SeriesInput;
+
+/// Arguments of `pdamp d2`.
+///
+/// Output: CSV on stdout, one row per (m, ε): `m,eps,c,pairs,slope` — ε in data units, C the
+/// correlation sum (TISEAN's `.c2`), `pairs` the number of pairs within ε, `slope` the local
+/// slope d ln C / d ln ε (centred; TISEAN's `.d2` prints the one-sided slopes, whose mean this
+/// is), empty where C = 0. On stderr: the plateau of every m and the D2 estimate (pooled
+/// slopes of the highest dimensions' plateaus) with its spread. `pdamp plot d2` draws the
+/// output.
+///
+/// Same definitions and defaults as TISEAN 3.0.1 `d2` (maximum norm, data not rescaled,
+/// -M1,10 -d1 -t0, ε from interval/1000 to interval in 100 steps), except that every pair
+/// is counted (TISEAN's -N0).
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Input series.
+    #[command(flatten)]
+    pub input: SeriesInput,
+    /// Smallest embedding dimension written (all from 1 by default, as TISEAN).
+    #[arg(
+        short = 'm',
+        long = "min-dim",
+        default_value_t = 1,
+        help_heading = "Estimator"
+    )]
+    pub m_min: usize,
+    /// Largest embedding dimension: `M` or TISEAN's `components,M` (1 component).
+    #[arg(
+        short = 'M',
+        long = "max-dim",
+        default_value = "10",
+        help_heading = "Estimator"
+    )]
+    pub m_max: String,
+    /// Delay τ in samples (TISEAN -d).
+    #[arg(
+        short = 'd',
+        long = "delay",
+        default_value_t = 1,
+        help_heading = "Estimator"
+    )]
+    pub tau: usize,
+    /// Theiler window in samples: pairs closer in time are not counted (TISEAN -t). Use at
+    /// least the autocorrelation time for flows.
+    #[arg(
+        short = 't',
+        long = "theiler",
+        default_value_t = 0,
+        help_heading = "Estimator"
+    )]
+    pub theiler: usize,
+    /// Smallest ε in data units (TISEAN -r). Default: interval/1000.
+    #[arg(short = 'r', long = "eps-min", help_heading = "Estimator")]
+    pub eps_min: Option<f64>,
+    /// Largest ε in data units (TISEAN -R). Default: the data interval max − min.
+    #[arg(short = 'R', long = "eps-max", help_heading = "Estimator")]
+    pub eps_max: Option<f64>,
+    /// Number of ε, log-spaced (TISEAN -#).
+    #[arg(
+        short = '#',
+        long = "eps-count",
+        default_value_t = 100,
+        help_heading = "Estimator"
+    )]
+    pub eps_count: usize,
+    /// Plateau search: radii with fewer pairs are ignored.
+    #[arg(long, default_value_t = 1000, help_heading = "Plateau")]
+    pub min_pairs: u64,
+    /// Plateau search: largest relative deviation of a slope from the plateau mean.
+    #[arg(long, default_value_t = 0.05, help_heading = "Plateau")]
+    pub tolerance: f64,
+    /// Plateau search: D2 pools the plateaus of this many highest dimensions.
+    #[arg(long, default_value_t = 3, help_heading = "Plateau")]
+    pub dims: usize,
+}
+
+/// Run `pdamp d2`.
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let x = args.input.read()?;
+    let opts = D2Options {
+        m_min: args.m_min,
+        m_max: parse_max_dim(&args.m_max)?,
+        tau: args.tau,
+        theiler: args.theiler,
+        eps_min: args.eps_min,
+        eps_max: args.eps_max,
+        eps_count: args.eps_count,
+    };
+    let sums = correlation_sum(&x, &opts)
+        .with_context(|| format!("correlation sum of {}", args.input.file))?;
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    writeln!(out, "m,eps,c,pairs,slope")?;
+    for c in &sums.curves {
+        for l in 0..c.eps.len() {
+            let s = c.slope[l].map_or(String::new(), |v| format!("{v:.6}"));
+            writeln!(
+                out,
+                "{},{:.6e},{:.6e},{},{s}",
+                c.m, c.eps[l], c.c[l], c.pairs[l]
+            )?;
+        }
+    }
+    out.flush()?;
+    let plateau = PlateauOptions {
+        min_pairs: args.min_pairs,
+        tolerance: args.tolerance,
+        dims: args.dims,
+        ..PlateauOptions::default()
+    };
+    match estimate_d2(&sums, &plateau) {
+        Ok(est) => {
+            for p in &est.plateaus {
+                eprintln!(
+                    "m {}: plateau {:.4e}..{:.4e} ({} radii{}): slope {:.4} ± {:.4}",
+                    p.m,
+                    p.eps_lo,
+                    p.eps_hi,
+                    p.points,
+                    if p.flat { "" } else { ", not flat" },
+                    p.d2,
+                    p.std
+                );
+            }
+            eprintln!(
+                "correlation dimension D2 = {:.4} ± {:.4} (m = {:?}{})",
+                est.d2,
+                est.spread,
+                est.dims_used,
+                if est.flat {
+                    ""
+                } else {
+                    "; no flat plateau: do not trust"
+                }
+            );
+        }
+        Err(e) => eprintln!("no D2 estimate: {e}"),
+    }
+    Ok(())
+}
