@@ -1,4 +1,6 @@
-//! Scratch: verdicts of `analyze_series` on reference series (not a figure example).
+//! Verdicts of `analyze_series` on reference series (Rössler x, Lorenz x with 5 % and 10 % noise, a
+//! noisy sine, white and AR(1) noise): `cargo run --release --example regime_check`
+//! (`DEBUG_SCAN=1` also prints every Kantz curve of the ε scan).
 use pdamp::analysis::analyze::{analyze_series, AnalyzeOptions};
 use pdamp::systems::lorenz::lorenz_x;
 use pdamp::systems::roessler::roessler_x;

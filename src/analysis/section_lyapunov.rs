@@ -6,7 +6,9 @@
 //! With u_k the section points divided by the extents of their coordinates,
 //! U_k(ε) = { j : |j − k| > w, ‖u_j − u_k‖ ≤ ε } and
 //!
-//!     S(ε, Δ) = mean over k with U_k ≠ ∅ of ln( mean over j ∈ U_k of ‖u_{k+Δ} − u_{j+Δ}‖ )   (4.1.7)
+//! ```text
+//! S(ε, Δ) = mean over k with U_k ≠ ∅ of ln( mean over j ∈ U_k of ‖u_{k+Δ} − u_{j+Δ}‖ )   (4.1.7)
+//! ```
 //!
 //! for Δ = 0, 1, …, `steps` forcing periods. The radii are log-spaced from the noise floor (the
 //! median nearest-neighbour distance, where the section stops being resolved) upward by a
