@@ -8,6 +8,7 @@ pub mod common;
 pub mod effective;
 pub mod energy;
 pub mod frf;
+pub mod kantz;
 pub mod lines;
 pub mod pareto;
 pub mod poincare;

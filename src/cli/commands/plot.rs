@@ -3,13 +3,17 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{bail, Context};
+use anyhow::{anyhow, bail, Context};
+
+use crate::analysis::kantz::{estimate_from_curves, kantz, KantzOptions, ScalingOptions};
+use crate::io::{read_series as read_series_file, Column, SeriesReadOptions};
 
 use crate::plot::bed_motion::BedMotionFigure;
 use crate::plot::bifurcation::BifurcationFigure;
 use crate::plot::effective::EffectiveFigure;
 use crate::plot::energy::{energy_figure, energy_label};
 use crate::plot::frf::{FrfFigure, FrfReference};
+use crate::plot::kantz::KantzFigure;
 use crate::plot::poincare::PoincareFigure;
 use crate::plot::reconstruction::ReconstructionFigure;
 use crate::plot::regime_frf::RegimeFrfFigure;
@@ -53,6 +57,10 @@ pub enum Kind {
     /// sweep.csv with two varied keys --x and --y: cells coloured by `regime`, annotated with
     /// `mle_per_s`.
     RegimeMap,
+    /// Kantz S(Δn) of a series (plain text or CSV, --column), one curve per m and ε, the fitted
+    /// scaling region of each marked and the median slope (`pdamp lyap-k`'s exponent) in the
+    /// caption; -m -M -d -r -R -# -s -n -t --tisean --r2-min as lyap-k, --dt for seconds.
+    Kantz,
 }
 
 /// Arguments of `pdamp plot`.
@@ -93,15 +101,88 @@ pub struct PlotOptions {
     /// y column (regime-map, poincare).
     #[arg(long)]
     pub y: Option<String>,
-    /// Series column for reconstruction: a header name, or a 1-based index for plain files.
-    #[arg(long)]
+    /// Series column for reconstruction, kantz, mutual, fnn: a header name, or a 1-based index
+    /// (default 1 for plain files).
+    #[arg(short = 'c', long)]
     pub column: Option<String>,
-    /// Delay τ in samples for reconstruction (default: first zero of the autocorrelation).
-    #[arg(long)]
+    /// Delay τ in samples: reconstruction (default: first zero of the autocorrelation), kantz
+    /// and fnn (default 1, TISEAN -d).
+    #[arg(short = 'd', long, visible_alias = "delay")]
     pub lag: Option<usize>,
-    /// Sampling interval (s) of a plain series, to label τ in seconds.
+    /// Sampling interval (s) of a plain series: τ in seconds (reconstruction, mutual), the
+    /// Δn axis in seconds and the exponent per second (kantz).
     #[arg(long)]
     pub dt: Option<f64>,
+    /// Use at most this many samples of the series (kantz, mutual, fnn; TISEAN -l).
+    #[arg(short = 'l', long, help_heading = "Estimators (kantz, mutual, fnn)")]
+    pub length: Option<usize>,
+    /// Smallest embedding dimension (kantz: default 2, fnn: default 1; TISEAN -m).
+    #[arg(
+        short = 'm',
+        long = "min-dim",
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub m_min: Option<usize>,
+    /// Largest embedding dimension, `M` or `min,max` (kantz: default 2, fnn: default 6;
+    /// TISEAN's `1,M` of false_nearest reads the same).
+    #[arg(
+        short = 'M',
+        long = "max-dim",
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub m_max: Option<String>,
+    /// Smallest radius ε in data units for kantz (TISEAN -r). Default: (max − min)/1000.
+    #[arg(
+        short = 'r',
+        long = "eps-min",
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub eps_min: Option<f64>,
+    /// Largest radius ε in data units for kantz (TISEAN -R). Default: (max − min)/100.
+    #[arg(
+        short = 'R',
+        long = "eps-max",
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub eps_max: Option<f64>,
+    /// Number of radii for kantz, log-spaced (TISEAN -#). Default 5.
+    #[arg(
+        short = '#',
+        long = "eps-count",
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub eps_count: Option<usize>,
+    /// Largest Δn in samples for kantz (TISEAN -s). Default 50.
+    #[arg(
+        short = 's',
+        long = "steps",
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub steps: Option<usize>,
+    /// Number of reference points for kantz (TISEAN -n). Default: all.
+    #[arg(
+        short = 'n',
+        long = "references",
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub references: Option<usize>,
+    /// Theiler window in samples for kantz and fnn (TISEAN -t). Default: τ (TISEAN: 0).
+    #[arg(
+        short = 't',
+        long = "theiler",
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub theiler: Option<usize>,
+    /// TISEAN's definitions and defaults for kantz (RMS, Theiler 0) and fnn (-M 1,5 -f 2 -t 0).
+    #[arg(long, help_heading = "Estimators (kantz, mutual, fnn)")]
+    pub tisean: bool,
+    /// Minimum R² of a linear scaling region for kantz (as lyap-k).
+    #[arg(
+        long,
+        default_value_t = 0.99,
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub r2_min: f64,
     /// Forcing frequency f (Hz) marked on spectra.
     #[arg(long)]
     pub forcing_hz: Option<f64>,
@@ -139,6 +220,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         height: o.height,
         title: o.title.clone(),
     };
+    if matches!(args.kind, Kind::Kantz) {
+        return estimator(&args, &opts);
+    }
     let tables = args
         .inputs
         .iter()
@@ -375,6 +459,109 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             };
             draw(&fig, out, &opts)
         }
+        Kind::Kantz => estimator(&args, &opts),
+    }
+}
+
+/// The estimator figures (kantz, mutual, fnn): read one series as the analysis verbs do,
+/// run the estimator with the verb's defaults, report its result on stderr, draw.
+fn estimator(args: &Args, opts: &FigureOptions) -> anyhow::Result<()> {
+    let o: &PlotOptions = &args.opts;
+    if args.inputs.len() != 1 {
+        bail!(
+            "{:?} takes one series file, got {}",
+            args.kind,
+            args.inputs.len()
+        );
+    }
+    let file = args.inputs[0].to_string_lossy().into_owned();
+    let column: Column = o
+        .column
+        .as_deref()
+        .unwrap_or("1")
+        .parse()
+        .map_err(|e: String| anyhow!("--column: {e}"))?;
+    let read = SeriesReadOptions {
+        columns: vec![column],
+        skip_lines: 0,
+        max_rows: o.length,
+    };
+    let x = read_series_file(&file, &read)?;
+    let out = &args.output;
+    match args.kind {
+        Kind::Kantz => {
+            let base = if o.tisean {
+                KantzOptions::tisean()
+            } else {
+                KantzOptions::default()
+            };
+            let (m_min, m_max) = dimensions(o, base.m_min, base.m_max)?;
+            let ko = KantzOptions {
+                m_min,
+                m_max,
+                tau: o.lag.unwrap_or(base.tau),
+                eps_min: o.eps_min,
+                eps_max: o.eps_max,
+                eps_count: o.eps_count.unwrap_or(base.eps_count),
+                references: o.references,
+                steps: o.steps.unwrap_or(base.steps),
+                theiler: o.theiler.or(base.theiler),
+                definition: base.definition,
+            };
+            let result = kantz(&x, &ko).with_context(|| format!("Kantz on {file}"))?;
+            let scaling = ScalingOptions {
+                r2_min: o.r2_min,
+                ..ScalingOptions::default()
+            };
+            let est = estimate_from_curves(&result, &scaling)
+                .with_context(|| format!("Kantz on {file}"))?;
+            let per_s = o.dt.map_or(String::new(), |dt| {
+                format!(" = {:.6} per second", est.per_sample / dt)
+            });
+            eprintln!(
+                "maximal Lyapunov exponent (median of {} curves): {:.6} per sample{per_s}{}",
+                est.curves_used,
+                est.per_sample,
+                if est.fit.linear {
+                    ""
+                } else {
+                    " (no linear region: unreliable)"
+                }
+            );
+            let fig = KantzFigure {
+                result: &result,
+                scaling,
+                dt_s: o.dt,
+            };
+            draw(&fig, out, opts)
+        }
+        other => bail!("{other:?} is not an estimator figure"),
+    }
+}
+
+/// Dimension range from -m and -M (`M` or `min,max`), with the estimator's defaults; a lone
+/// -m above the default maximum raises the maximum to it.
+fn dimensions(o: &PlotOptions, min0: usize, max0: usize) -> anyhow::Result<(usize, usize)> {
+    let num = |v: &str| -> anyhow::Result<usize> {
+        v.trim()
+            .parse()
+            .with_context(|| format!("-M {}: `{v}` is not a dimension", o.m_max.as_deref().unwrap_or("")))
+    };
+    match o.m_max.as_deref() {
+        None => {
+            let lo = o.m_min.unwrap_or(min0);
+            Ok((lo, max0.max(lo)))
+        }
+        Some(s) => match s.split_once(',') {
+            Some((a, b)) => {
+                let (a, b) = (num(a)?, num(b)?);
+                if let Some(m) = o.m_min.filter(|&m| m != a) {
+                    bail!("-m {m} and -M {s} disagree: give the smallest dimension once");
+                }
+                Ok((a, b))
+            }
+            None => Ok((o.m_min.unwrap_or(min0), num(s)?)),
+        },
     }
 }
 
