@@ -5,6 +5,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, bail, Context};
 
+use crate::analysis::false_nearest_neighbors::{false_nearest_neighbors, FnnOptions};
+use crate::analysis::mutual_information::{mutual_information, MutualInformationOptions};
 use crate::analysis::kantz::{estimate_from_curves, kantz, KantzOptions, ScalingOptions};
 use crate::io::{read_series as read_series_file, Column, SeriesReadOptions};
 
@@ -12,7 +14,9 @@ use crate::plot::bed_motion::BedMotionFigure;
 use crate::plot::bifurcation::BifurcationFigure;
 use crate::plot::effective::EffectiveFigure;
 use crate::plot::energy::{energy_figure, energy_label};
+use crate::plot::fnn::FnnFigure;
 use crate::plot::frf::{FrfFigure, FrfReference};
+use crate::plot::mutual::MutualFigure;
 use crate::plot::kantz::KantzFigure;
 use crate::plot::poincare::PoincareFigure;
 use crate::plot::reconstruction::ReconstructionFigure;
@@ -61,6 +65,12 @@ pub enum Kind {
     /// scaling region of each marked and the median slope (`pdamp lyap-k`'s exponent) in the
     /// caption; -m -M -d -r -R -# -s -n -t --tisean --r2-min as lyap-k, --dt for seconds.
     Kantz,
+    /// Mutual information I(τ) of a series with its first minimum marked; -D largest lag
+    /// (default 20), -b bins (default 16) as `pdamp mutual`, --dt for τ in seconds.
+    Mutual,
+    /// False nearest neighbours (%) versus m with the suggested dimension (≤ 1 %) marked;
+    /// -M min,max (default 1,6), -d, -f ratio (default 10), -t, --tisean as `pdamp fnn`.
+    Fnn,
 }
 
 /// Arguments of `pdamp plot`.
@@ -176,6 +186,27 @@ pub struct PlotOptions {
     /// TISEAN's definitions and defaults for kantz (RMS, Theiler 0) and fnn (-M 1,5 -f 2 -t 0).
     #[arg(long, help_heading = "Estimators (kantz, mutual, fnn)")]
     pub tisean: bool,
+    /// Largest lag D in samples for mutual (TISEAN -D). Default 20.
+    #[arg(
+        short = 'D',
+        long = "max-lag",
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub max_lag: Option<usize>,
+    /// Histogram bins per axis for mutual (TISEAN -b). Default 16.
+    #[arg(
+        short = 'b',
+        long = "bins",
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub bins: Option<usize>,
+    /// Escape ratio f for fnn (TISEAN -f). Default 10 (TISEAN: 2).
+    #[arg(
+        short = 'f',
+        long = "ratio",
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub ratio: Option<f64>,
     /// Minimum R² of a linear scaling region for kantz (as lyap-k).
     #[arg(
         long,
@@ -220,7 +251,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         height: o.height,
         title: o.title.clone(),
     };
-    if matches!(args.kind, Kind::Kantz) {
+    if matches!(args.kind, Kind::Kantz | Kind::Mutual | Kind::Fnn) {
         return estimator(&args, &opts);
     }
     let tables = args
@@ -459,7 +490,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             };
             draw(&fig, out, &opts)
         }
-        Kind::Kantz => estimator(&args, &opts),
+        Kind::Kantz | Kind::Mutual | Kind::Fnn => estimator(&args, &opts),
     }
 }
 
@@ -533,6 +564,52 @@ fn estimator(args: &Args, opts: &FigureOptions) -> anyhow::Result<()> {
                 scaling,
                 dt_s: o.dt,
             };
+            draw(&fig, out, opts)
+        }
+        Kind::Mutual => {
+            let mo = MutualInformationOptions {
+                bins: o.bins.unwrap_or(16),
+                max_lag: o.max_lag.unwrap_or(20),
+            };
+            let mi = mutual_information(&x, &mo)
+                .with_context(|| format!("mutual information of {file}"))?;
+            match mi.first_minimum {
+                Some(t) => eprintln!("first minimum of I(tau) at tau = {t} samples"),
+                None => eprintln!("no first minimum up to D = {}: raise -D", mi.values.len() - 1),
+            }
+            let fig = MutualFigure {
+                values: &mi.values,
+                first_minimum: mi.first_minimum,
+                bins: mi.bins,
+                dt_s: o.dt,
+            };
+            draw(&fig, out, opts)
+        }
+        Kind::Fnn => {
+            let base = if o.tisean {
+                FnnOptions::tisean()
+            } else {
+                FnnOptions::default()
+            };
+            let (m_min, m_max) = dimensions(o, base.m_min, base.m_max)?;
+            let fo = FnnOptions {
+                m_min,
+                m_max,
+                tau: o.lag.unwrap_or(base.tau),
+                ratio: o.ratio.unwrap_or(base.ratio),
+                theiler: o.theiler.or(base.theiler),
+            };
+            let points = false_nearest_neighbors(&x, &fo)
+                .with_context(|| format!("false nearest neighbours of {file}"))?;
+            let fig = FnnFigure {
+                points: &points,
+                threshold: 0.01,
+                ratio: fo.ratio,
+            };
+            match crate::analysis::false_nearest_neighbors::suggested_dimension(&points, 0.01) {
+                Some(m) => eprintln!("suggested embedding dimension: m = {m} (≤ 1 % false neighbours)"),
+                None => eprintln!("no tested dimension has ≤ 1 % false neighbours (noise, or raise -M)"),
+            }
             draw(&fig, out, opts)
         }
         other => bail!("{other:?} is not an estimator figure"),
