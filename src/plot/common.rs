@@ -544,14 +544,19 @@ pub fn side_legend<DB: DrawingBackend>(
         }
         let (tx, font) = match e.mark {
             LegendMark::Note if c == BLACK => (x0, label_font()),
-            LegendMark::Note => (x0 + 4, TextStyle::from((FONT_FAMILY, 13).into_font()).color(&c)),
+            LegendMark::Note => (
+                x0 + 4,
+                TextStyle::from((FONT_FAMILY, 13).into_font()).color(&c),
+            ),
             _ => (x0 + sample + 6, tick_font()),
         };
         let font = font.pos(plotters::style::text_anchor::Pos::new(
             plotters::style::text_anchor::HPos::Left,
             plotters::style::text_anchor::VPos::Center,
         ));
-        panel.draw_text(&e.label, &font, (tx, y)).map_err(draw_err)?;
+        panel
+            .draw_text(&e.label, &font, (tx, y))
+            .map_err(draw_err)?;
         y += row;
     }
     Ok(())

@@ -45,11 +45,10 @@ impl Figure for FnnFigure<'_> {
         if self.points.is_empty() {
             return Err(PlotError::bad(k, "points", "no dimensions tested"));
         }
-        if let Some(p) = self
-            .points
-            .iter()
-            .find(|p| p.fraction.is_some_and(|f| !(f.is_finite() && (0.0..=1.0).contains(&f))))
-        {
+        if let Some(p) = self.points.iter().find(|p| {
+            p.fraction
+                .is_some_and(|f| !(f.is_finite() && (0.0..=1.0).contains(&f)))
+        }) {
             return Err(PlotError::bad(
                 k,
                 format!("false fraction at m = {}", p.m),
@@ -97,7 +96,9 @@ impl Figure for FnnFigure<'_> {
         let m_hi = self.points.iter().map(|p| p.m).max().unwrap_or(1) as f64;
         let x_range = (m_lo - 0.5)..(m_hi + 0.5);
         let n_m = (m_hi - m_lo) as usize + 1;
-        let floor = p_min_pos / 3.0;
+        // log axis floor: the decade below the smallest non-zero fraction; zeros are drawn as
+        // hollow triangles just above it
+        let floor = 10f64.powf((p_min_pos / 2.0).log10().floor());
         let (plot, panel) = common::with_side_panel(root, title, 0.24, 200)?;
         let (mg, xa, ya) = (
             common::scaled(root, 0.02, 8),
@@ -117,12 +118,23 @@ impl Figure for FnnFigure<'_> {
         let suggested = self.suggested();
         let mut legend = vec![
             LegendEntry::new("false neighbours", blue, LegendMark::Line(2)),
-            LegendEntry::new(format!("threshold {} %", common::fmt_tick(thr)), grey, LegendMark::Dashed(2)),
+            LegendEntry::new(
+                format!("threshold {} %", common::fmt_tick(thr)),
+                grey,
+                LegendMark::Dashed(2),
+            ),
         ];
         if let Some(m) = suggested {
-            legend.push(LegendEntry::new(format!("suggested m = {m}"), red, LegendMark::Dot(6)));
+            legend.push(LegendEntry::new(
+                format!("suggested m = {m}"),
+                red,
+                LegendMark::Dot(6),
+            ));
         }
-        legend.push(LegendEntry::note(format!("ratio f = {}", common::fmt_tick(self.ratio))));
+        legend.push(LegendEntry::note(format!(
+            "ratio f = {}",
+            common::fmt_tick(self.ratio)
+        )));
         let missing: Vec<String> = self
             .points
             .iter()
@@ -130,10 +142,13 @@ impl Figure for FnnFigure<'_> {
             .map(|p| p.m.to_string())
             .collect();
         if !missing.is_empty() {
-            legend.push(LegendEntry::note(format!("no accepted neighbour: m = {}", missing.join(", "))));
+            legend.push(LegendEntry::note(format!(
+                "no accepted neighbour: m = {}",
+                missing.join(", ")
+            )));
         }
         macro_rules! body {
-            ($chart:expr, $ymap:expr, $y_lo:expr, $y_hi:expr, $y_fmt:expr) => {{
+            ($chart:expr, $ymap:expr, $y_lo:expr, $y_hi:expr, $y_fmt:expr, $zeros_apart:expr) => {{
                 let chart = &mut $chart;
                 chart
                     .configure_mesh()
@@ -148,7 +163,18 @@ impl Figure for FnnFigure<'_> {
                     .y_label_formatter(&$y_fmt)
                     .draw()
                     .map_err(draw_err)?;
-                let xy: Vec<(f64, f64)> = pts.iter().map(|&(m, v)| (m, $ymap(v))).collect();
+                let xy: Vec<(f64, f64)> = pts
+                    .iter()
+                    .filter(|p| !$zeros_apart || p.1 > 0.0)
+                    .map(|&(m, v)| (m, $ymap(v)))
+                    .collect();
+                if $zeros_apart {
+                    chart
+                        .draw_series(pts.iter().filter(|p| p.1 == 0.0).map(|&(m, _)| {
+                            TriangleMarker::new((m, floor * 1.25), 7, blue.stroke_width(2))
+                        }))
+                        .map_err(draw_err)?;
+                }
                 chart
                     .draw_series(DashedLineSeries::new(
                         [(x_range.start, thr), (x_range.end, thr)],
@@ -164,7 +190,13 @@ impl Figure for FnnFigure<'_> {
                     .draw_series(xy.iter().map(|&p| Circle::new(p, 5, blue.filled())))
                     .map_err(draw_err)?;
                 if let Some(m) = suggested {
-                    let v = pts.iter().find(|p| p.0 == m as f64).map_or(thr, |p| $ymap(p.1));
+                    let v = pts.iter().find(|p| p.0 == m as f64).map_or(thr, |p| {
+                        if $zeros_apart && p.1 == 0.0 {
+                            floor * 1.25
+                        } else {
+                            $ymap(p.1)
+                        }
+                    });
                     chart
                         .draw_series(DashedLineSeries::new(
                             [(m as f64, $y_lo), (m as f64, $y_hi)],
@@ -180,18 +212,31 @@ impl Figure for FnnFigure<'_> {
             }};
         }
         if log {
-            let (y_lo, y_hi) = (floor / 1.5, p_max * 1.6);
+            let (y_lo, y_hi) = (floor, p_max * 1.6);
             let mut chart = ChartBuilder::on(&plot)
                 .margin(mg)
                 .x_label_area_size(xa)
                 .y_label_area_size(ya)
                 .build_cartesian_2d(x_range.clone(), (y_lo..y_hi).log_scale())
                 .map_err(draw_err)?;
-            body!(chart, |v: f64| v.max(floor), y_lo, y_hi, |v: &f64| common::fmt_tick(*v));
-            if pts.iter().any(|p| p.1 == 0.0) {
+            body!(
+                chart,
+                |v: f64| v,
+                y_lo,
+                y_hi,
+                |v: &f64| common::fmt_tick(*v),
+                true
+            );
+            let zeros: Vec<String> = pts
+                .iter()
+                .filter(|p| p.1 == 0.0)
+                .map(|p| format!("{}", p.0))
+                .collect();
+            if !zeros.is_empty() {
+                legend.push(LegendEntry::note("▽ = 0 % (not on a log axis)"));
                 legend.push(LegendEntry::note(format!(
-                    "0 % drawn at {} % (log axis)",
-                    common::fmt_tick(floor)
+                    "    at m = {}",
+                    zeros.join(", ")
                 )));
             }
         } else {
@@ -202,7 +247,14 @@ impl Figure for FnnFigure<'_> {
                 .y_label_area_size(ya)
                 .build_cartesian_2d(x_range.clone(), y_lo..y_hi)
                 .map_err(draw_err)?;
-            body!(chart, |v: f64| v, y_lo, y_hi, |v: &f64| common::fmt_tick(*v));
+            body!(
+                chart,
+                |v: f64| v,
+                y_lo,
+                y_hi,
+                |v: &f64| common::fmt_tick(*v),
+                false
+            );
         }
         common::side_legend(&panel, &legend)
     }

@@ -143,8 +143,17 @@ impl Figure for KantzFigure<'_> {
                 .filter_map(|(t, v)| v.map(|v| (t as f64 * dt, v)))
                 .collect()
         };
-        let all_y: Vec<f64> = curves.iter().flat_map(|c| c.s.iter().flatten()).copied().collect();
-        let steps = curves.iter().map(|c| c.s.len()).max().unwrap_or(1).saturating_sub(1);
+        let all_y: Vec<f64> = curves
+            .iter()
+            .flat_map(|c| c.s.iter().flatten())
+            .copied()
+            .collect();
+        let steps = curves
+            .iter()
+            .map(|c| c.s.len())
+            .max()
+            .unwrap_or(1)
+            .saturating_sub(1);
         let (y_lo, y_hi) = padded_range([all_y.as_slice()], 0.04);
         let x_hi = (steps.max(1) as f64) * dt;
 
@@ -161,13 +170,18 @@ impl Figure for KantzFigure<'_> {
             "Δn (samples)"
         };
         let y_desc = match self.result.definition {
-            KantzDefinition::MeanDistance => "S(Δn): ln of mean distance (series rescaled to [0, 1])",
+            KantzDefinition::MeanDistance => {
+                "S(Δn): ln of mean distance (series rescaled to [0, 1])"
+            }
             KantzDefinition::TiseanRms => "S(Δn): ln of RMS distance (series rescaled to [0, 1])",
         };
         common::mesh(&mut chart, x_desc, y_desc)?;
         for i in 0..curves.len() {
             chart
-                .draw_series(LineSeries::new(pts(i, 0, usize::MAX), style(i).stroke_width(1)))
+                .draw_series(LineSeries::new(
+                    pts(i, 0, usize::MAX),
+                    style(i).stroke_width(1),
+                ))
                 .map_err(draw_err)?;
         }
         let mut linear = 0;
@@ -175,7 +189,10 @@ impl Figure for KantzFigure<'_> {
             if let Some(f) = f.filter(|f| f.linear) {
                 linear += 1;
                 chart
-                    .draw_series(LineSeries::new(pts(i, f.start, f.end), style(i).stroke_width(5)))
+                    .draw_series(LineSeries::new(
+                        pts(i, f.start, f.end),
+                        style(i).stroke_width(5),
+                    ))
                     .map_err(draw_err)?;
             }
         }
@@ -192,7 +209,11 @@ impl Figure for KantzFigure<'_> {
 
         let mut legend = vec![LegendEntry::heading("dimension")];
         for (mi, m) in ms.iter().enumerate() {
-            legend.push(LegendEntry::new(format!("m = {m}"), series_color(mi), Line(3)));
+            legend.push(LegendEntry::new(
+                format!("m = {m}"),
+                series_color(mi),
+                Line(3),
+            ));
         }
         legend.push(LegendEntry::heading("radius ε"));
         for (l, e) in epss.iter().enumerate() {

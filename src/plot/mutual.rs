@@ -4,8 +4,8 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::common::{self, check_finite, draw_err, padded_range, Figure, LegendEntry};
 use super::common::LegendMark;
+use super::common::{self, check_finite, draw_err, padded_range, Figure, LegendEntry};
 use crate::error::PlotError;
 
 /// Mutual-information figure: I(τ) for τ = 0, 1, … samples.
@@ -53,7 +53,10 @@ impl Figure for MutualFigure<'_> {
                 return Err(PlotError::bad(
                     k,
                     "first minimum",
-                    format!("τ = {t} is beyond the largest lag {}", self.values.len() - 1),
+                    format!(
+                        "τ = {t} is beyond the largest lag {}",
+                        self.values.len() - 1
+                    ),
                 ));
             }
         }
@@ -67,7 +70,10 @@ impl Figure for MutualFigure<'_> {
 
     fn default_title(&self) -> String {
         match self.first_minimum {
-            Some(t) => format!("Mutual information I(τ): first minimum at {}", self.tau_text(t)),
+            Some(t) => format!(
+                "Mutual information I(τ): first minimum at {}",
+                self.tau_text(t)
+            ),
             None => format!(
                 "Mutual information I(τ): no minimum up to τ = {} (raise -D)",
                 self.values.len() - 1
@@ -109,7 +115,10 @@ impl Figure for MutualFigure<'_> {
         let mut legend = vec![
             LegendEntry::new("I(τ)", blue, LegendMark::Line(2)),
             LegendEntry::note(format!("{} bins per axis", self.bins)),
-            LegendEntry::note(format!("I(0) = entropy {}", common::fmt_tick(self.values[0]))),
+            LegendEntry::note(format!(
+                "I(0) = entropy {}",
+                common::fmt_tick(self.values[0])
+            )),
         ];
         if let Some(t) = self.first_minimum {
             let v = self.values[t];
@@ -124,9 +133,16 @@ impl Figure for MutualFigure<'_> {
             chart
                 .draw_series([Circle::new((t as f64, v), 7, red.stroke_width(3))])
                 .map_err(draw_err)?;
-            legend.push(LegendEntry::new("first minimum", red, LegendMark::Dashed(2)));
+            legend.push(LegendEntry::new(
+                "first minimum",
+                red,
+                LegendMark::Dashed(2),
+            ));
             legend.push(LegendEntry::note(self.tau_text(t)));
-            legend.push(LegendEntry::note(format!("I(τ) = {} nats", common::fmt_tick(v))));
+            legend.push(LegendEntry::note(format!(
+                "I(τ) = {} nats",
+                common::fmt_tick(v)
+            )));
         } else {
             legend.push(LegendEntry::note("no first minimum:"));
             legend.push(LegendEntry::note("raise the largest lag -D"));

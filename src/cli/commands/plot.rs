@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 use anyhow::{anyhow, bail, Context};
 
 use crate::analysis::false_nearest_neighbors::{false_nearest_neighbors, FnnOptions};
-use crate::analysis::mutual_information::{mutual_information, MutualInformationOptions};
 use crate::analysis::kantz::{estimate_from_curves, kantz, KantzOptions, ScalingOptions};
+use crate::analysis::mutual_information::{mutual_information, MutualInformationOptions};
 use crate::io::{read_series as read_series_file, Column, SeriesReadOptions};
 
 use crate::plot::bed_motion::BedMotionFigure;
@@ -16,8 +16,8 @@ use crate::plot::effective::EffectiveFigure;
 use crate::plot::energy::{energy_figure, energy_label};
 use crate::plot::fnn::FnnFigure;
 use crate::plot::frf::{FrfFigure, FrfReference};
-use crate::plot::mutual::MutualFigure;
 use crate::plot::kantz::KantzFigure;
+use crate::plot::mutual::MutualFigure;
 use crate::plot::poincare::PoincareFigure;
 use crate::plot::reconstruction::ReconstructionFigure;
 use crate::plot::regime_frf::RegimeFrfFigure;
@@ -575,7 +575,10 @@ fn estimator(args: &Args, opts: &FigureOptions) -> anyhow::Result<()> {
                 .with_context(|| format!("mutual information of {file}"))?;
             match mi.first_minimum {
                 Some(t) => eprintln!("first minimum of I(tau) at tau = {t} samples"),
-                None => eprintln!("no first minimum up to D = {}: raise -D", mi.values.len() - 1),
+                None => eprintln!(
+                    "no first minimum up to D = {}: raise -D",
+                    mi.values.len() - 1
+                ),
             }
             let fig = MutualFigure {
                 values: &mi.values,
@@ -607,8 +610,12 @@ fn estimator(args: &Args, opts: &FigureOptions) -> anyhow::Result<()> {
                 ratio: fo.ratio,
             };
             match crate::analysis::false_nearest_neighbors::suggested_dimension(&points, 0.01) {
-                Some(m) => eprintln!("suggested embedding dimension: m = {m} (≤ 1 % false neighbours)"),
-                None => eprintln!("no tested dimension has ≤ 1 % false neighbours (noise, or raise -M)"),
+                Some(m) => {
+                    eprintln!("suggested embedding dimension: m = {m} (≤ 1 % false neighbours)")
+                }
+                None => {
+                    eprintln!("no tested dimension has ≤ 1 % false neighbours (noise, or raise -M)")
+                }
             }
             draw(&fig, out, opts)
         }
@@ -620,9 +627,12 @@ fn estimator(args: &Args, opts: &FigureOptions) -> anyhow::Result<()> {
 /// -m above the default maximum raises the maximum to it.
 fn dimensions(o: &PlotOptions, min0: usize, max0: usize) -> anyhow::Result<(usize, usize)> {
     let num = |v: &str| -> anyhow::Result<usize> {
-        v.trim()
-            .parse()
-            .with_context(|| format!("-M {}: `{v}` is not a dimension", o.m_max.as_deref().unwrap_or("")))
+        v.trim().parse().with_context(|| {
+            format!(
+                "-M {}: `{v}` is not a dimension",
+                o.m_max.as_deref().unwrap_or("")
+            )
+        })
     };
     match o.m_max.as_deref() {
         None => {
