@@ -233,10 +233,15 @@ impl Figure for KantzFigure<'_> {
         if let Some(e) = &est {
             legend.push(LegendEntry::new("median fit", BLACK, LegendMark::Dashed(2)));
             legend.push(LegendEntry::note(format!(
-                "slope {} per sample{}",
-                common::fmt_tick(e.per_sample),
-                self.per_second(e.per_sample)
+                "slope {} per sample",
+                common::fmt_tick(e.per_sample)
             )));
+            if self.dt_s.is_some() {
+                legend.push(LegendEntry::note(format!(
+                    "   {}",
+                    self.per_second(e.per_sample)
+                )));
+            }
             legend.push(LegendEntry::note(format!(
                 "(m = {}, ε = {}, Δn {}..{})",
                 e.m,
