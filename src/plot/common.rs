@@ -475,6 +475,9 @@ impl LegendEntry {
     }
 }
 
+/// A drawing area in pixel coordinates.
+pub type Area<DB> = DrawingArea<DB, Shift>;
+
 /// Splits `root` into a caption strip, a plot area on the left and a legend panel on the
 /// right (`legend_frac` of the width, at least `min_px`), so that a legend never covers data.
 /// Returns (plot area, legend panel).
@@ -483,7 +486,7 @@ pub fn with_side_panel<DB: DrawingBackend>(
     title: &str,
     legend_frac: f64,
     min_px: u32,
-) -> Result<(DrawingArea<DB, Shift>, DrawingArea<DB, Shift>), PlotError> {
+) -> Result<(Area<DB>, Area<DB>), PlotError> {
     let (w, _) = root.dim_in_pixel();
     // shrink the caption font until the title fits the width
     let mut size = 22.0;
