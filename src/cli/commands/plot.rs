@@ -527,18 +527,15 @@ fn estimator(args: &Args, opts: &FigureOptions) -> anyhow::Result<()> {
                 KantzOptions::default()
             };
             let (m_min, m_max) = dimensions(o, base.m_min, base.m_max)?;
-            let ko = KantzOptions {
-                m_min,
-                m_max,
-                tau: o.lag.unwrap_or(base.tau),
-                eps_min: o.eps_min,
-                eps_max: o.eps_max,
-                eps_count: o.eps_count.unwrap_or(base.eps_count),
-                references: o.references,
-                steps: o.steps.unwrap_or(base.steps),
-                theiler: o.theiler.or(base.theiler),
-                definition: base.definition,
-            };
+            // field by field from the defaults, so that options added later keep their defaults
+            let mut ko = base;
+            (ko.m_min, ko.m_max) = (m_min, m_max);
+            ko.tau = o.lag.unwrap_or(base.tau);
+            (ko.eps_min, ko.eps_max) = (o.eps_min, o.eps_max);
+            ko.eps_count = o.eps_count.unwrap_or(base.eps_count);
+            ko.references = o.references;
+            ko.steps = o.steps.unwrap_or(base.steps);
+            ko.theiler = o.theiler.or(base.theiler);
             let result = kantz(&x, &ko).with_context(|| format!("Kantz on {file}"))?;
             let scaling = ScalingOptions {
                 r2_min: o.r2_min,
@@ -595,13 +592,11 @@ fn estimator(args: &Args, opts: &FigureOptions) -> anyhow::Result<()> {
                 FnnOptions::default()
             };
             let (m_min, m_max) = dimensions(o, base.m_min, base.m_max)?;
-            let fo = FnnOptions {
-                m_min,
-                m_max,
-                tau: o.lag.unwrap_or(base.tau),
-                ratio: o.ratio.unwrap_or(base.ratio),
-                theiler: o.theiler.or(base.theiler),
-            };
+            let mut fo = base;
+            (fo.m_min, fo.m_max) = (m_min, m_max);
+            fo.tau = o.lag.unwrap_or(base.tau);
+            fo.ratio = o.ratio.unwrap_or(base.ratio);
+            fo.theiler = o.theiler.or(base.theiler);
             let points = false_nearest_neighbors(&x, &fo)
                 .with_context(|| format!("false nearest neighbours of {file}"))?;
             let fig = FnnFigure {
