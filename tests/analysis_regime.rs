@@ -141,7 +141,11 @@ fn sine_with_irrational_period_is_periodic_and_not_chaotic() {
     // at all (they are flat from Δn = 0: the scan refuses to fit saturated curves) or the slope
     // is below 1e-3 per sample, an order of magnitude below Lorenz's 0.009 per sample at
     // dt = 0.01 (0.906 × 0.01), the slowest chaos tested here.
-    assert!(rep.mle_per_sample.is_none_or(|mle| mle < 1e-3), "{:?}", rep.mle_per_sample);
+    assert!(
+        rep.mle_per_sample.is_none_or(|mle| mle < 1e-3),
+        "{:?}",
+        rep.mle_per_sample
+    );
     assert!(rep.zero_one_k.unwrap() < 0.1);
 }
 

@@ -47,14 +47,14 @@ pub use noise_reduction::{
     nonlinear_noise_reduction, Correction, NoiseReduction, NoiseReductionOptions,
 };
 pub use prediction_error::{prediction_error, PredictionErrorOptions};
+pub use recurrence::{rqa, RecurrenceOptions, RecurrenceThreshold, RqaMeasures};
+pub use rosenstein::{rosenstein, RosensteinOptions, RosensteinResult};
 pub use surrogate_test::{surrogate_test, SurrogateTestOptions, SurrogateTestResult, Tail};
 pub use surrogates::{
     end_to_end_segment, surrogate, surrogates, EndToEnd, Surrogate, SurrogateMethod,
     SurrogateOptions,
 };
 pub use time_reversal::time_reversal_asymmetry;
-pub use recurrence::{rqa, RecurrenceOptions, RecurrenceThreshold, RqaMeasures};
-pub use rosenstein::{rosenstein, RosensteinOptions, RosensteinResult};
 
 use crate::error::AnalysisError;
 

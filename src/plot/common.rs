@@ -429,3 +429,145 @@ pub fn decimate_minmax(x: &[f64], y: &[f64], max_points: usize) -> Vec<(f64, f64
     }
     out
 }
+
+/// How a [`LegendEntry`] is drawn in a [`side_legend`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LegendMark {
+    /// A line sample of the given width (px).
+    Line(u32),
+    /// A dashed line sample of the given width (px).
+    Dashed(u32),
+    /// A filled circle of the given radius (px).
+    Dot(u32),
+    /// No sample: the text is a note (indented like the other entries, drawn grey).
+    Note,
+}
+
+/// One row of a [`side_legend`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct LegendEntry {
+    /// Text of the row.
+    pub label: String,
+    /// Colour of the sample.
+    pub color: RGBColor,
+    /// Kind of sample.
+    pub mark: LegendMark,
+}
+
+impl LegendEntry {
+    /// A row with a sample.
+    pub fn new(label: impl Into<String>, color: RGBColor, mark: LegendMark) -> Self {
+        Self {
+            label: label.into(),
+            color,
+            mark,
+        }
+    }
+
+    /// A note row (no sample).
+    pub fn note(label: impl Into<String>) -> Self {
+        Self::new(label, RGBColor(90, 90, 90), LegendMark::Note)
+    }
+
+    /// A bold heading row (no sample).
+    pub fn heading(label: impl Into<String>) -> Self {
+        Self::new(label, BLACK, LegendMark::Note)
+    }
+}
+
+/// A drawing area in pixel coordinates.
+pub type Area<DB> = DrawingArea<DB, Shift>;
+
+/// Splits `root` into a caption strip, a plot area on the left and a legend panel on the
+/// right (`legend_frac` of the width, at least `min_px`), so that a legend never covers data.
+/// Returns (plot area, legend panel).
+pub fn with_side_panel<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    title: &str,
+    legend_frac: f64,
+    min_px: u32,
+) -> Result<(Area<DB>, Area<DB>), PlotError> {
+    let (w, _) = root.dim_in_pixel();
+    // shrink the caption font until the title fits the width
+    let mut size = 22.0;
+    let area = loop {
+        let font: TextStyle = (FONT_FAMILY, size).into_font().into();
+        let fits = root
+            .estimate_text_size(title, &font)
+            .map(|(tw, _)| tw + 20 <= w)
+            .unwrap_or(true);
+        if fits || size <= 12.0 {
+            break root.titled(title, font).map_err(draw_err)?;
+        }
+        size -= 1.0;
+    };
+    let (aw, _) = area.dim_in_pixel();
+    let panel = ((aw as f64 * legend_frac) as u32).max(min_px).min(aw / 2);
+    let (plot, legend) = area.split_horizontally(aw - panel);
+    Ok((plot, legend))
+}
+
+/// Draws `entries` top-down in `panel` (from [`with_side_panel`]), one row each, with a line,
+/// dash or dot sample left of the text; rows that do not fit are dropped.
+pub fn side_legend<DB: DrawingBackend>(
+    panel: &DrawingArea<DB, Shift>,
+    entries: &[LegendEntry],
+) -> Result<(), PlotError> {
+    let (_, ph) = panel.dim_in_pixel();
+    let row = 21i32;
+    let (x0, sample) = (6i32, 26i32);
+    let mut y = 14i32;
+    for e in entries {
+        if y + row / 2 > ph as i32 {
+            break;
+        }
+        let c = e.color;
+        match e.mark {
+            LegendMark::Line(wd) => panel
+                .draw(&PathElement::new(
+                    vec![(x0, y), (x0 + sample, y)],
+                    c.stroke_width(wd),
+                ))
+                .map_err(draw_err)?,
+            LegendMark::Dashed(wd) => {
+                for k in 0..3 {
+                    let a = x0 + k * 10;
+                    panel
+                        .draw(&PathElement::new(
+                            vec![(a, y), ((a + 6).min(x0 + sample), y)],
+                            c.stroke_width(wd),
+                        ))
+                        .map_err(draw_err)?;
+                }
+            }
+            LegendMark::Dot(r) => panel
+                .draw(&Circle::new((x0 + sample / 2, y), r as i32, c.filled()))
+                .map_err(draw_err)?,
+            LegendMark::Note => {}
+        }
+        let (tx, font) = match e.mark {
+            LegendMark::Note if c == BLACK => (x0, label_font()),
+            LegendMark::Note => (
+                x0 + 4,
+                TextStyle::from((FONT_FAMILY, 13).into_font()).color(&c),
+            ),
+            _ => (x0 + sample + 6, tick_font()),
+        };
+        let font = font.pos(plotters::style::text_anchor::Pos::new(
+            plotters::style::text_anchor::HPos::Left,
+            plotters::style::text_anchor::VPos::Center,
+        ));
+        panel
+            .draw_text(&e.label, &font, (tx, y))
+            .map_err(draw_err)?;
+        y += row;
+    }
+    Ok(())
+}
+
+/// `c` blended towards white: `t = 1` keeps `c`, `t = 0` gives white.
+pub fn shade(c: RGBColor, t: f64) -> RGBColor {
+    let t = t.clamp(0.0, 1.0);
+    let mix = |v: u8| (255.0 - (255.0 - f64::from(v)) * t).round() as u8;
+    RGBColor(mix(c.0), mix(c.1), mix(c.2))
+}

@@ -3,7 +3,12 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{bail, Context};
+use anyhow::{anyhow, bail, Context};
+
+use crate::analysis::false_nearest_neighbors::{false_nearest_neighbors, FnnOptions};
+use crate::analysis::kantz::{estimate_from_curves, kantz, KantzOptions, ScalingOptions};
+use crate::analysis::mutual_information::{mutual_information, MutualInformationOptions};
+use crate::io::{read_series as read_series_file, Column, SeriesReadOptions};
 
 use crate::analysis::correlation_dimension::{
     estimate_d2, local_slopes, CorrelationCurve, CorrelationSums, PlateauOptions,
@@ -14,7 +19,10 @@ use crate::plot::bifurcation::BifurcationFigure;
 use crate::plot::correlation_dimension::D2Figure;
 use crate::plot::effective::EffectiveFigure;
 use crate::plot::energy::{energy_figure, energy_label};
+use crate::plot::fnn::FnnFigure;
 use crate::plot::frf::{FrfFigure, FrfReference};
+use crate::plot::kantz::KantzFigure;
+use crate::plot::mutual::MutualFigure;
 use crate::plot::poincare::PoincareFigure;
 use crate::plot::reconstruction::ReconstructionFigure;
 use crate::plot::recurrence::RecurrenceFigure;
@@ -67,6 +75,16 @@ pub enum Kind {
     /// Output of `pdamp d2` (columns m, eps, c, pairs, slope): local slopes versus ε (log
     /// axis) per m, with the automatic plateaus and D2 marked.
     D2,
+    /// Kantz S(Δn) of a series (plain text or CSV, --column), one curve per m and ε, the fitted
+    /// scaling region of each marked and the median slope (`pdamp lyap-k`'s exponent) in the
+    /// caption; -m -M -d -r -R -# -s -n -t --tisean --r2-min as lyap-k, --dt for seconds.
+    Kantz,
+    /// Mutual information I(τ) of a series with its first minimum marked; -D largest lag
+    /// (default 20), -b bins (default 16) as `pdamp mutual`, --dt for τ in seconds.
+    Mutual,
+    /// False nearest neighbours (%) versus m with the suggested dimension (≤ 1 %) marked;
+    /// -M min,max (default 1,6), -d, -f ratio (default 10), -t, --tisean as `pdamp fnn`.
+    Fnn,
 }
 
 /// Arguments of `pdamp plot`.
@@ -107,15 +125,110 @@ pub struct PlotOptions {
     /// y column (regime-map, poincare).
     #[arg(long)]
     pub y: Option<String>,
-    /// Series column for reconstruction: a header name, or a 1-based index for plain files.
-    #[arg(long)]
+    /// Series column for reconstruction, kantz, mutual, fnn: a header name, or a 1-based index
+    /// (default 1 for plain files).
+    #[arg(short = 'c', long)]
     pub column: Option<String>,
-    /// Delay τ in samples for reconstruction (default: first zero of the autocorrelation).
-    #[arg(long)]
+    /// Delay τ in samples: reconstruction (default: first zero of the autocorrelation), kantz
+    /// and fnn (default 1, TISEAN -d).
+    #[arg(short = 'd', long, visible_alias = "delay")]
     pub lag: Option<usize>,
-    /// Sampling interval (s) of a plain series, to label τ in seconds.
+    /// Sampling interval (s) of a plain series: τ in seconds (reconstruction, mutual), the
+    /// Δn axis in seconds and the exponent per second (kantz).
     #[arg(long)]
     pub dt: Option<f64>,
+    /// Use at most this many samples of the series (kantz, mutual, fnn; TISEAN -l).
+    #[arg(short = 'l', long, help_heading = "Estimators (kantz, mutual, fnn)")]
+    pub length: Option<usize>,
+    /// Smallest embedding dimension (kantz: default 2, fnn: default 1; TISEAN -m).
+    #[arg(
+        short = 'm',
+        long = "min-dim",
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub m_min: Option<usize>,
+    /// Largest embedding dimension, `M` or `min,max` (kantz: default 2, fnn: default 6;
+    /// TISEAN's `1,M` of false_nearest reads the same).
+    #[arg(
+        short = 'M',
+        long = "max-dim",
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub m_max: Option<String>,
+    /// Smallest radius ε in data units for kantz (TISEAN -r). Default: (max − min)/1000.
+    #[arg(
+        short = 'r',
+        long = "eps-min",
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub eps_min: Option<f64>,
+    /// Largest radius ε in data units for kantz (TISEAN -R). Default: (max − min)/100.
+    #[arg(
+        short = 'R',
+        long = "eps-max",
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub eps_max: Option<f64>,
+    /// Number of radii for kantz, log-spaced (TISEAN -#). Default 5.
+    #[arg(
+        short = '#',
+        long = "eps-count",
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub eps_count: Option<usize>,
+    /// Largest Δn in samples for kantz (TISEAN -s). Default 50.
+    #[arg(
+        short = 's',
+        long = "steps",
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub steps: Option<usize>,
+    /// Number of reference points for kantz (TISEAN -n). Default: all.
+    #[arg(
+        short = 'n',
+        long = "references",
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub references: Option<usize>,
+    /// Theiler window in samples for kantz and fnn (TISEAN -t; default τ, TISEAN 0) and for
+    /// recurrence (RR excludes |i − j| ≤ w; default 0).
+    #[arg(
+        short = 't',
+        long = "theiler",
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub theiler: Option<usize>,
+    /// TISEAN's definitions and defaults for kantz (RMS, Theiler 0) and fnn (-M 1,5 -f 2 -t 0).
+    #[arg(long, help_heading = "Estimators (kantz, mutual, fnn)")]
+    pub tisean: bool,
+    /// Largest lag D in samples for mutual (TISEAN -D). Default 20.
+    #[arg(
+        short = 'D',
+        long = "max-lag",
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub max_lag: Option<usize>,
+    /// Histogram bins per axis for mutual (TISEAN -b). Default 16.
+    #[arg(
+        short = 'b',
+        long = "bins",
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub bins: Option<usize>,
+    /// Escape ratio f for fnn (TISEAN -f). Default 10 (TISEAN: 2).
+    #[arg(
+        short = 'f',
+        long = "ratio",
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub ratio: Option<f64>,
+    /// Minimum R² of a linear scaling region for kantz (as lyap-k).
+    #[arg(
+        long,
+        default_value_t = 0.99,
+        help_heading = "Estimators (kantz, mutual, fnn)"
+    )]
+    pub r2_min: f64,
     /// Forcing frequency f (Hz) marked on spectra.
     #[arg(long)]
     pub forcing_hz: Option<f64>,
@@ -152,9 +265,6 @@ pub struct PlotOptions {
     /// Recurrence rate in (0, 1) fixing ε (recurrence; default 0.05).
     #[arg(long)]
     pub rate: Option<f64>,
-    /// Theiler window in samples for recurrence (RR excludes |i − j| ≤ w).
-    #[arg(long)]
-    pub theiler: Option<usize>,
     /// Largest number of pixels per side of the recurrence plot (longer series are
     /// downsampled in blocks).
     #[arg(long, default_value_t = 600)]
@@ -169,6 +279,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         height: o.height,
         title: o.title.clone(),
     };
+    if matches!(args.kind, Kind::Kantz | Kind::Mutual | Kind::Fnn) {
+        return estimator(&args, &opts);
+    }
     let tables = args
         .inputs
         .iter()
@@ -433,6 +546,160 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             };
             draw(&fig, out, &opts)
         }
+        Kind::Kantz | Kind::Mutual | Kind::Fnn => estimator(&args, &opts),
+    }
+}
+
+/// The estimator figures (kantz, mutual, fnn): read one series as the analysis verbs do,
+/// run the estimator with the verb's defaults, report its result on stderr, draw.
+fn estimator(args: &Args, opts: &FigureOptions) -> anyhow::Result<()> {
+    let o: &PlotOptions = &args.opts;
+    if args.inputs.len() != 1 {
+        bail!(
+            "{:?} takes one series file, got {}",
+            args.kind,
+            args.inputs.len()
+        );
+    }
+    let file = args.inputs[0].to_string_lossy().into_owned();
+    let column: Column = o
+        .column
+        .as_deref()
+        .unwrap_or("1")
+        .parse()
+        .map_err(|e: String| anyhow!("--column: {e}"))?;
+    let read = SeriesReadOptions {
+        columns: vec![column],
+        skip_lines: 0,
+        max_rows: o.length,
+    };
+    let x = read_series_file(&file, &read)?;
+    let out = &args.output;
+    match args.kind {
+        Kind::Kantz => {
+            let base = if o.tisean {
+                KantzOptions::tisean()
+            } else {
+                KantzOptions::default()
+            };
+            let (m_min, m_max) = dimensions(o, base.m_min, base.m_max)?;
+            // field by field from the defaults, so that options added later keep their defaults
+            let mut ko = base;
+            (ko.m_min, ko.m_max) = (m_min, m_max);
+            ko.tau = o.lag.unwrap_or(base.tau);
+            (ko.eps_min, ko.eps_max) = (o.eps_min, o.eps_max);
+            ko.eps_count = o.eps_count.unwrap_or(base.eps_count);
+            ko.references = o.references;
+            ko.steps = o.steps.unwrap_or(base.steps);
+            ko.theiler = o.theiler.or(base.theiler);
+            let result = kantz(&x, &ko).with_context(|| format!("Kantz on {file}"))?;
+            let scaling = ScalingOptions {
+                r2_min: o.r2_min,
+                ..ScalingOptions::default()
+            };
+            let est = estimate_from_curves(&result, &scaling)
+                .with_context(|| format!("Kantz on {file}"))?;
+            let per_s = o.dt.map_or(String::new(), |dt| {
+                format!(" = {:.6} per second", est.per_sample / dt)
+            });
+            eprintln!(
+                "maximal Lyapunov exponent (median of {} curves): {:.6} per sample{per_s}{}",
+                est.curves_used,
+                est.per_sample,
+                if est.fit.linear {
+                    ""
+                } else {
+                    " (no linear region: unreliable)"
+                }
+            );
+            let fig = KantzFigure {
+                result: &result,
+                scaling,
+                dt_s: o.dt,
+            };
+            draw(&fig, out, opts)
+        }
+        Kind::Mutual => {
+            let mo = MutualInformationOptions {
+                bins: o.bins.unwrap_or(16),
+                max_lag: o.max_lag.unwrap_or(20),
+            };
+            let mi = mutual_information(&x, &mo)
+                .with_context(|| format!("mutual information of {file}"))?;
+            match mi.first_minimum {
+                Some(t) => eprintln!("first minimum of I(tau) at tau = {t} samples"),
+                None => eprintln!(
+                    "no first minimum up to D = {}: raise -D",
+                    mi.values.len() - 1
+                ),
+            }
+            let fig = MutualFigure {
+                values: &mi.values,
+                first_minimum: mi.first_minimum,
+                bins: mi.bins,
+                dt_s: o.dt,
+            };
+            draw(&fig, out, opts)
+        }
+        Kind::Fnn => {
+            let base = if o.tisean {
+                FnnOptions::tisean()
+            } else {
+                FnnOptions::default()
+            };
+            let (m_min, m_max) = dimensions(o, base.m_min, base.m_max)?;
+            let mut fo = base;
+            (fo.m_min, fo.m_max) = (m_min, m_max);
+            fo.tau = o.lag.unwrap_or(base.tau);
+            fo.ratio = o.ratio.unwrap_or(base.ratio);
+            fo.theiler = o.theiler.or(base.theiler);
+            let points = false_nearest_neighbors(&x, &fo)
+                .with_context(|| format!("false nearest neighbours of {file}"))?;
+            let fig = FnnFigure {
+                points: &points,
+                threshold: 0.01,
+                ratio: fo.ratio,
+            };
+            match crate::analysis::false_nearest_neighbors::suggested_dimension(&points, 0.01) {
+                Some(m) => {
+                    eprintln!("suggested embedding dimension: m = {m} (≤ 1 % false neighbours)")
+                }
+                None => {
+                    eprintln!("no tested dimension has ≤ 1 % false neighbours (noise, or raise -M)")
+                }
+            }
+            draw(&fig, out, opts)
+        }
+        other => bail!("{other:?} is not an estimator figure"),
+    }
+}
+
+/// Dimension range from -m and -M (`M` or `min,max`), with the estimator's defaults; a lone
+/// -m above the default maximum raises the maximum to it.
+fn dimensions(o: &PlotOptions, min0: usize, max0: usize) -> anyhow::Result<(usize, usize)> {
+    let num = |v: &str| -> anyhow::Result<usize> {
+        v.trim().parse().with_context(|| {
+            format!(
+                "-M {}: `{v}` is not a dimension",
+                o.m_max.as_deref().unwrap_or("")
+            )
+        })
+    };
+    match o.m_max.as_deref() {
+        None => {
+            let lo = o.m_min.unwrap_or(min0);
+            Ok((lo, max0.max(lo)))
+        }
+        Some(s) => match s.split_once(',') {
+            Some((a, b)) => {
+                let (a, b) = (num(a)?, num(b)?);
+                if let Some(m) = o.m_min.filter(|&m| m != a) {
+                    bail!("-m {m} and -M {s} disagree: give the smallest dimension once");
+                }
+                Ok((a, b))
+            }
+            None => Ok((o.m_min.unwrap_or(min0), num(s)?)),
+        },
     }
 }
 

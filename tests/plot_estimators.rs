@@ -1,0 +1,177 @@
+//! `pdamp plot kantz | mutual | fnn` on the Lorenz x series: each writes a PNG of the requested
+//! size that is not blank, shows its data colour and a caption; a constant series is a clear
+//! error (no panic), and the figures reject unusable data naming the field.
+
+use std::io::Write;
+use std::path::Path;
+use std::process::Command;
+
+use pdamp::analysis::kantz::{KantzDefinition, KantzResult, ScalingOptions};
+use pdamp::plot::fnn::FnnFigure;
+use pdamp::plot::kantz::KantzFigure;
+use pdamp::plot::mutual::MutualFigure;
+use pdamp::plot::{render_rgb, FigureOptions};
+
+const LORENZ: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/data/series/lorenz_x_dt0.01_n10000.txt"
+);
+const W: u32 = 800;
+const H: u32 = 600;
+/// Okabe–Ito blue (m = 2 of kantz, the curve of mutual and fnn).
+const BLUE: [u8; 3] = [0, 114, 178];
+/// Okabe–Ito vermillion (the marked minimum / suggested dimension).
+const RED: [u8; 3] = [213, 94, 0];
+
+fn pdamp(args: &[&str]) -> (String, bool) {
+    let out = Command::new(env!("CARGO_BIN_EXE_pdamp"))
+        .args(args)
+        .output()
+        .unwrap();
+    (String::from_utf8(out.stderr).unwrap(), out.status.success())
+}
+
+fn count_color(img: &image::RgbImage, c: [u8; 3]) -> usize {
+    img.pixels()
+        .filter(|p| {
+            p.0.iter()
+                .zip(c)
+                .all(|(a, b)| (*a as i32 - b as i32).abs() <= 12)
+        })
+        .count()
+}
+
+/// Runs `pdamp plot KIND LORENZ ARGS -o FILE` and checks the PNG: size from IHDR, non-blank,
+/// the given colours present, dark caption text in the top strip.
+fn check_plot(kind: &str, extra: &[&str], colors: &[[u8; 3]]) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join(format!("{kind}.png"));
+    let (w, h) = (W.to_string(), H.to_string());
+    let mut args = vec!["plot", kind, LORENZ, "-o", png.to_str().unwrap()];
+    args.extend_from_slice(&["--width", &w, "--height", &h]);
+    args.extend_from_slice(extra);
+    let (err, ok) = pdamp(&args);
+    assert!(ok, "{kind}: {err}");
+    let bytes = std::fs::read(&png).unwrap();
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "{kind}: not a PNG");
+    assert_eq!(&bytes[12..16], b"IHDR");
+    let iw = u32::from_be_bytes(bytes[16..20].try_into().unwrap());
+    let ih = u32::from_be_bytes(bytes[20..24].try_into().unwrap());
+    assert_eq!((iw, ih), (W, H), "{kind}: size");
+    let img = image::load_from_memory(&bytes).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (W, H));
+    let non_white = img.pixels().filter(|p| p.0 != [255, 255, 255]).count();
+    assert!(
+        non_white > (W * H / 50) as usize,
+        "{kind}: only {non_white} non-white pixels"
+    );
+    for &c in colors {
+        let n = count_color(&img, c);
+        assert!(n >= 200, "{kind}: {n} pixels of colour {c:?}");
+    }
+    let caption_dark = (0..W)
+        .flat_map(|x| (0..H * 6 / 100).map(move |y| (x, y)))
+        .filter(|&(x, y)| img.get_pixel(x, y).0.iter().all(|&c| c < 100))
+        .count();
+    assert!(caption_dark > 50, "{kind}: no caption ({caption_dark})");
+    // keep the image for a look when PDAMP_KEEP_PLOTS names a directory
+    if let Ok(keep) = std::env::var("PDAMP_KEEP_PLOTS") {
+        std::fs::copy(&png, Path::new(&keep).join(format!("{kind}.png"))).unwrap();
+    }
+    err
+}
+
+fn constant_series(dir: &tempfile::TempDir) -> String {
+    let path = dir.path().join("constant.txt");
+    let mut f = std::fs::File::create(&path).unwrap();
+    for _ in 0..2000 {
+        writeln!(f, "1.5").unwrap();
+    }
+    path.to_str().unwrap().to_string()
+}
+
+/// A constant series fails with a message saying so, exit status ≠ 0, no panic, no file.
+fn check_constant_fails(kind: &str) {
+    let dir = tempfile::tempdir().unwrap();
+    let file = constant_series(&dir);
+    let png = dir.path().join("c.png");
+    let (err, ok) = pdamp(&["plot", kind, &file, "-o", png.to_str().unwrap()]);
+    assert!(!ok, "{kind}: constant series accepted");
+    assert!(err.contains("constant"), "{kind}: unclear error: {err}");
+    assert!(!err.contains("panicked"), "{kind}: {err}");
+    assert!(!png.exists(), "{kind}: wrote a figure of nothing");
+}
+
+#[test]
+fn kantz_curves_with_fits_and_median_slope() {
+    let err = check_plot(
+        "kantz",
+        &[
+            "-m", "2", "-M", "4", "-d", "17", "-s", "200", "--dt", "0.01",
+        ],
+        &[BLUE],
+    );
+    // the Lorenz maximal exponent is ≈ 0.906 per time unit = 0.00906 per sample
+    let slope: f64 = err
+        .split("curves): ")
+        .nth(1)
+        .and_then(|s| s.split_whitespace().next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no slope in {err}"));
+    assert!((slope - 0.00906).abs() < 0.002, "slope {slope}");
+}
+
+#[test]
+fn mutual_information_with_first_minimum() {
+    let err = check_plot("mutual", &["-D", "50", "--dt", "0.01"], &[BLUE, RED]);
+    assert!(err.contains("tau = 17 "), "{err}");
+}
+
+#[test]
+fn fnn_with_suggested_dimension() {
+    let err = check_plot("fnn", &["-M", "1,7", "-d", "17"], &[BLUE, RED]);
+    assert!(err.contains("m = 3"), "{err}");
+}
+
+#[test]
+fn constant_series_is_a_clear_error() {
+    for kind in ["kantz", "mutual", "fnn"] {
+        check_constant_fails(kind);
+    }
+}
+
+#[test]
+fn figures_reject_unusable_data() {
+    let o = FigureOptions {
+        width: 400,
+        height: 300,
+        title: None,
+    };
+    let empty = KantzResult {
+        curves: vec![],
+        range: 1.0,
+        definition: KantzDefinition::MeanDistance,
+    };
+    let k = KantzFigure {
+        result: &empty,
+        scaling: ScalingOptions::default(),
+        dt_s: None,
+    };
+    assert!(render_rgb(&k, &o)
+        .unwrap_err()
+        .to_string()
+        .contains("kantz"));
+    let m = MutualFigure {
+        values: &[1.0, f64::NAN, 0.5],
+        first_minimum: None,
+        bins: 16,
+        dt_s: None,
+    };
+    assert!(render_rgb(&m, &o).unwrap_err().to_string().contains("I(τ)"));
+    let f = FnnFigure {
+        points: &[],
+        threshold: 0.01,
+        ratio: 10.0,
+    };
+    assert!(render_rgb(&f, &o).unwrap_err().to_string().contains("fnn"));
+}
