@@ -254,42 +254,7 @@ pub fn analyze_series(x: &[f64], opts: &AnalyzeOptions) -> Result<AnalysisReport
         ));
     }
     let range = hi - lo;
-    let mut report = AnalysisReport {
-        n_samples: n,
-        lag: None,
-        embedding_dim: None,
-        mle_per_sample: None,
-        mle_per_time: None,
-        mle_fit_r2: None,
-        regime: Regime::Undetermined,
-        period: None,
-        reason: String::new(),
-        spectral_lines: Vec::new(),
-        frequency_unit: if opts.dt_s.is_some() {
-            "hz"
-        } else {
-            "cycles/sample"
-        },
-        line_power_fraction: 0.0,
-        poincare_distinct_points: None,
-        poincare_section_points: None,
-        poincare_shape: None,
-        closed_curve_score: None,
-        kantz_fit: None,
-        zero_one_k: None,
-        zero_one_samples: None,
-        fnn_fractions: Vec::new(),
-        section: None,
-        section_source: None,
-        data_mle_per_s: None,
-        data_mle_stderr_per_s: None,
-        model_mle_per_s: None,
-        model_mle_stderr_per_s: None,
-        section_exponent: None,
-        series_dt_s: opts.dt_s,
-        evidence: Evidence::default(),
-        notes: Vec::new(),
-    };
+    let mut report = empty_report(n, opts.dt_s);
     if range <= 1e-12 * hi.abs().max(lo.abs()) || range.is_nan() || range == 0.0 {
         report.reason = "the series is constant: nothing to analyse".into();
         report
