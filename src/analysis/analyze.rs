@@ -385,7 +385,7 @@ pub fn analyze_series(x: &[f64], opts: &AnalyzeOptions) -> Result<AnalysisReport
 
     report.notes = notes;
     match (&forced_section, forcing_period) {
-        (Some(points), Some(t_per)) => {
+        (Some(points), Some(_)) => {
             // a user's own series of a forced system: judged from its section first (cubic
             // interpolation of the given samples in delay coordinates, so exact to ~1e-4)
             let sopts = SectionOptions {
@@ -409,7 +409,6 @@ pub fn analyze_series(x: &[f64], opts: &AnalyzeOptions) -> Result<AnalysisReport
                         report.mle_per_sample = Some(l);
                         report.mle_per_time = opts.dt_s.map(|dt| l / dt);
                     }
-                    let _ = t_per;
                 }
                 Err(e) => {
                     report.notes.push(format!("section not analysed: {e}"));

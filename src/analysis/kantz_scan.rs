@@ -46,6 +46,7 @@
 use crate::analysis::kantz::{
     fit_scaling_region, kantz, KantzDefinition, KantzOptions, ScalingOptions, SlopeFit,
 };
+use crate::analysis::section_lyapunov::median;
 use crate::analysis::{rescale_unit, validate_series};
 use crate::error::AnalysisError;
 use serde::Serialize;
@@ -197,12 +198,6 @@ pub fn kantz_scan(x: &[f64], opts: &KantzScanOptions) -> Result<KantzScan, Analy
     let mad = 1.4826 * median(&slopes.iter().map(|s| (s - med).abs()).collect::<Vec<_>>());
     let mut se = if k > 1 { mad / (k as f64).sqrt() } else { 0.0 };
     se = se.max(0.05 * med.abs());
-    let median_fit = pool
-        .iter()
-        .min_by(|a, b| (a.1.slope - med).abs().total_cmp(&(b.1.slope - med).abs()))
-        .map(|p| p.1)
-        .expect("non-empty pool");
-    let _ = median_fit;
     // evidence of exponential divergence: the largest growth over a linear region among the
     // curves whose slope is within the error bar of the median
     let growth = pool
@@ -296,20 +291,6 @@ fn noise_floor(s: &[f64], m: usize, tau: usize, theiler: usize) -> f64 {
     }
     nn.sort_by(f64::total_cmp);
     nn[nn.len() / 2]
-}
-
-fn median(v: &[f64]) -> f64 {
-    let mut s = v.to_vec();
-    s.sort_by(f64::total_cmp);
-    let n = s.len();
-    if n == 0 {
-        return f64::NAN;
-    }
-    if n % 2 == 1 {
-        s[n / 2]
-    } else {
-        0.5 * (s[n / 2 - 1] + s[n / 2])
-    }
 }
 
 /// Least-squares slope and intercept.

@@ -45,7 +45,7 @@
 //! H. Kantz, Phys. Lett. A 185, 77–87 (1994), doi:10.1016/0375-9601(94)90991-1; H. Kantz,
 //! T. Schreiber, *Nonlinear Time Series Analysis*, CUP (2004), §5.3 and §9.3 (Poincaré maps).
 
-use crate::analysis::section::normalise;
+use crate::analysis::section::{dist2, normalise};
 use crate::error::AnalysisError;
 use serde::{Deserialize, Serialize};
 
@@ -301,20 +301,19 @@ fn least_squares(p: &[(f64, f64)]) -> (f64, f64) {
     (slope, (rss / (n - 2.0) / sxx).sqrt())
 }
 
-fn median(v: &[f64]) -> f64 {
+/// Median of a slice (mean of the two middle values for an even length; NaN when empty).
+pub(crate) fn median(v: &[f64]) -> f64 {
     let mut s = v.to_vec();
     s.sort_by(f64::total_cmp);
     let n = s.len();
+    if n == 0 {
+        return f64::NAN;
+    }
     if n % 2 == 1 {
         s[n / 2]
     } else {
         0.5 * (s[n / 2 - 1] + s[n / 2])
     }
-}
-
-#[inline]
-fn dist2(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
 }
 
 #[cfg(test)]
