@@ -439,15 +439,15 @@ pub fn run_dem(
             }
             zmin = zmin.min(world.box_z);
             zmax = zmax.max(world.box_z);
-            if let Some((cycle, before)) = strobe_before {
-                let t_s = cycle / drive.frequency_hz;
-                strobe.push(StrobeRow::interpolate(
-                    cycle as u64,
-                    t_s,
-                    before,
-                    strobe_state(&world),
-                ));
-            }
+        }
+        if let Some((cycle, before)) = strobe_before {
+            let t_s = cycle / drive.frequency_hz;
+            strobe.push(StrobeRow::interpolate(
+                cycle as u64,
+                t_s,
+                before,
+                strobe_state(&world),
+            ));
         }
         let do_sample = k % per_sample == 0 || k == n_steps;
         let do_snap = per_snap.is_some_and(|ps| k % ps == 0);
