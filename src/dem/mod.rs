@@ -4,6 +4,7 @@
 //! → quaternion renormalisation → energy ledger. [`run`] deposits a bed, settles it and
 //! drives the box, emitting samples to an observer.
 
+pub mod bed_impacts;
 pub mod energy;
 pub mod run;
 pub mod scene_run;
@@ -11,6 +12,7 @@ pub mod snapshot;
 pub mod stability;
 pub mod world;
 
+pub use bed_impacts::BedImpacts;
 pub use energy::{EnergyLedger, EnergyState};
 pub use run::{run_dem, DemObserver, DemRunConfig, DemSample, DemSummary, DtChoice, StrobeRow};
 pub use world::{BoxDrive, DemWorld, PrimarySystem};

@@ -238,6 +238,25 @@ pub fn reproduce(
             }
         },
     }
+    // ---- the source's chapter 4 (DEM regimes along f) ----
+    let ch4_wanted = super::chapter4::NAMES.iter().any(|n| want(n));
+    match (
+        s.dem
+            .as_ref()
+            .and_then(|d| d.chapter4.as_ref().map(|c| (d, c))),
+        ch4_wanted,
+    ) {
+        (_, false) => {}
+        (None, true) => skipped.push(format!(
+            "chapter-4 figures: not part of {} mode (use --quick or --full)",
+            s.mode.as_str()
+        )),
+        (Some(_), true) if opts.skip_dem => skipped.push("chapter-4 figures: --no-dem".into()),
+        (Some((d, c)), true) => match dem_figures::available() {
+            Err(why) => skipped.push(format!("chapter-4 figures: {why}")),
+            Ok(()) => figures.extend(super::chapter4::all(&ctx, s, d, c, &want)?),
+        },
+    }
     if let (Some(e0), Some(e8)) = (&frf_e0, &frf_e8) {
         figures.insert(0, frf_figure(&ctx, s, e0, e8, dem_frf.as_ref())?);
     }
