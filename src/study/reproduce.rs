@@ -10,7 +10,6 @@ use std::path::PathBuf;
 
 use crate::analysis::frf_fit::{fit_frf, FrfFitOptions};
 use crate::analysis::mutual_information::{mutual_information, MutualInformationOptions};
-use crate::analysis::poincare::{stroboscopic_section, SecondCoordinate, StrobeOptions};
 use crate::analysis::spectrum::{power_spectrum, SpectrumOptions};
 use crate::error::StudyError;
 use crate::plot::bed_motion::BedMotionFigure;
@@ -31,8 +30,8 @@ use crate::plot::{FigureOptions, Series};
 use super::check::EffectiveRow;
 use super::dem_figures;
 use super::pipeline::{
-    col, group_by, record_run, scene_with, simulate_command, Ctx, FigureRecord, SweepResult,
-    IMPACT_B,
+    col, group_by, record_run, record_run_summary, scene_with, simulate_command, Ctx, FigureRecord,
+    SweepResult, IMPACT_B,
 };
 use super::settings::{Mode, Settings, SCENE_B_GAP_M};
 
@@ -724,26 +723,19 @@ fn per_frequency(ctx: &Ctx, s: &Settings, f: f64) -> Result<Vec<FigureRecord>, S
     let per_period = 64.0;
     let dt = 1.0 / (f * per_period);
     let from = 0.5 * periods / f;
-    let r = record_run(&step, &scene, dt, from)?;
+    let (r, summary) = record_run_summary(&step, &scene, dt, from)?;
     let z = &r.grain_z_m;
     let sim = simulate_command(IMPACT_B, &set, &ctx.path(&format!("data/series_{tag}")));
     let reductions = s.reductions(&["series"]);
     let mut out = Vec::new();
 
-    // Poincaré: (z, ż) once per period, ż by central differences
-    let v: Vec<f64> = (0..z.len())
-        .map(|i| {
-            let (a, b) = (i.saturating_sub(1), (i + 1).min(z.len() - 1));
-            (z[b] - z[a]) / ((b - a).max(1) as f64 * dt)
-        })
-        .collect();
-    let sec = stroboscopic_section(
-        z,
-        SecondCoordinate::Column(&v),
-        &StrobeOptions::new(per_period),
-    )
-    .map_err(|e| StudyError::step(&step, e))?;
-    let (px, py): (Vec<f64>, Vec<f64>) = sec.points.iter().map(|p| (p[0], p[1])).unzip();
+    // Poincaré: the exact state (z, ż) at t = kT over the analysis window (closed form of the
+    // event-driven model, never a resampled series)
+    let (px, py): (Vec<f64>, Vec<f64>) = summary
+        .strobe
+        .iter()
+        .map(|p| (p.grain_z_m, p.grain_v_m_s))
+        .unzip();
     let name = format!("poincare_{tag}");
     ctx.write_csv(
         &name,
@@ -764,14 +756,17 @@ fn per_frequency(ctx: &Ctx, s: &Settings, f: f64) -> Result<Vec<FigureRecord>, S
     out.push(FigureRecord {
         name: name.clone(),
         caption: format!(
-            "Impact model (e = 0.8, gap 0.0835 m) at {f} Hz: stroboscopic Poincaré section \
-             (z, ż) once per forcing period over the last {} periods.",
-            periods / 2.0
+            "Impact model (e = 0.8, gap 0.0835 m) at {f} Hz: exact stroboscopic Poincaré \
+             section (z, ż) at t = kT over the last {} periods ({} points).",
+            periods / 2.0,
+            px.len()
         ),
         spec_item: "per frequency: stroboscopic Poincaré section".into(),
         commands: vec![
             sim.clone(),
-            format!("pdamp poincare DIR/series.csv --column grain_z_m --frequency {f} > section.csv && pdamp plot poincare section.csv -o {name}.png"),
+            format!(
+                "pdamp plot poincare DIR/strobe.csv --x grain_z_m --y grain_v_m_s -o {name}.png"
+            ),
         ],
         reductions: reductions.clone(),
         size_px: size,
