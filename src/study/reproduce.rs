@@ -20,7 +20,7 @@ use crate::plot::frf::{FrfFigure, FrfReference};
 use crate::plot::lines::LinesFigure;
 use crate::plot::poincare::PoincareFigure;
 use crate::plot::reconstruction::ReconstructionFigure;
-use crate::plot::regime_frf::RegimeFrfFigure;
+use crate::plot::regime_frf::{Exponents, RegimeFrfFigure};
 use crate::plot::regime_map::RegimeMapFigure;
 use crate::plot::resonance::{resonance_amplitudes, resonance_figure};
 use crate::plot::spectrum::SpectrumFigure;
@@ -865,56 +865,108 @@ fn per_frequency(ctx: &Ctx, s: &Settings, f: f64) -> Result<Vec<FigureRecord>, S
     Ok(out)
 }
 
-/// Frequency, a second column, regime and Lyapunov exponent of a sweep, also written to
-/// `NAME.csv` (`frequency_hz,<y_header>,regime,mle_per_s`) next to the figure.
-#[allow(clippy::type_complexity)]
+/// The columns of an analysed sweep that the regime figures draw.
+struct RegimeColumns {
+    f: Vec<f64>,
+    y: Vec<f64>,
+    regime: Vec<String>,
+    period: Vec<Option<u32>>,
+    mle: Vec<Option<f64>>,
+    mle_se: Vec<Option<f64>>,
+    model: Vec<Option<f64>>,
+    model_se: Vec<Option<f64>>,
+}
+
+/// Frequency, a second column, regime, period and the data and model exponents (with standard
+/// errors) of a sweep, also written to `NAME.csv` (`frequency_hz,<y_header>,regime,period,
+/// mle_per_s,mle_stderr_per_s,model_mle_per_s,model_mle_stderr_per_s`; empty cells: not
+/// estimated) next to the figure.
 fn regime_columns(
     ctx: &Ctx,
     name: &str,
     sw: &SweepResult,
     y_column: &str,
     y_header: &str,
-) -> Result<(Vec<f64>, Vec<f64>, Vec<String>, Vec<Option<f64>>), StudyError> {
-    let f = col(name, &sw.table, "frequency_hz")?;
-    let y = col(name, &sw.table, y_column)?;
-    let regime = sw
-        .table
+) -> Result<RegimeColumns, StudyError> {
+    let t = &sw.table;
+    let f = col(name, t, "frequency_hz")?;
+    let y = col(name, t, y_column)?;
+    let regime = t
         .str_column("regime")
         .map_err(|e| StudyError::step(name, e))?;
-    let mle = sw
-        .table
-        .opt_f64_column("mle_per_s")
-        .map_err(|e| StudyError::step(name, e))?;
-    let mut text = format!("frequency_hz,{y_header},regime,mle_per_s\n");
-    for i in 0..f.len() {
+    let opt = |c: &str| -> Result<Vec<Option<f64>>, StudyError> {
+        if t.has(c) {
+            t.opt_f64_column(c).map_err(|e| StudyError::step(name, e))
+        } else {
+            Ok(vec![None; f.len()])
+        }
+    };
+    let period = opt("period")?
+        .into_iter()
+        .map(|p| {
+            p.filter(|p| *p >= 1.0 && p.fract() == 0.0)
+                .map(|p| p as u32)
+        })
+        .collect::<Vec<_>>();
+    let c = RegimeColumns {
+        mle: opt("mle_per_s")?,
+        mle_se: opt("mle_stderr_per_s")?,
+        model: opt("model_mle_per_s")?,
+        model_se: opt("model_mle_stderr_per_s")?,
+        f,
+        y,
+        regime,
+        period,
+    };
+    let cell = |v: Option<f64>| v.map(|m| m.to_string()).unwrap_or_default();
+    let mut text = format!(
+        "frequency_hz,{y_header},regime,period,mle_per_s,mle_stderr_per_s,model_mle_per_s,\
+         model_mle_stderr_per_s\n"
+    );
+    for i in 0..c.f.len() {
         text += &format!(
-            "{},{},{},{}\n",
-            f[i],
-            y[i],
-            regime[i],
-            mle[i].map(|m| m.to_string()).unwrap_or_default()
+            "{},{},{},{},{},{},{},{}\n",
+            c.f[i],
+            c.y[i],
+            c.regime[i],
+            c.period[i].map(|p| p.to_string()).unwrap_or_default(),
+            cell(c.mle[i]),
+            cell(c.mle_se[i]),
+            cell(c.model[i]),
+            cell(c.model_se[i]),
         );
     }
     ctx.write_text(&format!("{name}.csv"), &text)?;
-    Ok((f, y, regime, mle))
+    Ok(c)
 }
 
 fn regime_frf(ctx: &Ctx, s: &Settings, sw: &SweepResult) -> Result<FigureRecord, StudyError> {
     let name = "regime_frf";
-    let (f, z, regime, mle) = regime_columns(ctx, name, sw, "amplitude_m", "amplitude_m")?;
+    let c = regime_columns(ctx, name, sw, "amplitude_m", "amplitude_m")?;
     let size = ctx.render(
         name,
         &RegimeFrfFigure {
-            frequency_hz: &f,
-            amplitude_m: &z,
-            regime: &regime,
-            mle_per_s: Some(&mle),
+            frequency_hz: &c.f,
+            amplitude_m: &c.y,
+            regime: &c.regime,
+            period: Some(&c.period),
+            data: Some(Exponents {
+                per_s: &c.mle,
+                stderr_per_s: Some(&c.mle_se),
+            }),
+            model: Some(Exponents {
+                per_s: &c.model,
+                stderr_per_s: Some(&c.model_se),
+            }),
         },
     )?;
     Ok(FigureRecord {
         name: name.into(),
         caption: "Impact model (e = 0.8, gap 0.0835 m): FRF coloured by the regime of the \
-                  particle's steady state, with Kantz's maximal Lyapunov exponent (1/s)."
+                  particle's steady state (upper panel); below, the largest Lyapunov exponent \
+                  (1/s) of the model's stroboscopic map from tangent dynamics and the one \
+                  estimated from the data (Kantz), each ± 1 standard error; frequencies \
+                  without an estimate have no marker."
             .into(),
         spec_item: "the FRF with regime bands and the Lyapunov exponent overlaid".into(),
         commands: vec![
@@ -975,14 +1027,18 @@ fn regime_map(ctx: &Ctx, s: &Settings) -> Result<FigureRecord, StudyError> {
         &[("excitation.frequency", s.map_freq.vary())],
         true,
     )?;
-    let (f, g, regime, mle) = regime_columns(ctx, name, &sw, "damper.gap", "gap_m")?;
+    let c = regime_columns(ctx, name, &sw, "damper.gap", "gap_m")?;
+    // chaotic cells are shaded by the model's exponent (the data's where the model has none)
+    let shade: Vec<Option<f64>> = c.model.iter().zip(&c.mle).map(|(m, d)| m.or(*d)).collect();
     let size = ctx.render(
         name,
         &RegimeMapFigure {
-            x: &f,
-            y: &g,
-            regime: &regime,
-            mle_per_s: Some(&mle),
+            x: &c.f,
+            y: &c.y,
+            regime: &c.regime,
+            period: Some(&c.period),
+            mle_per_s: Some(&shade),
+            mle_label: "model λ (1/s)".into(),
             x_label: "frequency f (Hz)".into(),
             y_label: "gap (m)".into(),
         },
@@ -990,7 +1046,9 @@ fn regime_map(ctx: &Ctx, s: &Settings) -> Result<FigureRecord, StudyError> {
     Ok(FigureRecord {
         name: name.into(),
         caption: "Impact model (e = 0.8): regime of the particle's steady state over frequency × \
-                  gap."
+                  gap (one row per gap); chaotic cells shaded by the model's largest Lyapunov \
+                  exponent, periodic cells of period ≥ 2 darker and numbered with the period; \
+                  the values are in regime_map.csv."
             .into(),
         spec_item: "regimes over frequency and container height (SPEC §4)".into(),
         commands: vec![
