@@ -6,9 +6,9 @@
 //! - `ch4_bifurcation`: z_cm strobed once per period (the exact section) versus f;
 //! - `ch4_impacts`: collective bed–floor and bed–ceiling impacts per cycle versus f
 //!   ([`crate::dem::bed_impacts`]), so that "two impacts per period" can be read off;
-//! - `ch4_run_length`: the same sweep with every run twice as long, verdict by verdict and
-//!   amplitude by amplitude (the quick mode's run length is only trusted where doubling it
-//!   changes nothing);
+//! - `ch4_run_length`: the panel frequencies again with every run twice as long, verdict by
+//!   verdict and amplitude by amplitude (the quick mode's run length is only trusted where
+//!   doubling it changes nothing);
 //! - `ch4_panel_f<f>` (Figs. 4.2–4.6): bed band between floor and ceiling, the section and the
 //!   spectrum at each of the source's frequencies;
 //! - `ch4_reconstruction` (Fig. 4.7): delay reconstructions of z_cm at the same frequencies.
@@ -23,7 +23,7 @@ use crate::plot::frequency_panel::{FrequencyPanelFigure, ReconstructionGridFigur
 use crate::plot::lines::LinesFigure;
 use crate::plot::poincare::PoincareFigure;
 use crate::plot::reconstruction::ReconstructionFigure;
-use crate::plot::regime_frf::RegimeFrfFigure;
+use crate::plot::regime_frf::{Exponents, RegimeFrfFigure};
 use crate::plot::spectrum::SpectrumFigure;
 use crate::plot::table::Table;
 use crate::plot::Series;
@@ -144,12 +144,23 @@ fn sweep_dir(c: &Chapter4Settings, factor: f64) -> String {
     }
 }
 
-fn frequency_list(c: &Chapter4Settings) -> String {
-    c.frequencies_hz
+fn frequency_list(freqs: &[f64]) -> String {
+    freqs
         .iter()
         .map(|f| f.to_string())
         .collect::<Vec<_>>()
         .join(",")
+}
+
+/// What the chapter-4 study produced.
+#[derive(Debug, Clone)]
+pub struct Chapter4Output {
+    /// The figures.
+    pub figures: Vec<FigureRecord>,
+    /// The regime sweep at the mode's run length (also the DEM curve of `frf.png`: its runs
+    /// are long enough that doubling them moves the amplitudes by a few per cent, see
+    /// `ch4_run_length`).
+    pub sweep: SweepResult,
 }
 
 /// Runs the chapter-4 sweeps and panels and draws its figures (those `want` selects).
@@ -162,20 +173,19 @@ pub fn all(
     d: &DemSettings,
     c: &Chapter4Settings,
     want: &dyn Fn(&str) -> bool,
-) -> Result<Vec<FigureRecord>, StudyError> {
+) -> Result<Chapter4Output, StudyError> {
     let mut figures = Vec::new();
     let reductions = s.reductions(&["dem", "dem_ch4"]);
-    let vary = [("excitation.frequency", frequency_list(c))];
-    let sweep = |factor: f64| {
+    let sweep = |factor: f64, freqs: &[f64]| {
         ctx.sweep(
             &sweep_dir(c, factor),
             DEM_CH4,
             &ch4_set(d, c, factor),
-            &vary,
+            &[("excitation.frequency", frequency_list(freqs))],
             true,
         )
     };
-    let base = sweep(1.0)?;
+    let base = sweep(1.0, &c.frequencies_hz)?;
     let pts = points("ch4_regime_frf", &base.table)?;
     let info = Info {
         ctx,
@@ -192,8 +202,8 @@ pub fn all(
     if want("ch4_impacts") {
         figures.push(impacts(&info, &pts)?);
     }
-    if want("ch4_run_length") && c.check_doubling {
-        let long = sweep(2.0)?;
+    if want("ch4_run_length") && !c.doubling_freqs_hz.is_empty() {
+        let long = sweep(2.0, &c.doubling_freqs_hz)?;
         let long_pts = points("ch4_run_length", &long.table)?;
         figures.push(run_length(&info, &pts, &long, &long_pts)?);
     }
@@ -212,7 +222,10 @@ pub fn all(
             figures.push(reconstruction(&info, &runs)?);
         }
     }
-    Ok(figures)
+    Ok(Chapter4Output {
+        figures,
+        sweep: base,
+    })
 }
 
 /// What every figure of the study shares.
@@ -262,13 +275,23 @@ fn regime_frf(info: &Info, pts: &[Point]) -> Result<FigureRecord, StudyError> {
     let z: Vec<f64> = pts.iter().map(|p| p.amplitude_m).collect();
     let reg: Vec<String> = pts.iter().map(|p| p.regime.clone()).collect();
     let mle: Vec<Option<f64>> = pts.iter().map(|p| p.mle_per_s).collect();
+    let se: Vec<Option<f64>> = pts.iter().map(|p| p.mle_stderr_per_s).collect();
+    let period: Vec<Option<u32>> = pts
+        .iter()
+        .map(|p| p.period.filter(|x| *x >= 1.0).map(|x| x.round() as u32))
+        .collect();
     let size = info.ctx.render(
         name,
         &RegimeFrfFigure {
             frequency_hz: &f,
             amplitude_m: &z,
             regime: &reg,
-            mle_per_s: Some(&mle),
+            period: Some(&period),
+            data: Some(Exponents {
+                per_s: &mle,
+                stderr_per_s: Some(&se),
+            }),
+            model: None,
         },
     )?;
     Ok(info.record(
@@ -447,8 +470,8 @@ fn run_length(
     let mut rec = info.record(
         name,
         format!(
-            "Run-length check: the sweep repeated with runs of {}: the verdict (regime and \
-             period) is unchanged at {same} of {} frequencies and the amplitude changes by at \
+            "Run-length check: the sweep's points at the panel frequencies repeated with runs \
+             of {}: the verdict (regime and period) is unchanged at {same} of {} frequencies and the amplitude changes by at \
              most {worst:.2} % (table in {name}.csv).",
             length_text(info.c, 2.0),
             pairs.len()

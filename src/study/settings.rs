@@ -110,8 +110,9 @@ pub struct Chapter4Settings {
     pub duration_s: Option<f64>,
     /// Frequencies of the per-frequency panels and reconstructions (Hz; Figs. 4.2–4.7).
     pub panel_freqs_hz: Vec<f64>,
-    /// Repeat the sweep with runs twice as long and compare verdicts and amplitudes.
-    pub check_doubling: bool,
+    /// Frequencies (Hz, a subset of `frequencies_hz`) repeated with runs twice as long to
+    /// compare verdicts and amplitudes; empty skips the check.
+    pub doubling_freqs_hz: Vec<f64>,
 }
 
 /// The source's per-frequency panels of chapter 4 (Hz).
@@ -200,7 +201,7 @@ impl Settings {
                         periods: 100.0,
                         duration_s: Some(196.83),
                         panel_freqs_hz: CH4_PANEL_HZ.to_vec(),
-                        check_doubling: false,
+                        doubling_freqs_hz: Vec::new(),
                     }),
                 }),
             },
@@ -240,7 +241,7 @@ impl Settings {
                         periods: 100.0,
                         duration_s: None,
                         panel_freqs_hz: CH4_PANEL_HZ.to_vec(),
-                        check_doubling: true,
+                        doubling_freqs_hz: CH4_PANEL_HZ.to_vec(),
                     }),
                 }),
             },
