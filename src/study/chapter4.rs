@@ -40,9 +40,10 @@ pub const DEM_CH4: BundledScene = BundledScene {
     text: include_str!("../../data/scenes/thesis_b_ch4.toml"),
 };
 
-/// Softening and time-step fraction written in [`DEM_CH4`].
+/// Softening, time-step fraction and run length written in [`DEM_CH4`].
 const SCENE_SOFTEN: f64 = 1000.0;
 const SCENE_DT_FRACTION: f64 = 0.02;
+const SCENE_PERIODS: f64 = 100.0;
 const E_STEEL: f64 = 2.03e11;
 const GAMMA_N_B: f64 = 3660.0;
 const GAMMA_S_B: f64 = 10980.0;
@@ -121,7 +122,7 @@ fn ch4_set(d: &DemSettings, c: &Chapter4Settings, factor: f64) -> Vec<(&'static 
     }
     match c.duration_s {
         Some(s) => set.push(("run.duration", (factor * s).to_string())),
-        None if factor != 1.0 => {
+        None if factor * c.periods != SCENE_PERIODS => {
             set.push(("run.periods", (factor * c.periods).to_string()));
         }
         None => {}

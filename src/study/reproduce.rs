@@ -101,6 +101,17 @@ impl ReproduceOptions {
         }
     }
 
+    /// The README written into `out`: `README.md` for the whole set, `README.<only>.md`
+    /// (names joined by `+`) for a selection, so that a partial run never overwrites the
+    /// whole set's README.
+    pub fn readme_name(&self) -> String {
+        if self.only.is_empty() {
+            "README.md".into()
+        } else {
+            format!("README.{}.md", self.only.join("+"))
+        }
+    }
+
     /// Whether figure `name` is selected by [`ReproduceOptions::only`].
     pub fn wants(&self, name: &str) -> bool {
         self.only.is_empty()
@@ -275,9 +286,7 @@ pub fn reproduce(
         skipped,
         elapsed_s: started.elapsed().as_secs_f64(),
     };
-    if opts.only.is_empty() {
-        ctx.write_text("README.md", &super::readme::readme(opts, &report))?;
-    }
+    ctx.write_text(&opts.readme_name(), &super::readme::readme(opts, &report))?;
     Ok(report)
 }
 
