@@ -28,6 +28,7 @@ use crate::plot::spectrum::SpectrumFigure;
 use crate::plot::table::Table;
 use crate::plot::Series;
 
+use super::dem_figures::{E_B as E_STEEL, GAMMA_N_B, GAMMA_S_B};
 use super::pipeline::{
     col, scene_with, simulate_command, BundledScene, Ctx, FigureRecord, Recorded, SweepResult,
 };
@@ -44,9 +45,6 @@ pub const DEM_CH4: BundledScene = BundledScene {
 const SCENE_SOFTEN: f64 = 1000.0;
 const SCENE_DT_FRACTION: f64 = 0.02;
 const SCENE_PERIODS: f64 = 100.0;
-const E_STEEL: f64 = 2.03e11;
-const GAMMA_N_B: f64 = 3660.0;
-const GAMMA_S_B: f64 = 10980.0;
 
 /// Names of the chapter-4 figures (for `--only`).
 pub const NAMES: [&str; 7] = [

@@ -21,9 +21,10 @@ const LZ_B: f64 = 0.1225;
 /// Scene B's grain number and radius (m).
 const N_B: usize = 250;
 const R_B: f64 = 0.003;
-const GAMMA_N_B: f64 = 3660.0;
-const GAMMA_S_B: f64 = 10980.0;
-const E_B: f64 = 2.03e11;
+/// Scene B's grain damping γ_n, γ_s (kg s⁻¹ m^-1/2) and Young's modulus (Pa), real steel.
+pub(super) const GAMMA_N_B: f64 = 3660.0;
+pub(super) const GAMMA_S_B: f64 = 10980.0;
+pub(super) const E_B: f64 = 2.03e11;
 
 /// Names of the DEM figures (besides the DEM curve in `frf`).
 pub const NAMES: [&str; 7] = [
