@@ -1,4 +1,4 @@
-//! Writes `figures/regime_frf*.png` (+ the CSV of the plotted data next to each): the FRF coloured by the dynamical regime of each frequency, with Kantz's maximal Lyapunov exponent overlaid.
+//! Writes `figures/regime_frf*.png` (+ the CSV of the plotted data next to each): the FRF coloured by the dynamical regime of each frequency and, in a second panel, the largest Lyapunov exponent of the model (tangent dynamics) and of the data (Kantz), each with its standard error.
 //!
 //! SPEC §7: "the FRF with regime bands and the Lyapunov exponent overlaid". Scene B (Sánchez 2012 §3.2). Runs the same pipeline as
 //! `pdamp reproduce --quick --only regime_frf` (sweeps cached under `figures/data/`, so a rerun is

@@ -1,4 +1,4 @@
-//! Writes `figures/regime_map*.png` (+ the CSV of the plotted data next to each): the regime of the particle's steady state over forcing frequency × gap (impact model, e = 0.8).
+//! Writes `figures/regime_map*.png` (+ the CSV of the plotted data next to each): the regime of the particle's steady state over forcing frequency × gap (impact model, e = 0.8), chaotic cells shaded by the model's Lyapunov exponent, periods ≥ 2 numbered.
 //!
 //! SPEC §7: "regimes over frequency and container height (SPEC §4)". Scene B (Sánchez 2012 §3.2). Runs the same pipeline as
 //! `pdamp reproduce --quick --only regime_map` (sweeps cached under `figures/data/`, so a rerun is

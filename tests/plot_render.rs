@@ -7,12 +7,13 @@ use pdamp::analysis::frf_fit::sdof_amplitude;
 use pdamp::error::PlotError;
 use pdamp::plot::bed_motion::BedMotionFigure;
 use pdamp::plot::bifurcation::BifurcationFigure;
+use pdamp::plot::common::{fmt_axis_tick, fmt_tick};
 use pdamp::plot::effective::EffectiveFigure;
 use pdamp::plot::energy::energy_figure;
 use pdamp::plot::frf::{FrfFigure, FrfReference};
 use pdamp::plot::poincare::PoincareFigure;
 use pdamp::plot::reconstruction::ReconstructionFigure;
-use pdamp::plot::regime_frf::RegimeFrfFigure;
+use pdamp::plot::regime_frf::{Exponents, RegimeFrfFigure};
 use pdamp::plot::regime_map::RegimeMapFigure;
 use pdamp::plot::resonance::{resonance_amplitudes, resonance_figure};
 use pdamp::plot::spectrum::SpectrumFigure;
@@ -216,41 +217,167 @@ fn bifurcation_diagram() {
     check_renders(&fig, "bifurcation", [102, 102, 102], 500);
 }
 
+fn regime_of(f: f64) -> String {
+    if f < 12.0 {
+        "periodic"
+    } else if f < 18.0 {
+        "quasi-periodic"
+    } else if f < 22.0 {
+        "chaotic"
+    } else {
+        "periodic"
+    }
+    .to_string()
+}
+
+/// Vermillion, the data exponent's colour in `regime_frf`.
+const VERMILLION: [u8; 3] = [213, 94, 0];
+
+fn count_color(img: &[u8], c: [u8; 3]) -> usize {
+    img.chunks(3)
+        .filter(|p| {
+            p.iter()
+                .zip(c)
+                .all(|(a, b)| (*a as i32 - b as i32).abs() <= 12)
+        })
+        .count()
+}
+
 #[test]
-fn regime_frf_with_lyapunov() {
+fn regime_frf_two_panels_with_error_bars() {
     let (f, z, _) = frf_data();
-    let regime: Vec<String> = f
+    let regime: Vec<String> = f.iter().map(|&f| regime_of(f)).collect();
+    let period: Vec<Option<u32>> = f
         .iter()
         .map(|&f| {
             if f < 12.0 {
-                "periodic"
-            } else if f < 18.0 {
-                "quasi-periodic"
-            } else if f < 22.0 {
-                "chaotic"
+                Some(if f > 9.0 { 2 } else { 1 })
             } else {
-                "periodic"
+                None
             }
-            .to_string()
         })
         .collect();
-    let mle: Vec<Option<f64>> = f
+    let model: Vec<Option<f64>> = f
         .iter()
-        .map(|&f| {
-            if !(18.0..22.0).contains(&f) {
-                Some(-0.5)
-            } else {
-                Some(3.0)
-            }
-        })
+        .map(|&f| Some(if (18.0..22.0).contains(&f) { 3.0 } else { -0.5 }))
         .collect();
+    let model_se = vec![Some(0.2); f.len()];
+    // the data exponent only where chaotic, with large error bars
+    let data: Vec<Option<f64>> = f
+        .iter()
+        .map(|&f| (18.0..22.0).contains(&f).then_some(2.5))
+        .collect();
+    let data_se = vec![Some(1.0); f.len()];
     let fig = RegimeFrfFigure {
         frequency_hz: &f,
         amplitude_m: &z,
         regime: &regime,
-        mle_per_s: Some(&mle),
+        period: Some(&period),
+        data: Some(Exponents {
+            per_s: &data,
+            stderr_per_s: Some(&data_se),
+        }),
+        model: Some(Exponents {
+            per_s: &model,
+            stderr_per_s: Some(&model_se),
+        }),
     };
+    // PNG of the requested size, amplitude in blue, data exponent in vermillion
     check_renders(&fig, "regime_frf", BLUE, 200);
+    check_renders(&fig, "regime_frf", VERMILLION, 60);
+    let img = render_rgb(&fig, &opts()).unwrap();
+    assert_eq!(img.len(), (W * H * 3) as usize);
+    // two panels: the amplitude (blue) in the upper half, the exponents (vermillion) in the
+    // lower half only
+    let half = (W * H / 2 * 3) as usize;
+    let (upper, lower) = img.split_at(half);
+    assert!(
+        count_color(upper, BLUE) > 200,
+        "amplitude in the upper panel"
+    );
+    // the legend panel (right, ≥ 200 px) is left out
+    let legend_x = W as usize * 7 / 10;
+    let in_plot = |part: &[u8]| -> usize {
+        part.chunks(3)
+            .enumerate()
+            .filter(|(i, _)| (i % W as usize) < legend_x)
+            .filter(|(_, p)| {
+                p.iter()
+                    .zip(VERMILLION)
+                    .all(|(a, b)| (*a as i32 - b as i32).abs() <= 12)
+            })
+            .count()
+    };
+    assert!(in_plot(lower) > 40, "data exponent in the lower panel");
+    assert_eq!(in_plot(upper), 0, "no exponent drawn over the FRF");
+    // error bars add pixels of the data colour
+    let bare = RegimeFrfFigure {
+        data: Some(Exponents {
+            per_s: &data,
+            stderr_per_s: None,
+        }),
+        ..fig.clone()
+    };
+    let with_bars = count_color(&img, VERMILLION);
+    let without = count_color(&render_rgb(&bare, &opts()).unwrap(), VERMILLION);
+    assert!(
+        with_bars > without + 50,
+        "error bars: {with_bars} vs {without} vermillion pixels"
+    );
+    // points without an exponent are omitted, not drawn as 0: no data estimate at all leaves
+    // no vermillion pixel (and no legend row)
+    let none = vec![None; f.len()];
+    let empty = RegimeFrfFigure {
+        data: Some(Exponents {
+            per_s: &none,
+            stderr_per_s: Some(&data_se),
+        }),
+        ..fig.clone()
+    };
+    assert_eq!(
+        count_color(&render_rgb(&empty, &opts()).unwrap(), VERMILLION),
+        0
+    );
+    // without any exponent the figure is the FRF alone (one panel)
+    let frf_only = RegimeFrfFigure {
+        data: None,
+        model: None,
+        period: None,
+        ..fig.clone()
+    };
+    check_renders(&frf_only, "regime_frf_only", BLUE, 200);
+    // a column of the wrong length is refused, naming it
+    let short = vec![Some(1.0); 3];
+    let bad = RegimeFrfFigure {
+        model: Some(Exponents {
+            per_s: &short,
+            stderr_per_s: None,
+        }),
+        ..fig
+    };
+    let err = render_rgb(&bad, &opts()).unwrap_err().to_string();
+    assert!(err.contains("model_mle_per_s"), "{err}");
+}
+
+#[test]
+fn axis_ticks_print_an_exact_zero() {
+    // the tick at zero of a −0.1 … 0.3 axis arrives as 3.5e-18 from floating point
+    assert_eq!(fmt_axis_tick(3.5e-18, -0.1, 0.3), "0");
+    assert_eq!(fmt_axis_tick(-1.4e-17, -0.2, 0.2), "0");
+    assert_eq!(fmt_axis_tick(-2e-7, -500.0, 400.0), "0");
+    assert_eq!(fmt_axis_tick(0.0, -1.0, 1.0), "0");
+    // a value above span × 1e-9 keeps its value
+    assert_eq!(fmt_axis_tick(0.1, -0.1, 0.3), "0.1");
+    assert_eq!(fmt_axis_tick(-0.05, -0.1, 0.3), "-0.05");
+    assert_eq!(fmt_axis_tick(1e-6, -1e-4, 1e-4), "1.0e-6");
+    // an axis not through zero (a log axis of powers) is never snapped
+    assert_eq!(fmt_axis_tick(1e-15, 1e-16, 1e-5), "1.0e-15");
+    assert_eq!(fmt_axis_tick(2.0e-18, 1e-18, 1e-3), "2.0e-18");
+    // reversed limits behave alike; plain values are unchanged
+    assert_eq!(fmt_axis_tick(3.5e-18, 0.3, -0.1), "0");
+    assert_eq!(fmt_tick(3.5e-18), "3.5e-18");
+    assert_eq!(fmt_tick(12.5), "12.5");
+    assert_eq!(fmt_tick(0.0), "0");
 }
 
 #[test]
@@ -334,7 +461,7 @@ fn resonance_amplitude_versus_parameter() {
 
 #[test]
 fn regime_map_cells_and_legend() {
-    let (mut x, mut y, mut reg, mut mle) = (vec![], vec![], vec![], vec![]);
+    let (mut x, mut y, mut reg, mut mle, mut per) = (vec![], vec![], vec![], vec![], vec![]);
     for i in 0..12 {
         for j in 0..8 {
             let f = 5.0 + 2.0 * i as f64;
@@ -353,18 +480,64 @@ fn regime_map_cells_and_legend() {
                 .to_string(),
             );
             mle.push(Some(if chaotic { 2.5 } else { -0.4 }));
+            per.push((!chaotic && f <= 20.0).then_some(if f < 8.0 { 3 } else { 1 }));
         }
     }
     let fig = RegimeMapFigure {
         x: &x,
         y: &y,
         regime: &reg,
+        period: Some(&per),
         mle_per_s: Some(&mle),
+        mle_label: "λ (1/s)".into(),
         x_label: "frequency f (Hz)".into(),
         y_label: "container height Lz (m)".into(),
     };
-    // chaotic cells: red (220, 50, 40) at 75 % on white → (229, 101, 94)
-    check_renders(&fig, "regime_map", [229, 101, 94], 2000);
+    // chaotic cells at the largest exponent: the darkest chaotic shade
+    check_renders(&fig, "regime_map", [150, 15, 20], 2000);
+    // periodic cells of period ≥ 2: darker green, numbered
+    check_renders(&fig, "regime_map", [25, 120, 55], 2000);
+    // a figure without exponents and periods still renders (regime colours only)
+    let plain = RegimeMapFigure {
+        period: None,
+        mle_per_s: None,
+        ..fig
+    };
+    // periodic green (60, 175, 90) at 80 % on white
+    check_renders(&plain, "regime_map_plain", [99, 191, 123], 2000);
+}
+
+#[test]
+fn regime_map_uneven_rows_are_equal() {
+    // gaps 0.003 … 0.333 m: on a proportional axis the 0.003 m row would be ~2 % of the
+    // height; one equal row per value gives it a third
+    let gaps = [0.003, 0.013, 0.333];
+    let (mut x, mut y, mut reg) = (vec![], vec![], vec![]);
+    for &g in &gaps {
+        for i in 0..10 {
+            x.push(2.0 + i as f64);
+            y.push(g);
+            reg.push(if g == 0.003 { "chaotic" } else { "periodic" }.to_string());
+        }
+    }
+    let fig = RegimeMapFigure {
+        x: &x,
+        y: &y,
+        regime: &reg,
+        period: None,
+        mle_per_s: None,
+        mle_label: String::new(),
+        x_label: "frequency f (Hz)".into(),
+        y_label: "gap (m)".into(),
+    };
+    let img = render_rgb(&fig, &opts()).unwrap();
+    // a chaotic cell without an exponent takes the middle shade
+    let mid = [199, 108, 105];
+    let n = count_color(&img, mid);
+    assert!(
+        n > (W * H / 10) as usize,
+        "{n} pixels of the 0.003 m row, want over a tenth of the image"
+    );
 }
 
 #[test]

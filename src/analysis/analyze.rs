@@ -30,7 +30,7 @@ use crate::analysis::spectrum::{
     check_finite, line_power_fraction, power_spectrum, spectral_lines, LineOptions, SpectrumOptions,
 };
 use crate::analysis::surrogate_test::{surrogate_test, SurrogateTestOptions, Tail};
-use crate::analysis::surrogates::SurrogateOptions;
+use crate::analysis::surrogates::{end_to_end_segment, SurrogateOptions};
 use crate::analysis::zero_one_test::{zero_one_test, ZeroOneOptions};
 use crate::error::AnalysisError;
 use serde::Serialize;
@@ -199,9 +199,11 @@ pub struct AnalysisReport {
 ///    estimator floor max(3(b−1)²/(2N), 0.05 I(0)) — else τ = 1 (maps, noise); without a
 ///    minimum: first τ with I(τ) ≤ I(0)/e, else 1.
 /// 4. Dimension: FNN (4.1.4, ratio 10, Theiler window τ), first m with fraction ≤ 0.05.
-/// 5. Kantz (4.1.7) with m, τ, radii range/1000..range/100 (5), Theiler window max(τ, 10),
-///    Δn up to clamp(25τ, 20, 500), the first 2000 references; slope = median of the linear
-///    regions (R² ≥ 0.99, ≥ 5 points).
+/// 5. Kantz (4.1.7) with m and τ: an ε-scan upward from the noise floor, the series
+///    decimated by a factor chosen from τ, the scaling region of every curve after the first
+///    delay and before saturation ([`kantz_scan`]); λ = median slope with an error bar.
+///    Without a forcing frequency, nonlinear determinism from IAAFT surrogates (prediction
+///    error, rank test, end-matched segment; see `surrogate_evidence`).
 /// 6. With a forcing frequency: section (s(t_k), s(t_k + τ)) with cubic interpolation; distinct
 ///    points at 0.1 % of the range; closed-curve score.
 /// 7. 0–1 test on the section's first coordinate (≥ 200 points), else on the series
@@ -735,8 +737,17 @@ fn choose_lag(x: &[f64], opts: &AnalyzeOptions, notes: &mut Vec<String>) -> usiz
 }
 
 /// Nonlinear determinism: the locally constant prediction error of the series against 19 IAAFT
-/// surrogates (one-sided rank test at p = 0.05), on the last 8192 samples; delay and horizon
-/// the lag τ, Theiler window 5τ.
+/// surrogates (one-sided rank test at p = 0.05), on the segment of at least 90 % of the last
+/// 8192 samples whose ends match best ([`end_to_end_segment`], TISEAN `endtoend`); delay and
+/// horizon the lag τ, Theiler window 5τ.
+///
+/// The surrogates are periodic: a jump or a slope mismatch between the segment's ends is a
+/// step in their continuation, whose broadband power makes every surrogate rougher and less
+/// predictable than the data. Without the end matching, a sine with σ = 0.2 noise had a
+/// prediction error of 0.316 against 0.351 ± 0.002 for its surrogates (p = 0.05: "nonlinear")
+/// and an AR(1) process (φ = 0.95, seed 5) also gave p = 0.05; with it, 0.316 against
+/// 0.315 ± 0.001 (p = 0.75) and p = 0.10, while noisy Lorenz x keeps p = 0.05 with its error
+/// at a third of the surrogates'.
 fn surrogate_evidence(
     x: &[f64],
     lag: usize,
@@ -746,6 +757,10 @@ fn surrogate_evidence(
     notes: &mut Vec<String>,
 ) {
     let tail = &x[x.len().saturating_sub(8192)..];
+    let tail = match end_to_end_segment(tail, tail.len() * 9 / 10) {
+        Ok(seg) => &tail[seg.start..seg.start + seg.len],
+        Err(_) => tail,
+    };
     let popts = PredictionErrorOptions {
         dim: dim.clamp(2, 6),
         delay: lag.max(1),

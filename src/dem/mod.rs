@@ -5,6 +5,7 @@
 //! drives the box, emitting samples to an observer. [`run_replica`] runs the two-replica
 //! test of the collective motion's stability (issue 9).
 
+pub mod bed_impacts;
 pub mod energy;
 pub mod replica;
 pub mod run;
@@ -13,6 +14,7 @@ pub mod snapshot;
 pub mod stability;
 pub mod world;
 
+pub use bed_impacts::BedImpacts;
 pub use energy::{EnergyLedger, EnergyState};
 pub use replica::{
     run_replica, ReplicaOptions, ReplicaReport, ReplicaRow, ReplicaTracker, ReplicaVerdict,

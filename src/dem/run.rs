@@ -10,6 +10,7 @@ use crate::packing::{advancing_front_packing, fcc_lattice, volume_fraction};
 use crate::scene::dem::{DemParams, PackingKind};
 use crate::units::G;
 
+use super::bed_impacts::BedImpacts;
 use super::energy::{balance, EnergyLedger};
 use super::stability::{check, choose_dt, DEFAULT_DT_FRACTION};
 use super::world::{BoxDrive, DemWorld};
@@ -241,9 +242,15 @@ pub struct DemSummary {
     /// Stored mechanical energy at the end (J).
     #[serde(skip)]
     pub energy_end_j: f64,
-    /// Stroboscopic points of the steady state (one per forcing period).
+    /// Stroboscopic points of the analysis window (one per forcing period).
     #[serde(skip)]
     pub strobe: Vec<StrobeRow>,
+    /// Collective impacts of the bed on the floor and the ceiling in the steady window
+    /// ([`BedImpacts`]).
+    #[serde(skip)]
+    pub bed_impacts: BedImpacts,
+    /// Forcing cycles of the steady window.
+    pub cycles_steady: f64,
 }
 
 /// Builds the initial bed of `params` (radii, lattice or advancing front) at rest, with the
@@ -417,6 +424,7 @@ pub fn run_dem(
     let mut steady_ledger: Option<(f64, EnergyLedger)> = None;
     let (mut zmin, mut zmax) = (f64::INFINITY, f64::NEG_INFINITY);
     let mut strobe = Vec::new();
+    let mut bed_impacts = BedImpacts::new(m_p, cfg.gravity_m_s2, drive.frequency_hz);
     let strobe_state = |w: &DemWorld| {
         let (z, v) = w.z_cm_state();
         [w.t, z, v, w.box_z, w.box_v]
@@ -451,6 +459,8 @@ pub fn run_dem(
             }
             zmin = zmin.min(world.box_z);
             zmax = zmax.max(world.box_z);
+            let (_, v_cm) = world.z_cm_state();
+            bed_impacts.observe(v_cm - world.box_v, world.grain_force_n);
         }
         if let Some((cycle, before)) = strobe_before {
             let t_s = cycle / drive.frequency_hz;
@@ -528,5 +538,7 @@ pub fn run_dem(
         energy_start_j: e0.total_j(),
         energy_end_j: st.total_j(),
         strobe,
+        bed_impacts,
+        cycles_steady: steady_ledger.map_or(0.0, |(t0, _)| (world.t - t0) * drive.frequency_hz),
     })
 }

@@ -142,6 +142,14 @@ pub fn simulate(
             "energy_friction_j_per_cycle",
             opt(s.energy_friction_j_per_cycle),
         ),
+        (
+            "bed_floor_impacts_per_cycle",
+            s.bed_impacts.floor as f64 / s.cycles_steady,
+        ),
+        (
+            "bed_ceiling_impacts_per_cycle",
+            s.bed_impacts.ceiling as f64 / s.cycles_steady,
+        ),
         ("steps", s.steps as f64),
         ("wall_time_s", s.wall_time_s),
         ("particle_steps_per_s", s.particle_steps_per_s),
@@ -180,8 +188,12 @@ pub fn simulate(
         energy_viscous_j_per_cycle: opt(s.energy_viscous_j_per_cycle),
         energy_impact_j_per_cycle: opt(s.energy_collision_j_per_cycle)
             + opt(s.energy_friction_j_per_cycle),
-        // grain–wall impacts are not counted by the DEM (continuous contacts): NaN → null
-        impacts_per_cycle: f64::NAN,
+        // collective bed–floor and bed–ceiling impacts (dem::bed_impacts)
+        impacts_per_cycle: if s.cycles_steady > 0.0 {
+            s.bed_impacts.total() as f64 / s.cycles_steady
+        } else {
+            f64::NAN
+        },
         energy_balance_relative_error: Some(s.energy_balance_relative_error),
         energy_totals: EnergyTotals {
             base_work_j: l.base_work_j,
@@ -190,7 +202,7 @@ pub fn simulate(
             initial_mechanical_j: s.energy_start_j,
             final_mechanical_j: s.energy_end_j,
         },
-        impacts_total: 0,
+        impacts_total: s.bed_impacts.total(),
         events_total: 0,
         extra,
         strobe: s

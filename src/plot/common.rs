@@ -165,8 +165,8 @@ pub fn series_color(i: usize) -> RGBColor {
 
 /// Colour of a dynamical regime as written in the `regime` column.
 ///
-/// periodic → green, quasi-periodic → blue, chaotic → red, stochastic → purple, anything else
-/// (undetermined, empty) → grey. Names starting with `periodic` (e.g. `periodic-2`) count as
+/// periodic → green, quasi-periodic → blue, chaotic → red, stochastic → purple, too-short →
+/// sand, anything else (undetermined, empty) → grey. Names starting with `periodic` (e.g. `periodic-2`) count as
 /// periodic.
 pub fn regime_color(regime: &str) -> RGBColor {
     let r = regime.trim().to_ascii_lowercase();
@@ -178,6 +178,8 @@ pub fn regime_color(regime: &str) -> RGBColor {
         RGBColor(220, 50, 40)
     } else if r.starts_with("stochastic") {
         RGBColor(150, 90, 180)
+    } else if r.starts_with("too") {
+        RGBColor(205, 170, 110)
     } else {
         RGBColor(160, 160, 160)
     }
@@ -188,10 +190,17 @@ pub fn regime_color(regime: &str) -> RGBColor {
 pub fn regime_legend(regimes: &[&str]) -> Vec<String> {
     let rank = |r: &str| {
         let r = r.to_ascii_lowercase();
-        ["periodic", "quasi", "chaotic", "stochastic", "undetermined"]
-            .iter()
-            .rposition(|o| r.starts_with(o))
-            .unwrap_or(5)
+        [
+            "periodic",
+            "quasi",
+            "chaotic",
+            "stochastic",
+            "undetermined",
+            "too",
+        ]
+        .iter()
+        .rposition(|o| r.starts_with(o))
+        .unwrap_or(6)
     };
     let mut seen: Vec<String> = Vec::new();
     for r in regimes {
@@ -349,7 +358,8 @@ where
         .map_err(draw_err)
 }
 
-/// Standard mesh (grid, axis descriptions, tick font) of a 2-D chart.
+/// Standard mesh (grid, axis descriptions, tick font) of a 2-D chart; tick labels by
+/// [`fmt_axis_tick`] (an exact `0` where the axis crosses zero).
 pub fn mesh<'a, DB, X, Y>(
     chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
     x_desc: &str,
@@ -360,6 +370,14 @@ where
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
     Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
+    let (x_lo, x_hi) = {
+        let r = chart.x_range();
+        (r.start, r.end)
+    };
+    let (y_lo, y_hi) = {
+        let r = chart.y_range();
+        (r.start, r.end)
+    };
     chart
         .configure_mesh()
         .x_desc(x_desc)
@@ -368,13 +386,32 @@ where
         .label_style(tick_font())
         .light_line_style(BLACK.mix(0.05))
         .bold_line_style(BLACK.mix(0.15))
-        .x_label_formatter(&|v| fmt_tick(*v))
-        .y_label_formatter(&|v| fmt_tick(*v))
+        .x_label_formatter(&|v| fmt_axis_tick(*v, x_lo, x_hi))
+        .y_label_formatter(&|v| fmt_axis_tick(*v, y_lo, y_hi))
         .draw()
         .map_err(draw_err)
 }
 
-/// Compact tick labels: plain decimals for moderate magnitudes, scientific otherwise.
+/// Relative size (of the axis span) below which a tick value on an axis through zero is zero.
+pub const ZERO_TICK_FRACTION: f64 = 1e-9;
+
+/// A tick label of `v` on an axis from `lo` to `hi`: as [`fmt_tick`], except that on an axis
+/// that contains zero a value within [`ZERO_TICK_FRACTION`] of the span from zero prints `0`
+/// (tick positions are computed in floating point: the tick at zero of a −0.1…0.3 axis
+/// arrives as 3.5e-18). Axes that do not contain zero (log axes among them) are never
+/// snapped, so that 1e-15 on a spectrum's power axis keeps its value.
+pub fn fmt_axis_tick(v: f64, lo: f64, hi: f64) -> String {
+    let (lo, hi) = if lo <= hi { (lo, hi) } else { (hi, lo) };
+    let tol = (hi - lo) * ZERO_TICK_FRACTION;
+    if tol.is_finite() && lo <= 0.0 && hi >= 0.0 && v.abs() <= tol {
+        "0".into()
+    } else {
+        fmt_tick(v)
+    }
+}
+
+/// Compact number labels: plain decimals for moderate magnitudes, scientific otherwise.
+/// For tick labels use [`fmt_axis_tick`] (or [`mesh`]), which prints an exact `0`.
 pub fn fmt_tick(v: f64) -> String {
     let a = v.abs();
     if a == 0.0 {
@@ -439,6 +476,12 @@ pub enum LegendMark {
     Dashed(u32),
     /// A filled circle of the given radius (px).
     Dot(u32),
+    /// A filled rectangle (a colour band or cell); the colour is drawn as given.
+    Patch,
+    /// A filled circle of the given radius (px) on a vertical error bar.
+    DotErr(u32),
+    /// A filled triangle of the given size (px) on a vertical error bar.
+    TriangleErr(u32),
     /// No sample: the text is a note (indented like the other entries, drawn grey).
     Note,
 }
@@ -513,6 +556,15 @@ pub fn side_legend<DB: DrawingBackend>(
     panel: &DrawingArea<DB, Shift>,
     entries: &[LegendEntry],
 ) -> Result<(), PlotError> {
+    side_legend_rows(panel, entries).map(|_| ())
+}
+
+/// As [`side_legend`], returning the pixel row below the last entry drawn (for more content
+/// under the legend, e.g. a colour bar).
+pub fn side_legend_rows<DB: DrawingBackend>(
+    panel: &DrawingArea<DB, Shift>,
+    entries: &[LegendEntry],
+) -> Result<i32, PlotError> {
     let (_, ph) = panel.dim_in_pixel();
     let row = 21i32;
     let (x0, sample) = (6i32, 26i32);
@@ -543,6 +595,33 @@ pub fn side_legend<DB: DrawingBackend>(
             LegendMark::Dot(r) => panel
                 .draw(&Circle::new((x0 + sample / 2, y), r as i32, c.filled()))
                 .map_err(draw_err)?,
+            LegendMark::Patch => panel
+                .draw(&Rectangle::new(
+                    [(x0, y - 7), (x0 + sample, y + 7)],
+                    c.filled(),
+                ))
+                .map_err(draw_err)?,
+            LegendMark::DotErr(r) | LegendMark::TriangleErr(r) => {
+                let xc = x0 + sample / 2;
+                for seg in [
+                    vec![(xc, y - 8), (xc, y + 8)],
+                    vec![(xc - 3, y - 8), (xc + 3, y - 8)],
+                    vec![(xc - 3, y + 8), (xc + 3, y + 8)],
+                ] {
+                    panel
+                        .draw(&PathElement::new(seg, c.stroke_width(1)))
+                        .map_err(draw_err)?;
+                }
+                if matches!(e.mark, LegendMark::DotErr(_)) {
+                    panel
+                        .draw(&Circle::new((xc, y), r as i32, c.filled()))
+                        .map_err(draw_err)?;
+                } else {
+                    panel
+                        .draw(&TriangleMarker::new((xc, y), r as i32, c.filled()))
+                        .map_err(draw_err)?;
+                }
+            }
             LegendMark::Note => {}
         }
         let (tx, font) = match e.mark {
@@ -562,7 +641,7 @@ pub fn side_legend<DB: DrawingBackend>(
             .map_err(draw_err)?;
         y += row;
     }
-    Ok(())
+    Ok(y - row / 2)
 }
 
 /// `c` blended towards white: `t = 1` keeps `c`, `t = 0` gives white.

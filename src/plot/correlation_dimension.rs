@@ -82,7 +82,7 @@ impl Figure for D2Figure<'_> {
             .light_line_style(BLACK.mix(0.05))
             .bold_line_style(BLACK.mix(0.15))
             .x_label_formatter(&|v| common::fmt_tick(*v))
-            .y_label_formatter(&|v| common::fmt_tick(*v))
+            .y_label_formatter(&|v| common::fmt_axis_tick(*v, 0.0, y_hi))
             .draw()
             .map_err(draw_err)?;
         let mut legend: Vec<(String, RGBColor, u32)> = Vec::new();

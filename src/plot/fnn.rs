@@ -252,7 +252,7 @@ impl Figure for FnnFigure<'_> {
                 |v: f64| v,
                 y_lo,
                 y_hi,
-                |v: &f64| common::fmt_tick(*v),
+                |v: &f64| common::fmt_axis_tick(*v, y_lo, y_hi),
                 false
             );
         }

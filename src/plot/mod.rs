@@ -9,6 +9,7 @@ pub mod correlation_dimension;
 pub mod effective;
 pub mod energy;
 pub mod fnn;
+pub mod frequency_panel;
 pub mod frf;
 pub mod kantz;
 pub mod lines;

@@ -96,7 +96,7 @@ impl Figure for SpectrumFigure<'_> {
             .label_style(common::tick_font())
             .light_line_style(BLACK.mix(0.05))
             .bold_line_style(BLACK.mix(0.15))
-            .x_label_formatter(&|v| common::fmt_tick(*v))
+            .x_label_formatter(&|v| common::fmt_axis_tick(*v, f_lo, f_hi))
             .y_label_formatter(&|v| format!("{v:.0e}"))
             .draw()
             .map_err(draw_err)?;

@@ -2,6 +2,7 @@
 //!
 //! [`reproduce::reproduce`] regenerates the figure set of SPEC §7 (`pdamp reproduce`).
 
+pub mod chapter4;
 pub mod check;
 pub mod dem_figures;
 pub mod pipeline;

@@ -358,13 +358,28 @@ pub fn record_run(
     dt_s: f64,
     from_s: f64,
 ) -> Result<Recorded, StudyError> {
+    record_run_summary(step, scene, dt_s, from_s).map(|(rec, _)| rec)
+}
+
+/// Like [`record_run`], also returning the run's summary (with its exact stroboscopic points
+/// over the analysis window).
+///
+/// # Errors
+/// [`StudyError::Step`] naming `step` if the simulation fails.
+pub fn record_run_summary(
+    step: &str,
+    scene: &Scene,
+    dt_s: f64,
+    from_s: f64,
+) -> Result<(Recorded, crate::model::RunSummary), StudyError> {
     let mut rec = Recorded::default();
     let opts = RunOptions {
         sample_interval_s: Some(dt_s),
         sample_from_s: from_s,
     };
-    crate::sweep::run_scene(scene, &mut rec, &opts).map_err(|e| StudyError::step(step, e))?;
-    Ok(rec)
+    let summary =
+        crate::sweep::run_scene(scene, &mut rec, &opts).map_err(|e| StudyError::step(step, e))?;
+    Ok((rec, summary))
 }
 
 /// Rows of a table grouped by the value of `key` (ascending), each group's row indices in

@@ -10,7 +10,6 @@ use std::path::PathBuf;
 
 use crate::analysis::frf_fit::{fit_frf, FrfFitOptions};
 use crate::analysis::mutual_information::{mutual_information, MutualInformationOptions};
-use crate::analysis::poincare::{stroboscopic_section, SecondCoordinate, StrobeOptions};
 use crate::analysis::spectrum::{power_spectrum, SpectrumOptions};
 use crate::error::StudyError;
 use crate::plot::bed_motion::BedMotionFigure;
@@ -21,7 +20,7 @@ use crate::plot::frf::{FrfFigure, FrfReference};
 use crate::plot::lines::LinesFigure;
 use crate::plot::poincare::PoincareFigure;
 use crate::plot::reconstruction::ReconstructionFigure;
-use crate::plot::regime_frf::RegimeFrfFigure;
+use crate::plot::regime_frf::{Exponents, RegimeFrfFigure};
 use crate::plot::regime_map::RegimeMapFigure;
 use crate::plot::resonance::{resonance_amplitudes, resonance_figure};
 use crate::plot::spectrum::SpectrumFigure;
@@ -31,8 +30,8 @@ use crate::plot::{FigureOptions, Series};
 use super::check::EffectiveRow;
 use super::dem_figures;
 use super::pipeline::{
-    col, group_by, record_run, scene_with, simulate_command, Ctx, FigureRecord, SweepResult,
-    IMPACT_B,
+    col, group_by, record_run, record_run_summary, scene_with, simulate_command, Ctx, FigureRecord,
+    SweepResult, IMPACT_B,
 };
 use super::settings::{Mode, Settings, SCENE_B_GAP_M};
 
@@ -99,6 +98,17 @@ impl ReproduceOptions {
             figure: FigureOptions::default(),
             skip_dem: false,
             only: Vec::new(),
+        }
+    }
+
+    /// The README written into `out`: `README.md` for the whole set, `README.<only>.md`
+    /// (names joined by `+`) for a selection, so that a partial run never overwrites the
+    /// whole set's README.
+    pub fn readme_name(&self) -> String {
+        if self.only.is_empty() {
+            "README.md".into()
+        } else {
+            format!("README.{}.md", self.only.join("+"))
         }
     }
 
@@ -238,6 +248,31 @@ pub fn reproduce(
             }
         },
     }
+    // ---- the source's chapter 4 (DEM regimes along f) ----
+    let ch4_wanted = super::chapter4::NAMES.iter().any(|n| want(n));
+    match (
+        s.dem
+            .as_ref()
+            .and_then(|d| d.chapter4.as_ref().map(|c| (d, c))),
+        ch4_wanted,
+    ) {
+        (_, false) => {}
+        (None, true) => skipped.push(format!(
+            "chapter-4 figures: not part of {} mode (use --quick or --full)",
+            s.mode.as_str()
+        )),
+        (Some(_), true) if opts.skip_dem => skipped.push("chapter-4 figures: --no-dem".into()),
+        (Some((d, c)), true) => match dem_figures::available() {
+            Err(why) => skipped.push(format!("chapter-4 figures: {why}")),
+            Ok(()) => {
+                let out = super::chapter4::all(&ctx, s, d, c, &want)?;
+                figures.extend(out.figures);
+                // the chapter-4 runs (a fixed number of periods per point) are the converged
+                // DEM frequency response; the short drives of the DEM figure set are not
+                dem_frf = Some(out.sweep);
+            }
+        },
+    }
     if let (Some(e0), Some(e8)) = (&frf_e0, &frf_e8) {
         figures.insert(0, frf_figure(&ctx, s, e0, e8, dem_frf.as_ref())?);
     }
@@ -251,9 +286,7 @@ pub fn reproduce(
         skipped,
         elapsed_s: started.elapsed().as_secs_f64(),
     };
-    if opts.only.is_empty() {
-        ctx.write_text("README.md", &super::readme::readme(opts, &report))?;
-    }
+    ctx.write_text(&opts.readme_name(), &super::readme::readme(opts, &report))?;
     Ok(report)
 }
 
@@ -705,26 +738,19 @@ fn per_frequency(ctx: &Ctx, s: &Settings, f: f64) -> Result<Vec<FigureRecord>, S
     let per_period = 64.0;
     let dt = 1.0 / (f * per_period);
     let from = 0.5 * periods / f;
-    let r = record_run(&step, &scene, dt, from)?;
+    let (r, summary) = record_run_summary(&step, &scene, dt, from)?;
     let z = &r.grain_z_m;
     let sim = simulate_command(IMPACT_B, &set, &ctx.path(&format!("data/series_{tag}")));
     let reductions = s.reductions(&["series"]);
     let mut out = Vec::new();
 
-    // Poincaré: (z, ż) once per period, ż by central differences
-    let v: Vec<f64> = (0..z.len())
-        .map(|i| {
-            let (a, b) = (i.saturating_sub(1), (i + 1).min(z.len() - 1));
-            (z[b] - z[a]) / ((b - a).max(1) as f64 * dt)
-        })
-        .collect();
-    let sec = stroboscopic_section(
-        z,
-        SecondCoordinate::Column(&v),
-        &StrobeOptions::new(per_period),
-    )
-    .map_err(|e| StudyError::step(&step, e))?;
-    let (px, py): (Vec<f64>, Vec<f64>) = sec.points.iter().map(|p| (p[0], p[1])).unzip();
+    // Poincaré: the exact state (z, ż) at t = kT over the analysis window (closed form of the
+    // event-driven model, never a resampled series)
+    let (px, py): (Vec<f64>, Vec<f64>) = summary
+        .strobe
+        .iter()
+        .map(|p| (p.grain_z_m, p.grain_v_m_s))
+        .unzip();
     let name = format!("poincare_{tag}");
     ctx.write_csv(
         &name,
@@ -745,14 +771,17 @@ fn per_frequency(ctx: &Ctx, s: &Settings, f: f64) -> Result<Vec<FigureRecord>, S
     out.push(FigureRecord {
         name: name.clone(),
         caption: format!(
-            "Impact model (e = 0.8, gap 0.0835 m) at {f} Hz: stroboscopic Poincaré section \
-             (z, ż) once per forcing period over the last {} periods.",
-            periods / 2.0
+            "Impact model (e = 0.8, gap 0.0835 m) at {f} Hz: exact stroboscopic Poincaré \
+             section (z, ż) at t = kT over the last {} periods ({} points).",
+            periods / 2.0,
+            px.len()
         ),
         spec_item: "per frequency: stroboscopic Poincaré section".into(),
         commands: vec![
             sim.clone(),
-            format!("pdamp poincare DIR/series.csv --column grain_z_m --frequency {f} > section.csv && pdamp plot poincare section.csv -o {name}.png"),
+            format!(
+                "pdamp plot poincare DIR/strobe.csv --x grain_z_m --y grain_v_m_s -o {name}.png"
+            ),
         ],
         reductions: reductions.clone(),
         size_px: size,
@@ -851,56 +880,108 @@ fn per_frequency(ctx: &Ctx, s: &Settings, f: f64) -> Result<Vec<FigureRecord>, S
     Ok(out)
 }
 
-/// Frequency, a second column, regime and Lyapunov exponent of a sweep, also written to
-/// `NAME.csv` (`frequency_hz,<y_header>,regime,mle_per_s`) next to the figure.
-#[allow(clippy::type_complexity)]
+/// The columns of an analysed sweep that the regime figures draw.
+struct RegimeColumns {
+    f: Vec<f64>,
+    y: Vec<f64>,
+    regime: Vec<String>,
+    period: Vec<Option<u32>>,
+    mle: Vec<Option<f64>>,
+    mle_se: Vec<Option<f64>>,
+    model: Vec<Option<f64>>,
+    model_se: Vec<Option<f64>>,
+}
+
+/// Frequency, a second column, regime, period and the data and model exponents (with standard
+/// errors) of a sweep, also written to `NAME.csv` (`frequency_hz,<y_header>,regime,period,
+/// mle_per_s,mle_stderr_per_s,model_mle_per_s,model_mle_stderr_per_s`; empty cells: not
+/// estimated) next to the figure.
 fn regime_columns(
     ctx: &Ctx,
     name: &str,
     sw: &SweepResult,
     y_column: &str,
     y_header: &str,
-) -> Result<(Vec<f64>, Vec<f64>, Vec<String>, Vec<Option<f64>>), StudyError> {
-    let f = col(name, &sw.table, "frequency_hz")?;
-    let y = col(name, &sw.table, y_column)?;
-    let regime = sw
-        .table
+) -> Result<RegimeColumns, StudyError> {
+    let t = &sw.table;
+    let f = col(name, t, "frequency_hz")?;
+    let y = col(name, t, y_column)?;
+    let regime = t
         .str_column("regime")
         .map_err(|e| StudyError::step(name, e))?;
-    let mle = sw
-        .table
-        .opt_f64_column("mle_per_s")
-        .map_err(|e| StudyError::step(name, e))?;
-    let mut text = format!("frequency_hz,{y_header},regime,mle_per_s\n");
-    for i in 0..f.len() {
+    let opt = |c: &str| -> Result<Vec<Option<f64>>, StudyError> {
+        if t.has(c) {
+            t.opt_f64_column(c).map_err(|e| StudyError::step(name, e))
+        } else {
+            Ok(vec![None; f.len()])
+        }
+    };
+    let period = opt("period")?
+        .into_iter()
+        .map(|p| {
+            p.filter(|p| *p >= 1.0 && p.fract() == 0.0)
+                .map(|p| p as u32)
+        })
+        .collect::<Vec<_>>();
+    let c = RegimeColumns {
+        mle: opt("mle_per_s")?,
+        mle_se: opt("mle_stderr_per_s")?,
+        model: opt("model_mle_per_s")?,
+        model_se: opt("model_mle_stderr_per_s")?,
+        f,
+        y,
+        regime,
+        period,
+    };
+    let cell = |v: Option<f64>| v.map(|m| m.to_string()).unwrap_or_default();
+    let mut text = format!(
+        "frequency_hz,{y_header},regime,period,mle_per_s,mle_stderr_per_s,model_mle_per_s,\
+         model_mle_stderr_per_s\n"
+    );
+    for i in 0..c.f.len() {
         text += &format!(
-            "{},{},{},{}\n",
-            f[i],
-            y[i],
-            regime[i],
-            mle[i].map(|m| m.to_string()).unwrap_or_default()
+            "{},{},{},{},{},{},{},{}\n",
+            c.f[i],
+            c.y[i],
+            c.regime[i],
+            c.period[i].map(|p| p.to_string()).unwrap_or_default(),
+            cell(c.mle[i]),
+            cell(c.mle_se[i]),
+            cell(c.model[i]),
+            cell(c.model_se[i]),
         );
     }
     ctx.write_text(&format!("{name}.csv"), &text)?;
-    Ok((f, y, regime, mle))
+    Ok(c)
 }
 
 fn regime_frf(ctx: &Ctx, s: &Settings, sw: &SweepResult) -> Result<FigureRecord, StudyError> {
     let name = "regime_frf";
-    let (f, z, regime, mle) = regime_columns(ctx, name, sw, "amplitude_m", "amplitude_m")?;
+    let c = regime_columns(ctx, name, sw, "amplitude_m", "amplitude_m")?;
     let size = ctx.render(
         name,
         &RegimeFrfFigure {
-            frequency_hz: &f,
-            amplitude_m: &z,
-            regime: &regime,
-            mle_per_s: Some(&mle),
+            frequency_hz: &c.f,
+            amplitude_m: &c.y,
+            regime: &c.regime,
+            period: Some(&c.period),
+            data: Some(Exponents {
+                per_s: &c.mle,
+                stderr_per_s: Some(&c.mle_se),
+            }),
+            model: Some(Exponents {
+                per_s: &c.model,
+                stderr_per_s: Some(&c.model_se),
+            }),
         },
     )?;
     Ok(FigureRecord {
         name: name.into(),
         caption: "Impact model (e = 0.8, gap 0.0835 m): FRF coloured by the regime of the \
-                  particle's steady state, with Kantz's maximal Lyapunov exponent (1/s)."
+                  particle's steady state (upper panel); below, the largest Lyapunov exponent \
+                  (1/s) of the model's stroboscopic map from tangent dynamics and the one \
+                  estimated from the data (Kantz), each ± 1 standard error; frequencies \
+                  without an estimate have no marker."
             .into(),
         spec_item: "the FRF with regime bands and the Lyapunov exponent overlaid".into(),
         commands: vec![
@@ -961,14 +1042,18 @@ fn regime_map(ctx: &Ctx, s: &Settings) -> Result<FigureRecord, StudyError> {
         &[("excitation.frequency", s.map_freq.vary())],
         true,
     )?;
-    let (f, g, regime, mle) = regime_columns(ctx, name, &sw, "damper.gap", "gap_m")?;
+    let c = regime_columns(ctx, name, &sw, "damper.gap", "gap_m")?;
+    // chaotic cells are shaded by the model's exponent (the data's where the model has none)
+    let shade: Vec<Option<f64>> = c.model.iter().zip(&c.mle).map(|(m, d)| m.or(*d)).collect();
     let size = ctx.render(
         name,
         &RegimeMapFigure {
-            x: &f,
-            y: &g,
-            regime: &regime,
-            mle_per_s: Some(&mle),
+            x: &c.f,
+            y: &c.y,
+            regime: &c.regime,
+            period: Some(&c.period),
+            mle_per_s: Some(&shade),
+            mle_label: "model λ (1/s)".into(),
             x_label: "frequency f (Hz)".into(),
             y_label: "gap (m)".into(),
         },
@@ -976,7 +1061,9 @@ fn regime_map(ctx: &Ctx, s: &Settings) -> Result<FigureRecord, StudyError> {
     Ok(FigureRecord {
         name: name.into(),
         caption: "Impact model (e = 0.8): regime of the particle's steady state over frequency × \
-                  gap."
+                  gap (one row per gap); chaotic cells shaded by the model's largest Lyapunov \
+                  exponent, periodic cells of period ≥ 2 darker and numbered with the period; \
+                  the values are in regime_map.csv."
             .into(),
         spec_item: "regimes over frequency and container height (SPEC §4)".into(),
         commands: vec![

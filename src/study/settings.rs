@@ -94,7 +94,29 @@ pub struct DemSettings {
     pub gamma_n: Vec<f64>,
     /// Seconds of drive of the bed-motion run (at 15 Hz).
     pub bed_duration_s: f64,
+    /// The source's chapter-4 study (regimes along f at Lz = 0.1225 m); `None` skips it.
+    pub chapter4: Option<Chapter4Settings>,
 }
+
+/// Settings of the chapter-4 study (`study::chapter4`): scene B's DEM bed at Lz = 0.1225 m
+/// (`data/scenes/thesis_b_ch4.toml`) analysed for its regime at every frequency.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Chapter4Settings {
+    /// Forcing frequencies of the regime sweep (Hz); the panel frequencies among them.
+    pub frequencies_hz: Vec<f64>,
+    /// Forcing periods per run (the scene file's `run.periods`) when `duration_s` is `None`.
+    pub periods: f64,
+    /// Seconds per run instead of a number of periods (the source's 196.83 s).
+    pub duration_s: Option<f64>,
+    /// Frequencies of the per-frequency panels and reconstructions (Hz; Figs. 4.2–4.7).
+    pub panel_freqs_hz: Vec<f64>,
+    /// Frequencies (Hz, a subset of `frequencies_hz`) repeated with runs twice as long to
+    /// compare verdicts and amplitudes; empty skips the check.
+    pub doubling_freqs_hz: Vec<f64>,
+}
+
+/// The source's per-frequency panels of chapter 4 (Hz).
+pub const CH4_PANEL_HZ: [f64; 9] = [5.5, 7.5, 8.0, 10.0, 10.5, 11.0, 13.0, 14.5, 21.0];
 
 /// Everything a reproduction run does, for one [`Mode`].
 #[derive(Debug, Clone, PartialEq)]
@@ -174,6 +196,13 @@ impl Settings {
                     counts: vec![250, 500, 1000],
                     gamma_n: vec![0.0, 100.0, 500.0, 1000.0, 3660.0, 10000.0],
                     bed_duration_s: 13.12,
+                    chapter4: Some(Chapter4Settings {
+                        frequencies_hz: (1..=60).map(|i| i as f64 * 0.5).collect(),
+                        periods: 100.0,
+                        duration_s: Some(196.83),
+                        panel_freqs_hz: CH4_PANEL_HZ.to_vec(),
+                        doubling_freqs_hz: Vec::new(),
+                    }),
                 }),
             },
             Mode::Quick => Settings {
@@ -202,6 +231,18 @@ impl Settings {
                     counts: vec![125, 250],
                     gamma_n: vec![0.0, 500.0, 3660.0, 10000.0],
                     bed_duration_s: 1.0,
+                    chapter4: Some(Chapter4Settings {
+                        // 5–26 Hz step 1 and the panel frequencies between
+                        frequencies_hz: vec![
+                            5.0, 5.5, 6.0, 7.0, 7.5, 8.0, 9.0, 10.0, 10.5, 11.0, 12.0, 13.0, 14.0,
+                            14.5, 15.0, 16.0, 17.0, 18.0, 19.0, 20.0, 21.0, 22.0, 23.0, 24.0, 25.0,
+                            26.0,
+                        ],
+                        periods: 100.0,
+                        duration_s: None,
+                        panel_freqs_hz: CH4_PANEL_HZ.to_vec(),
+                        doubling_freqs_hz: CH4_PANEL_HZ.to_vec(),
+                    }),
                 }),
             },
             Mode::Smoke => Settings {
@@ -334,6 +375,20 @@ impl Settings {
                             format!("{:?}", fd.counts),
                         ),
                         "dem_gamma" => diff("γ_n", list(&d.gamma_n), list(&fd.gamma_n)),
+                        "dem_ch4" => {
+                            if let (Some(c), Some(fc)) = (&d.chapter4, &fd.chapter4) {
+                                let len = |c: &Chapter4Settings| match c.duration_s {
+                                    Some(s) => format!("{s} s"),
+                                    None => format!("{} forcing periods", c.periods),
+                                };
+                                diff("chapter-4 run length", len(c), len(fc));
+                                diff(
+                                    "chapter-4 frequencies",
+                                    list(&c.frequencies_hz),
+                                    list(&fc.frequencies_hz),
+                                );
+                            }
+                        }
                         "dem_bed" => diff(
                             "bed-motion drive",
                             format!("{} s", d.bed_duration_s),

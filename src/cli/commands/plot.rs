@@ -26,7 +26,7 @@ use crate::plot::mutual::MutualFigure;
 use crate::plot::poincare::PoincareFigure;
 use crate::plot::reconstruction::ReconstructionFigure;
 use crate::plot::recurrence::RecurrenceFigure;
-use crate::plot::regime_frf::RegimeFrfFigure;
+use crate::plot::regime_frf::{Exponents, RegimeFrfFigure};
 use crate::plot::regime_map::RegimeMapFigure;
 use crate::plot::resonance::{resonance_amplitudes, resonance_figure};
 use crate::plot::spectrum::SpectrumFigure;
@@ -54,7 +54,9 @@ pub enum Kind {
     Reconstruction,
     /// strobe.csv: strobed `grain_z_m` versus --x (default `frequency_hz`).
     Bifurcation,
-    /// sweep.csv: Z(f) with colour bands per `regime` and `mle_per_s` on a secondary axis.
+    /// sweep.csv: Z(f) with colour bands per `regime` (periods ≥ 2 written in their band);
+    /// below it λ(f) from `model_mle_per_s` and `mle_per_s`, each with its `*_stderr_per_s`
+    /// error bar (points without an exponent omitted).
     RegimeFrf,
     /// Output of `pdamp fit-frf` (CSV, grouped): M_ef and C_ef/C versus the group column (--x,
     /// default the first column) with error bars; --mass and --damping for the references.
@@ -64,8 +66,9 @@ pub enum Kind {
     /// One sweep.csv per N (labels via --label): Z_res = max `amplitude_m` per value of --x
     /// (the damping parameter, e.g. `damper.gamma_n`).
     Resonance,
-    /// sweep.csv with two varied keys --x and --y: cells coloured by `regime`, annotated with
-    /// `mle_per_s`.
+    /// sweep.csv with two varied keys --x and --y: cells coloured by `regime`, chaotic cells
+    /// shaded by `model_mle_per_s` (else `mle_per_s`), periodic cells of `period` ≥ 2 darker and
+    /// numbered where the number fits; unevenly spaced keys get one equal row per value.
     RegimeMap,
     /// Recurrence plot of a series (CSV column --column or 1-based column of a plain file):
     /// embedding --dim (default 1) and --lag (default 1), threshold --eps (data units) or
@@ -416,16 +419,23 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             let f = first.f64_column("frequency_hz")?;
             let z = first.f64_column("amplitude_m")?;
             let r = first.str_column("regime")?;
-            let m = if first.has("mle_per_s") {
-                Some(first.opt_f64_column("mle_per_s")?)
-            } else {
-                None
+            let col = |name: &str| -> anyhow::Result<Option<Vec<Option<f64>>>> {
+                Ok(if first.has(name) {
+                    Some(first.opt_f64_column(name)?)
+                } else {
+                    None
+                })
             };
+            let period = period_column(&col("period")?);
+            let (m, ms) = (col("mle_per_s")?, col("mle_stderr_per_s")?);
+            let (mm, mms) = (col("model_mle_per_s")?, col("model_mle_stderr_per_s")?);
             let fig = RegimeFrfFigure {
                 frequency_hz: &f,
                 amplitude_m: &z,
                 regime: &r,
-                mle_per_s: m.as_deref(),
+                period: period.as_deref(),
+                data: exponents(&m, &ms),
+                model: exponents(&mm, &mms),
             };
             draw(&fig, out, &opts)
         }
@@ -531,16 +541,32 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             let yn = o.y.clone().context("regime-map needs --y COLUMN")?;
             let (x, y) = (first.f64_column(&xn)?, first.f64_column(&yn)?);
             let r = first.str_column("regime")?;
-            let m = if first.has("mle_per_s") {
-                Some(first.opt_f64_column("mle_per_s")?)
-            } else {
-                None
+            let col = |name: &str| -> anyhow::Result<Option<Vec<Option<f64>>>> {
+                Ok(if first.has(name) {
+                    Some(first.opt_f64_column(name)?)
+                } else {
+                    None
+                })
+            };
+            let period = period_column(&col("period")?);
+            // chaotic cells shaded by the model's exponent, the data's where there is none
+            let (model, data) = (col("model_mle_per_s")?, col("mle_per_s")?);
+            let (shade, label) = match (&model, &data) {
+                (Some(m), Some(d)) if m.iter().any(Option::is_some) => (
+                    Some(m.iter().zip(d).map(|(m, d)| m.or(*d)).collect::<Vec<_>>()),
+                    "model λ (1/s)",
+                ),
+                (Some(m), None) => (Some(m.clone()), "model λ (1/s)"),
+                (_, Some(d)) => (Some(d.clone()), "data λ (1/s)"),
+                (_, None) => (None, "λ (1/s)"),
             };
             let fig = RegimeMapFigure {
                 x: &x,
                 y: &y,
                 regime: &r,
-                mle_per_s: m.as_deref(),
+                period: period.as_deref(),
+                mle_per_s: shade.as_deref(),
+                mle_label: label.into(),
                 x_label: axis_label(&xn),
                 y_label: axis_label(&yn),
             };
@@ -548,6 +574,29 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         Kind::Kantz | Kind::Mutual | Kind::Fnn => estimator(&args, &opts),
     }
+}
+
+/// An exponent column and its standard errors, if the column is there.
+fn exponents<'a>(
+    v: &'a Option<Vec<Option<f64>>>,
+    s: &'a Option<Vec<Option<f64>>>,
+) -> Option<Exponents<'a>> {
+    v.as_deref().map(|per_s| Exponents {
+        per_s,
+        stderr_per_s: s.as_deref(),
+    })
+}
+
+/// The `period` column as whole periods ≥ 1 (other cells: none).
+fn period_column(p: &Option<Vec<Option<f64>>>) -> Option<Vec<Option<u32>>> {
+    p.as_ref().map(|p| {
+        p.iter()
+            .map(|v| {
+                v.filter(|v| *v >= 1.0 && v.fract() == 0.0)
+                    .map(|v| v as u32)
+            })
+            .collect()
+    })
 }
 
 /// The estimator figures (kantz, mutual, fnn): read one series as the analysis verbs do,

@@ -26,8 +26,9 @@ pub struct Args {
     #[arg(long, default_value = "figures")]
     pub out: PathBuf,
     /// Make only these figures (repeatable; e.g. `--only frf --only poincare`; a name also
-    /// selects its variants: `poincare` → `poincare_f10`, …). OUT/README.md is written only
-    /// for a complete run.
+    /// selects its variants: `poincare` → `poincare_f10`, …). A selection writes its own
+    /// OUT/README.<names>.md and leaves the complete set's OUT/README.md alone. `ch4` selects
+    /// the chapter-4 DEM study (`ch4_regime_frf`, `ch4_panel_f14.5`, …).
     #[arg(long, value_name = "FIGURE")]
     pub only: Vec<String>,
     /// Leave out the DEM figures (impact-model figures only).
@@ -59,13 +60,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let progress = move |msg: &str| {
         eprintln!("[{:7.1} s] {msg}", started.elapsed().as_secs_f64());
     };
+    let readme = args.out.join(opts.readme_name());
     let report = reproduce(&opts, &progress)
         .with_context(|| format!("reproduce {} into {}", mode.flag(), args.out.display()))?;
     println!(
         "{} figures in {:.1} s; wrote {}",
         report.figures.len(),
         report.elapsed_s,
-        args.out.join("README.md").display()
+        readme.display()
     );
     Ok(())
 }

@@ -1,0 +1,703 @@
+//! The source's chapter-4 study (Sánchez 2012 ch. 4): the regimes of scene B's DEM bed along
+//! the forcing frequency at the optimal container height Lz = 0.1225 m.
+//!
+//! - `ch4_regime_frf` (Fig. 4.1): the DEM frequency response coloured by the regime of the
+//!   grains' centre of mass, with the data Lyapunov exponent and its error bar;
+//! - `ch4_bifurcation`: z_cm strobed once per period (the exact section) versus f;
+//! - `ch4_impacts`: collective bed–floor and bed–ceiling impacts per cycle versus f
+//!   ([`crate::dem::bed_impacts`]), so that "two impacts per period" can be read off;
+//! - `ch4_run_length`: the panel frequencies again with every run twice as long, verdict by
+//!   verdict and amplitude by amplitude (the quick mode's run length is only trusted where
+//!   doubling it changes nothing);
+//! - `ch4_panel_f<f>` (Figs. 4.2–4.6): bed band between floor and ceiling, the section and the
+//!   spectrum at each of the source's frequencies;
+//! - `ch4_reconstruction` (Fig. 4.7): delay reconstructions of z_cm at the same frequencies.
+
+use crate::analysis::mutual_information::{mutual_information, MutualInformationOptions};
+use crate::analysis::spectrum::{power_spectrum, SpectrumOptions};
+use crate::error::StudyError;
+use crate::model::{RunOptions, RunSummary};
+use crate::plot::bed_motion::BedMotionFigure;
+use crate::plot::bifurcation::BifurcationFigure;
+use crate::plot::frequency_panel::{FrequencyPanelFigure, ReconstructionGridFigure};
+use crate::plot::lines::LinesFigure;
+use crate::plot::poincare::PoincareFigure;
+use crate::plot::reconstruction::ReconstructionFigure;
+use crate::plot::regime_frf::{Exponents, RegimeFrfFigure};
+use crate::plot::spectrum::SpectrumFigure;
+use crate::plot::table::Table;
+use crate::plot::Series;
+
+use super::pipeline::{
+    col, scene_with, simulate_command, BundledScene, Ctx, FigureRecord, Recorded, SweepResult,
+};
+use super::settings::{Chapter4Settings, DemSettings, Settings};
+
+/// Scene B at Lz = 0.1225 m with softened grains and runs counted in periods
+/// (`data/scenes/thesis_b_ch4.toml`).
+pub const DEM_CH4: BundledScene = BundledScene {
+    path: "data/scenes/thesis_b_ch4.toml",
+    text: include_str!("../../data/scenes/thesis_b_ch4.toml"),
+};
+
+/// Softening, time-step fraction and run length written in [`DEM_CH4`].
+const SCENE_SOFTEN: f64 = 1000.0;
+const SCENE_DT_FRACTION: f64 = 0.02;
+const SCENE_PERIODS: f64 = 100.0;
+const E_STEEL: f64 = 2.03e11;
+const GAMMA_N_B: f64 = 3660.0;
+const GAMMA_S_B: f64 = 10980.0;
+
+/// Names of the chapter-4 figures (for `--only`).
+pub const NAMES: [&str; 7] = [
+    "ch4",
+    "ch4_regime_frf",
+    "ch4_bifurcation",
+    "ch4_impacts",
+    "ch4_run_length",
+    "ch4_panels",
+    "ch4_reconstruction",
+];
+
+/// One point of a chapter-4 sweep, read from `sweep.csv`.
+#[derive(Debug, Clone, PartialEq)]
+struct Point {
+    f_hz: f64,
+    amplitude_m: f64,
+    regime: String,
+    period: Option<f64>,
+    mle_per_s: Option<f64>,
+    mle_stderr_per_s: Option<f64>,
+    floor_impacts: f64,
+    ceiling_impacts: f64,
+}
+
+impl Point {
+    fn verdict(&self) -> String {
+        match self.period {
+            Some(p) if self.regime == "periodic" => format!("periodic-{p}"),
+            _ => self.regime.clone(),
+        }
+    }
+}
+
+fn points(step: &str, t: &Table) -> Result<Vec<Point>, StudyError> {
+    let f = col(step, t, "frequency_hz")?;
+    let z = col(step, t, "amplitude_m")?;
+    let e = |e| StudyError::step(step, e);
+    let regime = t.str_column("regime").map_err(e)?;
+    let period = t.opt_f64_column("period").map_err(e)?;
+    let mle = t.opt_f64_column("mle_per_s").map_err(e)?;
+    let se = t.opt_f64_column("mle_stderr_per_s").map_err(e)?;
+    let floor = col(step, t, "bed_floor_impacts_per_cycle")?;
+    let ceiling = col(step, t, "bed_ceiling_impacts_per_cycle")?;
+    let mut out: Vec<Point> = (0..f.len())
+        .map(|i| Point {
+            f_hz: f[i],
+            amplitude_m: z[i],
+            regime: regime[i].clone(),
+            period: period[i],
+            mle_per_s: mle[i],
+            mle_stderr_per_s: se[i],
+            floor_impacts: floor[i],
+            ceiling_impacts: ceiling[i],
+        })
+        .collect();
+    out.sort_by(|a, b| a.f_hz.total_cmp(&b.f_hz));
+    Ok(out)
+}
+
+/// `--set` of a chapter-4 run: material and time step when they differ from the scene file,
+/// and the run length (`factor` × the mode's).
+fn ch4_set(d: &DemSettings, c: &Chapter4Settings, factor: f64) -> Vec<(&'static str, String)> {
+    let mut set = Vec::new();
+    if d.soften != SCENE_SOFTEN {
+        let g = d.soften.powf(-0.6);
+        set.push(("damper.youngs_modulus", (E_STEEL / d.soften).to_string()));
+        set.push(("damper.gamma_n", (GAMMA_N_B * g).to_string()));
+        set.push(("damper.gamma_s", (GAMMA_S_B * g).to_string()));
+    }
+    if d.dt_fraction != SCENE_DT_FRACTION {
+        set.push(("run.dt_fraction", d.dt_fraction.to_string()));
+    }
+    match c.duration_s {
+        Some(s) => set.push(("run.duration", (factor * s).to_string())),
+        None if factor * c.periods != SCENE_PERIODS => {
+            set.push(("run.periods", (factor * c.periods).to_string()));
+        }
+        None => {}
+    }
+    set
+}
+
+/// The run length in words ("100 periods" or "196.83 s").
+fn length_text(c: &Chapter4Settings, factor: f64) -> String {
+    match c.duration_s {
+        Some(s) => format!("{} s", factor * s),
+        None => format!("{} periods", factor * c.periods),
+    }
+}
+
+fn sweep_dir(c: &Chapter4Settings, factor: f64) -> String {
+    match c.duration_s {
+        Some(s) => format!("dem_ch4_d{}", factor * s),
+        None => format!("dem_ch4_p{}", factor * c.periods),
+    }
+}
+
+fn frequency_list(freqs: &[f64]) -> String {
+    freqs
+        .iter()
+        .map(|f| f.to_string())
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
+/// What the chapter-4 study produced.
+#[derive(Debug, Clone)]
+pub struct Chapter4Output {
+    /// The figures.
+    pub figures: Vec<FigureRecord>,
+    /// The regime sweep at the mode's run length (also the DEM curve of `frf.png`: its runs
+    /// are long enough that doubling them moves the amplitudes by a few per cent, see
+    /// `ch4_run_length`).
+    pub sweep: SweepResult,
+}
+
+/// Runs the chapter-4 sweeps and panels and draws its figures (those `want` selects).
+///
+/// # Errors
+/// [`StudyError`] naming the sweep, run or figure that failed.
+pub fn all(
+    ctx: &Ctx,
+    s: &Settings,
+    d: &DemSettings,
+    c: &Chapter4Settings,
+    want: &dyn Fn(&str) -> bool,
+) -> Result<Chapter4Output, StudyError> {
+    let mut figures = Vec::new();
+    let reductions = s.reductions(&["dem", "dem_ch4"]);
+    let sweep = |factor: f64, freqs: &[f64]| {
+        ctx.sweep(
+            &sweep_dir(c, factor),
+            DEM_CH4,
+            &ch4_set(d, c, factor),
+            &[("excitation.frequency", frequency_list(freqs))],
+            true,
+        )
+    };
+    let base = sweep(1.0, &c.frequencies_hz)?;
+    let pts = points("ch4_regime_frf", &base.table)?;
+    let info = Info {
+        ctx,
+        c,
+        sweep: &base,
+        reductions: &reductions,
+    };
+    if want("ch4_regime_frf") {
+        figures.push(regime_frf(&info, &pts)?);
+    }
+    if want("ch4_bifurcation") {
+        figures.push(bifurcation(&info)?);
+    }
+    if want("ch4_impacts") {
+        figures.push(impacts(&info, &pts)?);
+    }
+    if want("ch4_run_length") && !c.doubling_freqs_hz.is_empty() {
+        let long = sweep(2.0, &c.doubling_freqs_hz)?;
+        let long_pts = points("ch4_run_length", &long.table)?;
+        figures.push(run_length(&info, &pts, &long, &long_pts)?);
+    }
+    if want("ch4_panels") || want("ch4_reconstruction") {
+        let runs = c
+            .panel_freqs_hz
+            .iter()
+            .map(|&f| panel_run(d, c, f))
+            .collect::<Result<Vec<_>, _>>()?;
+        if want("ch4_panels") {
+            for r in &runs {
+                figures.push(panel(&info, r)?);
+            }
+        }
+        if want("ch4_reconstruction") {
+            figures.push(reconstruction(&info, &runs)?);
+        }
+    }
+    Ok(Chapter4Output {
+        figures,
+        sweep: base,
+    })
+}
+
+/// What every figure of the study shares.
+struct Info<'a, 'b> {
+    ctx: &'a Ctx<'b>,
+    c: &'a Chapter4Settings,
+    sweep: &'a SweepResult,
+    reductions: &'a [String],
+}
+
+impl Info<'_, '_> {
+    fn record(&self, name: &str, caption: String, plot: &str, size: (u32, u32)) -> FigureRecord {
+        FigureRecord {
+            name: name.into(),
+            caption,
+            spec_item: "chapter 4: regimes of the DEM bed along f at Lz = 0.1225 m".into(),
+            commands: vec![self.sweep.command.clone(), plot.into()],
+            reductions: self.reductions.to_vec(),
+            size_px: size,
+        }
+    }
+}
+
+fn opt_cell(v: Option<f64>) -> String {
+    v.map(|x| x.to_string()).unwrap_or_default()
+}
+
+fn regime_frf(info: &Info, pts: &[Point]) -> Result<FigureRecord, StudyError> {
+    let name = "ch4_regime_frf";
+    let mut text = "frequency_hz,amplitude_m,regime,period,mle_per_s,mle_stderr_per_s,\
+                    impacts_per_cycle\n"
+        .to_string();
+    for p in pts {
+        text += &format!(
+            "{},{},{},{},{},{},{}\n",
+            p.f_hz,
+            p.amplitude_m,
+            p.regime,
+            opt_cell(p.period),
+            opt_cell(p.mle_per_s),
+            opt_cell(p.mle_stderr_per_s),
+            p.floor_impacts + p.ceiling_impacts
+        );
+    }
+    info.ctx.write_text(&format!("{name}.csv"), &text)?;
+    let f: Vec<f64> = pts.iter().map(|p| p.f_hz).collect();
+    let z: Vec<f64> = pts.iter().map(|p| p.amplitude_m).collect();
+    let reg: Vec<String> = pts.iter().map(|p| p.regime.clone()).collect();
+    let mle: Vec<Option<f64>> = pts.iter().map(|p| p.mle_per_s).collect();
+    let se: Vec<Option<f64>> = pts.iter().map(|p| p.mle_stderr_per_s).collect();
+    let period: Vec<Option<u32>> = pts
+        .iter()
+        .map(|p| p.period.filter(|x| *x >= 1.0).map(|x| x.round() as u32))
+        .collect();
+    let size = info.ctx.render(
+        name,
+        &RegimeFrfFigure {
+            frequency_hz: &f,
+            amplitude_m: &z,
+            regime: &reg,
+            period: Some(&period),
+            data: Some(Exponents {
+                per_s: &mle,
+                stderr_per_s: Some(&se),
+            }),
+            model: None,
+        },
+    )?;
+    Ok(info.record(
+        name,
+        format!(
+            "DEM scene B (N = 250, Lz = 0.1225 m), {} per frequency: primary amplitude Z(f) \
+             coloured by the regime of the grains' centre of mass (exact section first, then \
+             the data Lyapunov exponent of z_cm with its error bar, 1/s).",
+            length_text(info.c, 1.0)
+        ),
+        "pdamp plot regime-frf sweep.csv -o ch4_regime_frf.png",
+        size,
+    ))
+}
+
+fn bifurcation(info: &Info) -> Result<FigureRecord, StudyError> {
+    let name = "ch4_bifurcation";
+    let st = info
+        .sweep
+        .strobe
+        .as_ref()
+        .ok_or_else(|| StudyError::step(name, "the sweep wrote no strobe.csv rows"))?;
+    let f = col(name, st, "frequency_hz")?;
+    let z = col(name, st, "grain_z_m")?;
+    let b = col(name, st, "box_z_m")?;
+    let rel: Vec<f64> = z.iter().zip(&b).map(|(z, b)| z - b).collect();
+    info.ctx.write_csv(
+        name,
+        &["frequency_hz", "grain_z_m", "box_z_m", "grain_z_rel_m"],
+        &(0..f.len())
+            .map(|i| vec![f[i], z[i], b[i], rel[i]])
+            .collect::<Vec<_>>(),
+    )?;
+    let size = info.ctx.render(
+        name,
+        &BifurcationFigure {
+            x: &f,
+            z_m: &rel,
+            x_label: "frequency f (Hz)".into(),
+        },
+    )?;
+    Ok(info.record(
+        name,
+        "Same sweep: height of the grains' centre of mass above the floor, z_cm − z, at \
+         t = kT over the analysis window (the exact section), versus f: one dot per period-1 \
+         frequency, n dots for period n (their spread is the bed's granular noise)."
+            .into(),
+        "pdamp plot bifurcation strobe.csv -o ch4_bifurcation.png",
+        size,
+    ))
+}
+
+fn impacts(info: &Info, pts: &[Point]) -> Result<FigureRecord, StudyError> {
+    let name = "ch4_impacts";
+    let f: Vec<f64> = pts.iter().map(|p| p.f_hz).collect();
+    let fl: Vec<f64> = pts.iter().map(|p| p.floor_impacts).collect();
+    let ce: Vec<f64> = pts.iter().map(|p| p.ceiling_impacts).collect();
+    let tot: Vec<f64> = fl.iter().zip(&ce).map(|(a, b)| a + b).collect();
+    info.ctx.write_csv(
+        name,
+        &[
+            "frequency_hz",
+            "floor_impacts_per_cycle",
+            "ceiling_impacts_per_cycle",
+            "impacts_per_cycle",
+        ],
+        &(0..f.len())
+            .map(|i| vec![f[i], fl[i], ce[i], tot[i]])
+            .collect::<Vec<_>>(),
+    )?;
+    let size = info.ctx.render(
+        name,
+        &LinesFigure {
+            series: vec![
+                Series {
+                    label: "bed on the floor",
+                    x: &f,
+                    y: &fl,
+                },
+                Series {
+                    label: "bed on the ceiling",
+                    x: &f,
+                    y: &ce,
+                },
+                Series {
+                    label: "total",
+                    x: &f,
+                    y: &tot,
+                },
+            ],
+            x_label: "frequency f (Hz)".into(),
+            y_label: "collective impacts per forcing cycle".into(),
+            y_scale: 1.0,
+            title: "Impacts of the bed as a whole per forcing cycle".into(),
+            kind: "dem-impacts",
+        },
+    )?;
+    Ok(info.record(
+        name,
+        "Same sweep: impacts of the bed as a whole on the floor and on the ceiling per forcing \
+         cycle over the steady window (the centre of mass stopped by a wall that carries more \
+         than half the bed's weight; see dem::bed_impacts)."
+            .into(),
+        "columns bed_floor_impacts_per_cycle, bed_ceiling_impacts_per_cycle of sweep.csv",
+        size,
+    ))
+}
+
+fn run_length(
+    info: &Info,
+    pts: &[Point],
+    long: &SweepResult,
+    long_pts: &[Point],
+) -> Result<FigureRecord, StudyError> {
+    let name = "ch4_run_length";
+    let mut text = "frequency_hz,verdict,verdict_doubled,same_verdict,amplitude_m,\
+                    amplitude_doubled_m,amplitude_change_pct,impacts_per_cycle,\
+                    impacts_per_cycle_doubled,mle_per_s,mle_per_s_doubled\n"
+        .to_string();
+    let (mut same, mut worst) = (0usize, 0.0f64);
+    let mut pairs = Vec::new();
+    for p in pts {
+        let Some(q) = long_pts.iter().find(|q| q.f_hz == p.f_hz) else {
+            continue;
+        };
+        let change = 100.0 * (q.amplitude_m / p.amplitude_m - 1.0);
+        worst = worst.max(change.abs());
+        let agree = p.verdict() == q.verdict();
+        same += usize::from(agree);
+        text += &format!(
+            "{},{},{},{},{},{},{:.3},{},{},{},{}\n",
+            p.f_hz,
+            p.verdict(),
+            q.verdict(),
+            agree,
+            p.amplitude_m,
+            q.amplitude_m,
+            change,
+            p.floor_impacts + p.ceiling_impacts,
+            q.floor_impacts + q.ceiling_impacts,
+            opt_cell(p.mle_per_s),
+            opt_cell(q.mle_per_s)
+        );
+        pairs.push((p.f_hz, p.amplitude_m, q.amplitude_m));
+    }
+    info.ctx.write_text(&format!("{name}.csv"), &text)?;
+    let f: Vec<f64> = pairs.iter().map(|p| p.0).collect();
+    let a: Vec<f64> = pairs.iter().map(|p| p.1).collect();
+    let b: Vec<f64> = pairs.iter().map(|p| p.2).collect();
+    let (la, lb) = (
+        length_text(info.c, 1.0),
+        format!("{} (doubled)", length_text(info.c, 2.0)),
+    );
+    let size = info.ctx.render(
+        name,
+        &LinesFigure {
+            series: vec![
+                Series {
+                    label: &la,
+                    x: &f,
+                    y: &a,
+                },
+                Series {
+                    label: &lb,
+                    x: &f,
+                    y: &b,
+                },
+            ],
+            x_label: "frequency f (Hz)".into(),
+            y_label: "primary amplitude Z (mm)".into(),
+            y_scale: 1e3,
+            title: "DEM frequency response at two run lengths".into(),
+            kind: "dem-run-length",
+        },
+    )?;
+    let mut rec = info.record(
+        name,
+        format!(
+            "Run-length check: the sweep's points at the panel frequencies repeated with runs \
+             of {}: the verdict (regime and period) is unchanged at {same} of {} frequencies and the amplitude changes by at \
+             most {worst:.2} % (table in {name}.csv).",
+            length_text(info.c, 2.0),
+            pairs.len()
+        ),
+        "compare the two sweep.csv files",
+        size,
+    );
+    rec.commands.insert(1, long.command.clone());
+    Ok(rec)
+}
+
+/// One recorded chapter-4 run at a panel frequency.
+struct PanelRun {
+    f_hz: f64,
+    summary: RunSummary,
+    rec: Recorded,
+    dt_s: f64,
+    command: String,
+}
+
+impl PanelRun {
+    fn verdict(&self) -> String {
+        let a = self.summary.analysis.as_ref();
+        let regime = a
+            .and_then(|a| a.get("regime"))
+            .and_then(|r| r.as_str())
+            .unwrap_or("not analysed");
+        match a.and_then(|a| a.get("period")).and_then(|p| p.as_f64()) {
+            Some(p) if regime == "periodic" => format!("periodic-{p}"),
+            _ => regime.to_string(),
+        }
+    }
+}
+
+fn panel_run(d: &DemSettings, c: &Chapter4Settings, f: f64) -> Result<PanelRun, StudyError> {
+    let step = format!("dem panel f{f}");
+    let mut set = ch4_set(d, c, 1.0);
+    set.push(("excitation.frequency", f.to_string()));
+    let scene = scene_with(&step, DEM_CH4, &set)?;
+    let dt = scene.run.sample_interval;
+    let opts = RunOptions {
+        sample_interval_s: Some(dt),
+        sample_from_s: scene.analysis_start_s(),
+    };
+    let mut rec = Recorded::default();
+    let summary = crate::sweep::run_with_analysis(&scene, &mut rec, &opts, true)
+        .map_err(|e| StudyError::step(&step, e))?;
+    let command = simulate_command(DEM_CH4, &set, std::path::Path::new(&format!("DIR_f{f}")));
+    Ok(PanelRun {
+        f_hz: f,
+        summary,
+        rec,
+        dt_s: dt,
+        command,
+    })
+}
+
+fn panel(info: &Info, r: &PanelRun) -> Result<FigureRecord, StudyError> {
+    let f = r.f_hz;
+    let name = format!("ch4_panel_f{f}");
+    let rec = &r.rec;
+    let n = rec.time_s.len();
+    let per_period = (1.0 / (f * r.dt_s)).round() as usize;
+    let from = n.saturating_sub(4 * per_period);
+    let w = |v: &[f64]| v[from.min(v.len())..].to_vec();
+    let (t, floor, ceil, z, lo, hi) = (
+        w(&rec.time_s),
+        w(&rec.floor_z_m),
+        w(&rec.ceiling_z_m),
+        w(&rec.grain_z_m),
+        w(&rec.grain_zmin_m),
+        w(&rec.grain_zmax_m),
+    );
+    let sz: Vec<f64> = r.summary.strobe.iter().map(|p| p.grain_z_m).collect();
+    let sv: Vec<f64> = r.summary.strobe.iter().map(|p| p.grain_v_m_s).collect();
+    let sp = power_spectrum(
+        &rec.grain_z_m,
+        &SpectrumOptions {
+            dt_s: Some(r.dt_s),
+            ..Default::default()
+        },
+    )
+    .map_err(|e| StudyError::step(&name, e))?;
+    let keep: Vec<usize> = (0..sp.frequency.len())
+        .filter(|&i| sp.frequency[i] > 0.0 && sp.frequency[i] <= 4.0 * f)
+        .collect();
+    let fx: Vec<f64> = keep.iter().map(|&i| sp.frequency[i]).collect();
+    let pw: Vec<f64> = keep.iter().map(|&i| sp.power[i]).collect();
+    info.ctx.write_csv(
+        &format!("{name}_section"),
+        &["cycle", "time_s", "grain_z_m", "grain_v_m_s", "box_z_m"],
+        &r.summary
+            .strobe
+            .iter()
+            .map(|p| {
+                vec![
+                    p.cycle as f64,
+                    p.time_s,
+                    p.grain_z_m,
+                    p.grain_v_m_s,
+                    p.box_z_m,
+                ]
+            })
+            .collect::<Vec<_>>(),
+    )?;
+    let band = (!lo.is_empty() && lo.len() == t.len()).then_some((lo.as_slice(), hi.as_slice()));
+    let fig = FrequencyPanelFigure {
+        bed: BedMotionFigure {
+            time_s: &t,
+            floor_z_m: &floor,
+            ceiling_z_m: &ceil,
+            grain_z_m: &z,
+            grain_band: band,
+            grain_force_n: None,
+        },
+        section: PoincareFigure {
+            x: &sz,
+            y: &sv,
+            x_label: "z_cm at t = kT (m)".into(),
+            y_label: "ż_cm at t = kT (m/s)".into(),
+        },
+        spectrum: SpectrumFigure {
+            frequency_hz: &fx,
+            power: &pw,
+            forcing_hz: Some(f),
+            power_label: "power of z_cm (m² per bin)".into(),
+        },
+    };
+    let impacts = r.summary.impacts_per_cycle;
+    let title = format!(
+        "DEM scene B at {f} Hz: {}, {impacts:.2} bed impacts per cycle",
+        r.verdict()
+    );
+    let opts = crate::plot::FigureOptions {
+        width: info.ctx.figure.width,
+        height: (info.ctx.figure.height as f64 * 1.5) as u32,
+        title: Some(title),
+    };
+    let path = info.ctx.path(&format!("{name}.png"));
+    crate::plot::render(&fig, &path, &opts).map_err(|e| StudyError::step(&name, e))?;
+    let mut rec = info.record(
+        &name,
+        format!(
+            "DEM scene B (Lz = 0.1225 m) at {f} Hz, {}: the last four periods of the bed \
+             (floor, ceiling, band from the lowest to the highest grain, z_cm), the exact \
+             stroboscopic section (z_cm, ż_cm) at t = kT over the analysis window \
+             ({} points; {name}_section.csv) and the spectrum of z_cm up to 4 f. Verdict: {}; \
+             {impacts:.2} collective impacts per cycle.",
+            length_text(info.c, 1.0),
+            sz.len(),
+            r.verdict()
+        ),
+        "pdamp plot bed-motion / poincare / spectrum on the run directory",
+        (opts.width, opts.height),
+    );
+    rec.commands[0] = r.command.clone();
+    Ok(rec)
+}
+
+fn reconstruction(info: &Info, runs: &[PanelRun]) -> Result<FigureRecord, StudyError> {
+    let name = "ch4_reconstruction";
+    let mut series: Vec<(Vec<f64>, usize, f64, String)> = Vec::new();
+    let mut text = "frequency_hz,lag_s,decimation\n".to_string();
+    for r in runs {
+        // 64 samples per period: the lag from the first minimum of the mutual information
+        let dec = ((1.0 / (r.f_hz * 64.0 * r.dt_s)).round() as usize).max(1);
+        let z: Vec<f64> = r.rec.grain_z_m.iter().step_by(dec).copied().collect();
+        let mi = mutual_information(
+            &z,
+            &MutualInformationOptions {
+                bins: 16,
+                max_lag: 64,
+            },
+        )
+        .map_err(|e| StudyError::step(name, e))?;
+        let lag = mi.first_minimum.unwrap_or(16).max(1);
+        let keep = z.len().min(20 * 64);
+        let dt = r.dt_s * dec as f64;
+        text += &format!("{},{},{dec}\n", r.f_hz, lag as f64 * dt);
+        series.push((
+            z[z.len() - keep..].to_vec(),
+            lag,
+            dt,
+            format!("{} Hz: {}", r.f_hz, r.verdict()),
+        ));
+    }
+    info.ctx.write_text(&format!("{name}.csv"), &text)?;
+    let fig = ReconstructionGridFigure {
+        cells: series
+            .iter()
+            .map(|(z, lag, dt, cap)| {
+                (
+                    ReconstructionFigure {
+                        series: z,
+                        lag: *lag,
+                        dt_s: Some(*dt),
+                        value_label: "z_cm (m)".into(),
+                    },
+                    cap.clone(),
+                )
+            })
+            .collect(),
+        columns: 3,
+    };
+    let rows = runs.len().div_ceil(3).max(1) as f64;
+    let opts = crate::plot::FigureOptions {
+        width: info.ctx.figure.width * 3 / 2,
+        height: (info.ctx.figure.height as f64 * 0.6 * rows) as u32,
+        title: Some("Delay reconstructions (z_cm(t), z_cm(t + τ)) of the DEM bed".into()),
+    };
+    let path = info.ctx.path(&format!("{name}.png"));
+    crate::plot::render(&fig, &path, &opts).map_err(|e| StudyError::step(name, e))?;
+    let mut rec = info.record(
+        name,
+        format!(
+            "Fig. 4.7: 2-D delay reconstructions of z_cm over the last 20 periods at {} Hz, τ \
+             from the first minimum of the mutual information (lags in {name}.csv).",
+            runs.iter()
+                .map(|r| r.f_hz.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+        "pdamp plot reconstruction DIR/series.csv --column grain_z_m --lag L",
+        (opts.width, opts.height),
+    );
+    rec.commands[0] = runs.first().map(|r| r.command.clone()).unwrap_or_default();
+    Ok(rec)
+}
