@@ -2,10 +2,12 @@
 //! and primary mass, the neighbour list and the energy ledger; [`DemWorld::step`] runs
 //! neighbour search → contact forces → box equation (2.1.22) → velocity Verlet (2.2.4–2.2.5)
 //! → quaternion renormalisation → energy ledger. [`run`] deposits a bed, settles it and
-//! drives the box, emitting samples to an observer.
+//! drives the box, emitting samples to an observer. [`run_replica`] runs the two-replica
+//! test of the collective motion's stability (issue 9).
 
 pub mod bed_impacts;
 pub mod energy;
+pub mod replica;
 pub mod run;
 pub mod scene_run;
 pub mod snapshot;
@@ -14,5 +16,8 @@ pub mod world;
 
 pub use bed_impacts::BedImpacts;
 pub use energy::{EnergyLedger, EnergyState};
+pub use replica::{
+    run_replica, ReplicaOptions, ReplicaReport, ReplicaRow, ReplicaTracker, ReplicaVerdict,
+};
 pub use run::{run_dem, DemObserver, DemRunConfig, DemSample, DemSummary, DtChoice, StrobeRow};
 pub use world::{BoxDrive, DemWorld, PrimarySystem};

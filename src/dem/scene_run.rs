@@ -7,9 +7,10 @@ use std::path::PathBuf;
 use crate::error::SimError;
 use crate::model::{EnergyTotals, RunOptions, RunSummary, StrobePoint};
 use crate::observe::{Observer, Sample};
-use crate::scene::dem::SnapshotFormat;
+use crate::scene::dem::{DemParams, SnapshotFormat};
 use crate::scene::{Damper, DtSpec, Scene};
 
+use super::replica::{run_replica, ReplicaOptions};
 use super::run::{run_dem, DemObserver, DemRunConfig, DemSample, DtChoice};
 use super::snapshot::{write_csv, write_vtk};
 use super::world::{BoxDrive, DemWorld, PrimarySystem};
@@ -91,7 +92,8 @@ impl DemObserver for Forward<'_> {
 /// [`DEM_EXTRA_COLUMNS`]), the summary follows `summary.json`'s keys; the DEM's own figures
 /// (`energy_collision_j_per_cycle`, `energy_friction_j_per_cycle`, `steps`, `wall_time_s`,
 /// `particle_steps_per_s`, `dt_s`, `contact_time_s`, `volume_fraction`, …) are in `extra`.
-/// Without `[primary]` the box moves kinematically with the base.
+/// Without `[primary]` the box moves kinematically with the base. With `run.replica` the
+/// two-replica test ([`super::replica`]) runs alongside and its report is in `replica`.
 ///
 /// # Errors
 /// [`SimError::Unavailable`] if the damper is not `dem`; scene and stability errors of
@@ -101,34 +103,7 @@ pub fn simulate(
     obs: &mut dyn Observer,
     opts: &RunOptions,
 ) -> Result<RunSummary, SimError> {
-    let Damper::Dem(params) = &scene.damper else {
-        return Err(SimError::Unavailable(
-            "the DEM model runs only damper.kind = \"dem\"".into(),
-        ));
-    };
-    let drive = BoxDrive {
-        primary: scene.primary.as_ref().map(|p| PrimarySystem {
-            mass_kg: p.mass,
-            stiffness_n_m: p.stiffness,
-            damping_n_s_m: p.damping_n_s_m(),
-        }),
-        amplitude_m: scene.excitation.amplitude,
-        frequency_hz: scene.excitation.frequency,
-    };
-    let cfg = DemRunConfig {
-        duration_s: scene.duration_s(),
-        sample_interval_s: opts.sample_interval_s.unwrap_or(scene.run.sample_interval),
-        steady_fraction: scene.run.steady_fraction,
-        analysis_fraction: scene.run.analysis_fraction,
-        dt: match scene.run.dt {
-            Some(DtSpec::Seconds(s)) => DtChoice::Seconds(s),
-            _ => DtChoice::Auto,
-        },
-        dt_fraction: scene.run.dt_fraction,
-        samples: opts.sample_interval_s.is_some(),
-        sample_from_s: opts.sample_from_s,
-        gravity_m_s2: scene.gravity,
-    };
+    let (params, drive, cfg) = resolve(scene, opts)?;
     obs.start(&DEM_EXTRA_COLUMNS)?;
     let mut fwd = Forward {
         obs,
@@ -143,7 +118,15 @@ pub fn simulate(
         format: params.snapshot_format,
         snapshots: 0,
     };
-    let s = run_dem(params, drive, &cfg, &mut fwd)?;
+    // `run.replica`: replica B perturbed at the start of the analysis window
+    let (s, replica) = match scene.run.replica {
+        Some(delta_m) => {
+            let opts = ReplicaOptions::at_analysis_start(&cfg, delta_m);
+            let (s, r) = run_replica(params, drive, &cfg, &opts, &mut fwd)?;
+            (s, Some(r))
+        }
+        None => (run_dem(params, drive, &cfg, &mut fwd)?, None),
+    };
     fwd.obs.finish()?;
     let cycles = (scene.duration_s() - s.steady_start_s) * scene.excitation.frequency;
     let omega = scene.excitation.omega_rad_s();
@@ -236,5 +219,46 @@ pub fn simulate(
             .collect(),
         analysis: None,
         analysis_error: None,
+        replica,
     })
+}
+
+/// The inputs of [`run_dem`] (and of the two-replica test,
+/// [`super::replica::run_replica`]) that a DEM scene and the run options resolve to.
+///
+/// # Errors
+/// [`SimError::Unavailable`] if the damper is not `dem`.
+pub fn resolve<'a>(
+    scene: &'a Scene,
+    opts: &RunOptions,
+) -> Result<(&'a DemParams, BoxDrive, DemRunConfig), SimError> {
+    let Damper::Dem(params) = &scene.damper else {
+        return Err(SimError::Unavailable(
+            "the DEM model runs only damper.kind = \"dem\"".into(),
+        ));
+    };
+    let drive = BoxDrive {
+        primary: scene.primary.as_ref().map(|p| PrimarySystem {
+            mass_kg: p.mass,
+            stiffness_n_m: p.stiffness,
+            damping_n_s_m: p.damping_n_s_m(),
+        }),
+        amplitude_m: scene.excitation.amplitude,
+        frequency_hz: scene.excitation.frequency,
+    };
+    let cfg = DemRunConfig {
+        duration_s: scene.duration_s(),
+        sample_interval_s: opts.sample_interval_s.unwrap_or(scene.run.sample_interval),
+        steady_fraction: scene.run.steady_fraction,
+        analysis_fraction: scene.run.analysis_fraction,
+        dt: match scene.run.dt {
+            Some(DtSpec::Seconds(s)) => DtChoice::Seconds(s),
+            _ => DtChoice::Auto,
+        },
+        dt_fraction: scene.run.dt_fraction,
+        samples: opts.sample_interval_s.is_some(),
+        sample_from_s: opts.sample_from_s,
+        gravity_m_s2: scene.gravity,
+    };
+    Ok((params, drive, cfg))
 }

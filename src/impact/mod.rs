@@ -1021,6 +1021,7 @@ impl ImpactWorld {
             strobe,
             analysis: None,
             analysis_error: None,
+            replica: None,
         }
     }
 }

@@ -147,4 +147,7 @@ pub struct RunSummary {
     /// Why the analysis could not be carried out, when it failed.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub analysis_error: Option<String>,
+    /// The DEM two-replica test (`run.replica`), when run; its rows go to `replica.csv`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub replica: Option<crate::dem::replica::ReplicaReport>,
 }

@@ -135,6 +135,14 @@ impl Scene {
                     .into(),
             });
         }
+        if self.run.replica.is_some() && matches!(self.damper, Damper::None | Damper::Impact(_)) {
+            return Err(SceneError::invalid(
+                "run.replica",
+                self.run.replica.unwrap_or_default(),
+                "the two-replica test is DEM-only (damper.kind = \"dem\"); the impact model \
+                 reports its exponent from tangent dynamics instead",
+            ));
+        }
         self.check_not_undamped_resonance()?;
         Ok(())
     }

@@ -46,6 +46,42 @@ pub struct Run {
     /// decimated to stay below). Default 20000.
     #[serde(default = "default_analysis_max_samples")]
     pub analysis_max_samples: usize,
+    /// DEM two-replica test ([`crate::dem::replica`]): `true` (δ0 = 1e-9 m), a perturbation δ0
+    /// in metres (0 checks determinism), or `false` (default: off). Replica B, every grain
+    /// raised by δ0 when the analysis window starts, runs in lockstep with the run; `pdamp
+    /// simulate` writes `replica.csv` and a `replica` block in `summary.json`. It doubles the
+    /// cost of the analysis window. DEM only (`damper.kind = "dem"`, or `"auto"` when it picks
+    /// the DEM).
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "replica_delta"
+    )]
+    pub replica: Option<f64>,
+}
+
+/// `run.replica`: `true` → the default δ0, `false` → off, a number → δ0 (m).
+fn replica_delta<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
+    struct V;
+    impl serde::de::Visitor<'_> for V {
+        type Value = Option<f64>;
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            f.write_str("true, false or a perturbation in metres")
+        }
+        fn visit_bool<E: serde::de::Error>(self, v: bool) -> Result<Option<f64>, E> {
+            Ok(v.then_some(crate::dem::replica::DEFAULT_DELTA_M))
+        }
+        fn visit_f64<E: serde::de::Error>(self, v: f64) -> Result<Option<f64>, E> {
+            Ok(Some(v))
+        }
+        fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<Option<f64>, E> {
+            Ok(Some(v as f64))
+        }
+        fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<Option<f64>, E> {
+            Ok(Some(v as f64))
+        }
+    }
+    d.deserialize_any(V)
 }
 
 fn default_steady_fraction() -> f64 {
@@ -77,6 +113,7 @@ impl Run {
             dt_fraction: default_dt_fraction(),
             seed: 0,
             analysis_max_samples: default_analysis_max_samples(),
+            replica: None,
         }
     }
 
@@ -138,6 +175,15 @@ impl Run {
                 fr,
                 "must lie in (0, 1] (fraction of the contact duration)",
             ));
+        }
+        if let Some(d) = self.replica {
+            if !(d.is_finite() && (0.0..1e-3).contains(&d)) {
+                return Err(SceneError::invalid(
+                    "run.replica",
+                    d,
+                    "the replica's perturbation must lie in [0, 1e-3) m (true: 1e-9 m)",
+                ));
+            }
         }
         if self.analysis_max_samples < 100 {
             return Err(SceneError::invalid(

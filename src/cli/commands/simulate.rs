@@ -1,5 +1,6 @@
 //! `pdamp simulate SCENE --out DIR [--set key=value …]`: run one scene, write
-//! `DIR/series.csv`, `DIR/summary.json`, `DIR/strobe.csv` and the resolved `DIR/scene.toml`.
+//! `DIR/series.csv`, `DIR/summary.json`, `DIR/strobe.csv` and the resolved `DIR/scene.toml`;
+//! with `run.replica` (DEM two-replica test) also `DIR/replica.csv`.
 
 use crate::model::{RunOptions, RunSummary};
 use crate::observe::{fmt_num, CsvRecorder, ProgressObserver, Tee};
@@ -91,6 +92,22 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .map(|e| format!("{e:.2e}"))
             .unwrap_or_else(|| "n/a (kinematic box)".into()),
     );
+    if let Some(r) = &summary.replica {
+        let verdict = match &r.verdict {
+            crate::dem::ReplicaVerdict::StaysInNoiseBand => "stays in the noise band".into(),
+            crate::dem::ReplicaVerdict::SeparatesToAttractor {
+                growth_per_s,
+                stderr_per_s,
+            } => format!(
+                "separates to the attractor's size, growth {growth_per_s:.3} ± {stderr_per_s:.3} 1/s"
+            ),
+            crate::dem::ReplicaVerdict::Inconclusive { why } => format!("inconclusive: {why}"),
+        };
+        println!(
+            "replica (δ0 = {:e} m, {} strobes): {verdict}; saturated separation {:.3e} m, noise band {:.3e} m, attractor size {:.3e} m",
+            r.delta0_m, r.strobes, r.saturation_m, r.noise_band_m, r.attractor_size_m
+        );
+    }
     println!("wrote {}", args.out.display());
     Ok(())
 }
@@ -120,6 +137,20 @@ fn write_outputs(
         ));
     }
     crate::sweep::runner::atomic_write(&out.join("strobe.csv"), strobe.as_bytes())?;
+    if let Some(r) = &summary.replica {
+        let mut csv = String::from("cycle,time_s,grain_z_a_m,grain_z_b_m,separation_m\n");
+        for row in &r.rows {
+            csv.push_str(&format!(
+                "{},{},{},{},{}\n",
+                row.cycle,
+                fmt_num(row.time_s),
+                fmt_num(row.grain_z_a_m),
+                fmt_num(row.grain_z_b_m),
+                fmt_num(row.separation_m)
+            ));
+        }
+        crate::sweep::runner::atomic_write(&out.join("replica.csv"), csv.as_bytes())?;
+    }
     crate::sweep::runner::atomic_write(&out.join("scene.toml"), scene.to_toml()?.as_bytes())?;
     Ok(())
 }
