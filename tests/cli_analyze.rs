@@ -182,3 +182,30 @@ fn tisean_verbs_name_bad_input() {
         assert!(line.contains("unreliable"), "{err}");
     }
 }
+
+#[test]
+fn every_estimator_verb_refuses_a_time_column() {
+    // a strictly increasing column (time or index) is not a signal: every estimator verb says
+    // so instead of printing an estimate of it
+    let dir = tempfile::tempdir().unwrap();
+    let t: Vec<f64> = (0..5000).map(|i| i as f64 * 0.01).collect();
+    let file = write_series(&dir, "time.txt", &t);
+    for verb in [
+        "mutual",
+        "fnn",
+        "lyap-k",
+        "lyap-r",
+        "d2",
+        "cao",
+        "rqa",
+        "surrogates",
+        "nrlazy",
+    ] {
+        let (_, err, ok) = pdamp(&[verb, &file]);
+        assert!(!ok, "{verb} accepted a time column");
+        assert!(
+            err.contains("time or index column"),
+            "{verb}: unclear message: {err}"
+        );
+    }
+}

@@ -142,6 +142,7 @@ pub fn cao(x: &[f64], opts: &CaoOptions) -> Result<CaoResult, AnalysisError> {
     }
     let need = (opts.m_max + 1) * opts.tau + opts.theiler + 10;
     validate_series(x, need, "Cao's method")?;
+    crate::analysis::reject_monotonic(x)?;
     let mut e = Vec::with_capacity(opts.m_max + 1);
     let mut e_star = Vec::with_capacity(opts.m_max + 1);
     for m in 1..=opts.m_max + 1 {

@@ -143,6 +143,7 @@ pub struct CorrelationSums {
 pub fn correlation_sum(x: &[f64], opts: &D2Options) -> Result<CorrelationSums, AnalysisError> {
     validate_options(opts)?;
     validate_series(x, 2, "the correlation sum")?;
+    crate::analysis::reject_monotonic(x)?;
     let span = (opts.m_max - 1) * opts.tau;
     let vectors = x.len().saturating_sub(span);
     if vectors < opts.theiler + 3 {

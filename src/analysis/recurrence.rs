@@ -192,6 +192,7 @@ impl Embedded {
         }
         let span = (o.m - 1) * o.tau;
         validate_series(x, span + o.theiler + 3, "recurrence quantification")?;
+        crate::analysis::reject_monotonic(x)?;
         let n = x.len() - span;
         if n > o.max_len {
             return Err(AnalysisError::bad(

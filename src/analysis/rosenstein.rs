@@ -140,6 +140,7 @@ pub fn rosenstein(x: &[f64], opts: &RosensteinOptions) -> Result<RosensteinResul
         }
     }
     validate_series(x, 2, "Rosenstein's Lyapunov estimate")?;
+    crate::analysis::reject_monotonic(x)?;
     let span = (opts.m - 1) * opts.tau + opts.steps;
     if x.len() < span + opts.theiler + 3 {
         return Err(AnalysisError::TooShort(format!(
