@@ -3,7 +3,7 @@
 //! must end in sticking (Luck & Mehta 1993) after a finite, analytically known time.
 
 use pdamp::error::SimError;
-use pdamp::model::{frf_amplitude, RunOptions, RunSummary};
+use pdamp::model::{RunOptions, RunSummary};
 use pdamp::observe::{NullObserver, Observer, Sample};
 use pdamp::scene::{Damper, ImpactParams, Primary, Scene};
 
@@ -29,13 +29,12 @@ fn run(s: &Scene) -> RunSummary {
 /// Amplitude of scene B's primary carrying the particle as rigid added mass (2.1.21, M + m_p).
 fn loaded_reference(s: &Scene) -> f64 {
     let p = s.primary.as_ref().unwrap();
-    frf_amplitude(
-        p.mass + 0.227,
-        p.stiffness,
-        p.damping_n_s_m(),
-        s.excitation.amplitude,
-        s.excitation.omega_rad_s(),
-    )
+    pdamp::model::PrimarySystem {
+        mass_kg: p.mass + 0.227,
+        stiffness_n_m: p.stiffness,
+        damping_n_s_m: p.damping_n_s_m(),
+    }
+    .steady_amplitude_m(s.excitation.amplitude, s.excitation.omega_rad_s())
 }
 
 #[test]

@@ -129,7 +129,6 @@ pub fn simulate(
     };
     fwd.obs.finish()?;
     let cycles = (scene.duration_s() - s.steady_start_s) * scene.excitation.frequency;
-    let omega = scene.excitation.omega_rad_s();
     let l = s.ledger;
     let mut extra = BTreeMap::new();
     let opt = |v: Option<f64>| v.unwrap_or(f64::NAN);
@@ -175,15 +174,7 @@ pub fn simulate(
         amplitude_m: s.amplitude_m,
         box_z_max_m: s.box_z_max_m,
         box_z_min_m: s.box_z_min_m,
-        reference_amplitude_m: scene.primary.as_ref().map(|p| {
-            crate::model::frf_amplitude(
-                p.mass,
-                p.stiffness,
-                p.damping_n_s_m(),
-                scene.excitation.amplitude,
-                omega,
-            )
-        }),
+        reference_amplitude_m: drive.reference_amplitude_m(),
         energy_input_j_per_cycle: opt(s.energy_base_work_j_per_cycle),
         energy_viscous_j_per_cycle: opt(s.energy_viscous_j_per_cycle),
         energy_impact_j_per_cycle: opt(s.energy_collision_j_per_cycle)

@@ -8,44 +8,12 @@ use crate::contact::{coulomb_viscous_force, hertz_stiffness};
 use crate::contact::{AttractionPolicy, NormalLaw, TangentialLaw};
 use crate::error::SceneError;
 use crate::integrate::{advance_orientation, half_kick, half_kick_predict, kick_drift};
+pub use crate::model::{BoxDrive, PrimarySystem};
 use crate::neighbor::{NeighborList, Pair};
 use crate::scene::dem::DemParams;
-use crate::units::{G, TWO_PI};
+use crate::units::G;
 
 use super::energy::{EnergyLedger, EnergyState};
-
-/// The primary system carrying the box (SPEC §1): M z'' + C z' + K z = C u' + K u + F_gz.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PrimarySystem {
-    /// Primary mass M (kg).
-    pub mass_kg: f64,
-    /// Spring stiffness K (N/m).
-    pub stiffness_n_m: f64,
-    /// Viscous damping C (N s/m).
-    pub damping_n_s_m: f64,
-}
-
-/// How the box moves: on a primary system driven through its base, or kinematically with the
-/// base (`primary = None`). Base motion u(t) = U cos(Ωt), Ω = 2πf, t = 0 when the drive starts.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BoxDrive {
-    /// Primary system, or `None` for a box moved kinematically with the base.
-    pub primary: Option<PrimarySystem>,
-    /// Base amplitude U (m).
-    pub amplitude_m: f64,
-    /// Base frequency f (Hz).
-    pub frequency_hz: f64,
-}
-
-impl BoxDrive {
-    /// Base displacement u(t) (m) and velocity u'(t) (m/s).
-    #[inline]
-    pub fn base(&self, t: f64) -> (f64, f64) {
-        let w = TWO_PI * self.frequency_hz;
-        let (s, c) = (w * t).sin_cos();
-        (self.amplitude_m * c, -self.amplitude_m * w * s)
-    }
-}
 
 /// Normal-law kernel used by the monomorphised contact loops.
 trait NormalKernel {

@@ -343,7 +343,12 @@ impl ImpactWorld {
                 let free = Sdof::new(p.mass, p.stiffness, c, u_amp, omega, 0.0);
                 let loaded = Sdof::new(p.mass + mp, p.stiffness, c, u_amp, omega, -mp * g);
                 let ts = free.time_scale().min(loaded.time_scale());
-                let reference = crate::model::frf_amplitude(p.mass, p.stiffness, c, u_amp, omega);
+                let reference = crate::model::PrimarySystem {
+                    mass_kg: p.mass,
+                    stiffness_n_m: p.stiffness,
+                    damping_n_s_m: c,
+                }
+                .steady_amplitude_m(u_amp, omega);
                 (
                     BoxMotion::Spring(free),
                     BoxMotion::Spring(loaded),

@@ -20,12 +20,8 @@ pub const SAMPLE_INTERVAL_S: f64 = 2.5e-4;
 /// The primary system and base motion of a scene (what every setting shares).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Rig {
-    /// Primary mass M (kg).
-    pub mass_kg: f64,
-    /// Stiffness K (N/m).
-    pub stiffness_n_m: f64,
-    /// Damping C (N s/m).
-    pub damping_n_s_m: f64,
+    /// The primary system M, K, C.
+    pub primary: PrimarySystem,
     /// Base amplitude U (m).
     pub amplitude_m: f64,
     /// Gravity (m/s²).
@@ -43,9 +39,7 @@ impl Rig {
             hint: "the trade-off compares the primary's response Z; add a [primary] table".into(),
         })?;
         Ok(Rig {
-            mass_kg: p.mass,
-            stiffness_n_m: p.stiffness,
-            damping_n_s_m: p.damping_n_s_m(),
+            primary: p.system(),
             amplitude_m: scene.excitation.amplitude,
             gravity: scene.gravity,
         })
@@ -54,11 +48,7 @@ impl Rig {
     /// The DEM drive at `frequency_hz`.
     pub fn drive(&self, frequency_hz: f64) -> BoxDrive {
         BoxDrive {
-            primary: Some(PrimarySystem {
-                mass_kg: self.mass_kg,
-                stiffness_n_m: self.stiffness_n_m,
-                damping_n_s_m: self.damping_n_s_m,
-            }),
+            primary: Some(self.primary),
             amplitude_m: self.amplitude_m,
             frequency_hz,
         }
@@ -174,9 +164,9 @@ pub fn one_particle_scene(
     Scene {
         gravity: rig.gravity,
         primary: Some(crate::scene::Primary::new(
-            rig.mass_kg,
-            rig.stiffness_n_m,
-            rig.damping_n_s_m,
+            rig.primary.mass_kg,
+            rig.primary.stiffness_n_m,
+            rig.primary.damping_n_s_m,
         )),
         excitation: crate::scene::Excitation {
             amplitude: rig.amplitude_m,
