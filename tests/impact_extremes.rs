@@ -211,7 +211,7 @@ fn chattering_ends_in_sticking_at_the_analytic_time() {
         flew: false,
         rest: None,
     };
-    let r = pdamp::sweep::run_scene(&s, &mut obs, &RunOptions::full_series(&s)).unwrap();
+    let r = pdamp::sweep::run_scene(&s, &mut obs, &pdamp::setup::full_series(&s)).unwrap();
     let t_inf = (2.0 * h / g).sqrt() * (1.0 + e) / (1.0 - e);
     let rest = obs.rest.expect("the ball must come to rest");
     // within one sample interval (1e-5 s) plus the cut of the geometric tail (≪ 1e-6 s)

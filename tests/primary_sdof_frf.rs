@@ -121,7 +121,7 @@ fn closed_form_matches_independent_rk4_in_every_damping_regime() {
             p.initial_velocity = Some(-0.05);
         }
         let mut obs = Collect::default();
-        pdamp::sweep::run_scene(&scene, &mut obs, &RunOptions::full_series(&scene)).unwrap();
+        pdamp::sweep::run_scene(&scene, &mut obs, &pdamp::setup::full_series(&scene)).unwrap();
         let p = scene.primary.as_ref().unwrap();
         // RK4 with 1e-6 s steps: global error ~ (ω dt)^4 ≈ (190 × 1e-6)^4 × t … ≪ 1e-9 m
         let traj = rk4(

@@ -321,7 +321,8 @@ fn validate(
 ///
 /// # Example
 /// ```
-/// use pdamp::analysis::frf_fit::{fit_frf, sdof_amplitude, FrfFitOptions};
+/// use pdamp::analysis::frf_fit::{fit_frf, FrfFitOptions};
+/// use pdamp::model::PrimarySystem;
 /// let (m, c, k, u) = (2.37, 7.6, 21500.0, 4.5e-3);
 /// let f: Vec<f64> = (1..=60).map(|i| 0.5 * i as f64).collect();
 /// let p = PrimarySystem { mass_kg: m, stiffness_n_m: k, damping_n_s_m: c };

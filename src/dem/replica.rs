@@ -65,9 +65,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::{SceneError, SimError};
-use crate::scene::dem::DemParams;
+use crate::error::{ModelError, Quantity, SimError};
 
+use super::model::DemModel;
 use super::run::{run_dem, DemObserver, DemRunConfig, DemSample, DemSummary, StrobeRow};
 use super::world::{BoxDrive, DemWorld};
 
@@ -322,17 +322,17 @@ impl ReplicaTracker {
 /// (see the module documentation). Samples and snapshots of A go to `obs`.
 ///
 /// # Errors
-/// [`SimError::Scene`] for δ0 negative or not finite; the errors of [`run_dem`].
+/// [`SimError::Model`] for δ0 negative or not finite; the errors of [`run_dem`].
 pub fn run_replica(
-    params: &DemParams,
+    model: &DemModel,
     drive: BoxDrive,
     cfg: &DemRunConfig,
     opts: &ReplicaOptions,
     obs: &mut dyn DemObserver,
 ) -> Result<(DemSummary, ReplicaReport), SimError> {
     if !(opts.delta_m >= 0.0 && opts.delta_m.is_finite()) {
-        return Err(SceneError::invalid(
-            "run.replica",
+        return Err(ModelError::new(
+            Quantity::ReplicaPerturbation,
             opts.delta_m,
             "the perturbation δ0 must be finite and ≥ 0 (m)",
         )
@@ -361,7 +361,7 @@ pub fn run_replica(
         inner: obs,
         tracker: ReplicaTracker::new(*opts, drive.frequency_hz),
     };
-    let summary = run_dem(params, drive, cfg, &mut w)?;
+    let summary = run_dem(model, drive, cfg, &mut w)?;
     Ok((summary, w.tracker.finish()))
 }
 

@@ -5,13 +5,13 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::error::{SceneError, SimError};
+use crate::error::{ModelError, Quantity, SimError};
 use crate::packing::{advancing_front_packing, fcc_lattice, volume_fraction};
-use crate::scene::dem::{DemParams, PackingKind};
 use crate::units::G;
 
 use super::bed_impacts::BedImpacts;
 use super::energy::{balance, EnergyLedger};
+use super::model::{DemModel, Packing};
 use super::stability::{check, choose_dt, DEFAULT_DT_FRACTION};
 use super::world::{BoxDrive, DemWorld};
 
@@ -253,32 +253,29 @@ pub struct DemSummary {
     pub cycles_steady: f64,
 }
 
-/// Builds the initial bed of `params` (radii, lattice or advancing front) at rest, with the
-/// box held still at `box_z` (m).
+/// Builds the initial bed of `model` (its grains placed on a lattice or by the advancing
+/// front) at rest, with the box held still at `box_z` (m).
 ///
 /// # Errors
-/// Scene errors (invalid parameters, grains that do not fit).
+/// Grains that do not fit the box (packing errors); [`DemWorld::new`]'s errors.
 pub fn initial_world(
-    params: &DemParams,
+    model: &DemModel,
     drive: BoxDrive,
     dt: f64,
     box_z: f64,
-) -> Result<DemWorld, SceneError> {
-    params.validate()?;
-    let dist = params.radius_distribution()?;
-    let radii = dist.sample_n(params.count, params.seed);
-    let r_max = dist.r_max();
-    let pos = match params.packing {
-        PackingKind::Lattice => fcc_lattice(
-            params.r#box,
-            params.count,
-            r_max,
+) -> Result<DemWorld, SimError> {
+    let radii = model.grains.radius_m.clone();
+    let pos = match model.packing {
+        Packing::Lattice { seed } => fcc_lattice(
+            model.box_size_m,
+            radii.len(),
+            model.grains.r_max_m,
             0.05,
-            params.seed ^ 0x5eed,
+            seed ^ 0x5eed,
         )?,
-        PackingKind::AdvancingFront => advancing_front_packing(params.r#box, &radii)?,
+        Packing::AdvancingFront => advancing_front_packing(model.box_size_m, &radii)?,
     };
-    let mut w = DemWorld::new(params, drive, dt, radii, pos)?;
+    let mut w = DemWorld::new(model, drive, dt, radii, pos)?;
     w.shift_box_to(box_z);
     w.refresh();
     Ok(w)
@@ -356,10 +353,11 @@ fn sample_of(w: &DemWorld, e0: &super::energy::EnergyState) -> DemSample {
 /// Runs a DEM damper scene: bed, settling, then `cfg.duration_s` of drive.
 ///
 /// # Errors
-/// [`SimError::Scene`] for invalid parameters or time step; [`SimError::Unstable`] when the
-/// state turns non-finite, a grain leaves the box or energy grows without input.
+/// [`SimError::Model`] for a refused time step or run window; packing errors;
+/// [`SimError::Unstable`] when the state turns non-finite, a grain leaves the box or energy
+/// grows without input.
 pub fn run_dem(
-    params: &DemParams,
+    model: &DemModel,
     drive: BoxDrive,
     cfg: &DemRunConfig,
     obs: &mut dyn DemObserver,
@@ -368,22 +366,22 @@ pub fn run_dem(
         DtChoice::Auto => None,
         DtChoice::Seconds(s) => Some(s),
     };
-    let (mut dt, ts) = choose_dt(params, &drive, explicit, cfg.dt_fraction)?;
+    let (mut dt, ts) = choose_dt(model, &drive, explicit, cfg.dt_fraction)?;
     if explicit.is_none() && cfg.sample_interval_s > dt && cfg.sample_interval_s.is_finite() {
         // automatic step: shrink it slightly so that samples fall on exact multiples of dt
         dt = cfg.sample_interval_s / (cfg.sample_interval_s / dt).ceil();
     }
-    for (k, v) in [
-        ("run.duration", cfg.duration_s),
-        ("run.sample_interval", cfg.sample_interval_s),
+    for (q, v) in [
+        (Quantity::Duration, cfg.duration_s),
+        (Quantity::SampleInterval, cfg.sample_interval_s),
     ] {
         if !(v > 0.0 && v.is_finite()) {
-            return Err(SceneError::invalid(k, v, "must be > 0 (seconds)").into());
+            return Err(ModelError::new(q, v, "must be > 0 (seconds)").into());
         }
     }
     if !(cfg.steady_fraction > 0.0 && cfg.steady_fraction <= 1.0) {
-        return Err(SceneError::invalid(
-            "run.steady_fraction",
+        return Err(ModelError::new(
+            Quantity::SteadyFraction,
             cfg.steady_fraction,
             "must be in (0, 1]",
         )
@@ -391,7 +389,7 @@ pub fn run_dem(
     }
     // box held at its start position: u(0) for a kinematic box, the static equilibrium with
     // the grains' weight for a primary
-    let mut world = initial_world(params, drive, dt, 0.0)?;
+    let mut world = initial_world(model, drive, dt, 0.0)?;
     world.gravity = cfg.gravity_m_s2;
     let m_p: f64 = world.mass.iter().sum();
     let z_hold = match drive.primary {
@@ -399,7 +397,7 @@ pub fn run_dem(
         None => drive.base(0.0).0,
     };
     world.shift_box_to(z_hold);
-    let (settle_t, settle_steps) = settle(&mut world, params.settle_time.unwrap_or(1.0));
+    let (settle_t, settle_steps) = settle(&mut world, model.settle_time_s);
     let (zcm, _, _) = world.z_stats();
     let bed_height_m = 2.0 * (zcm - world.box_z);
     let phi = volume_fraction(
@@ -412,8 +410,8 @@ pub fn run_dem(
 
     let n_steps = (cfg.duration_s / dt).ceil() as u64;
     let per_sample = ((cfg.sample_interval_s / dt).round() as u64).max(1);
-    let per_snap = params
-        .snapshot_interval
+    let per_snap = model
+        .snapshot_interval_s
         .map(|s| ((s / dt).round() as u64).max(1));
     let steady_from = ((1.0 - cfg.steady_fraction) * n_steps as f64).floor() as u64;
     let steady_start_s = steady_from as f64 * dt;

@@ -13,26 +13,39 @@ pub struct RunOptions {
     pub sample_from_s: f64,
 }
 
+/// The time windows of a run (s): its duration, the steady-state window (per-cycle figures)
+/// and the analysis window (stroboscopic section and analysed series).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RunWindow {
+    /// Simulated (driven) time (s).
+    pub duration_s: f64,
+    /// Start of the steady-state window (s).
+    pub steady_start_s: f64,
+    /// Start of the analysis window (s), ≤ `steady_start_s`.
+    pub analysis_start_s: f64,
+}
+
 impl RunOptions {
-    /// Samples every `run.sample_interval` from t = 0 (what `pdamp simulate` writes).
-    pub fn full_series(scene: &crate::scene::Scene) -> RunOptions {
+    /// Samples every `sample_interval_s` (s) from t = 0 (what `pdamp simulate` writes).
+    pub fn full_series(sample_interval_s: f64) -> RunOptions {
         RunOptions {
-            sample_interval_s: Some(scene.run.sample_interval),
+            sample_interval_s: Some(sample_interval_s),
             sample_from_s: 0.0,
         }
     }
 
-    /// Samples of the analysis window only (`run.analysis_fraction`), decimated so that at
-    /// most `run.analysis_max_samples` are produced (input of the nonlinear analysis).
-    pub fn steady_series(scene: &crate::scene::Scene) -> RunOptions {
-        let steady = scene.duration_s() - scene.analysis_start_s();
-        let dt = scene
-            .run
-            .sample_interval
-            .max(steady / scene.run.analysis_max_samples as f64);
+    /// Samples of the analysis window of `window` only, every `sample_interval_s` (s) but
+    /// decimated so that at most `max_samples` are produced (input of the nonlinear analysis).
+    pub fn steady_series(
+        window: &RunWindow,
+        sample_interval_s: f64,
+        max_samples: usize,
+    ) -> RunOptions {
+        let steady = window.duration_s - window.analysis_start_s;
+        let dt = sample_interval_s.max(steady / max_samples as f64);
         RunOptions {
             sample_interval_s: Some(dt),
-            sample_from_s: scene.analysis_start_s(),
+            sample_from_s: window.analysis_start_s,
         }
     }
 

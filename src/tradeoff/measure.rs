@@ -3,10 +3,9 @@
 
 use std::time::Instant;
 
-use crate::dem::{
-    run_dem, BoxDrive, DemObserver, DemRunConfig, DemSample, DtChoice, PrimarySystem,
-};
+use crate::dem::{BoxDrive, DemObserver, DemRunConfig, DemSample, DtChoice};
 use crate::error::{SceneError, SimError};
+use crate::model::PrimarySystem;
 use crate::model::RunOptions;
 use crate::observe::{Observer, Sample};
 use crate::scene::{Damper, ImpactParams, Run, Scene};
@@ -133,7 +132,7 @@ pub fn run_dem_case(case: &Case, rig: &Rig, frequency_hz: f64) -> Result<RunOutp
     };
     let mut trace = Trace::default();
     let clock = Instant::now();
-    let s = run_dem(&params, rig.drive(frequency_hz), &cfg, &mut trace)?;
+    let s = crate::setup::dem::run_params(&params, rig.drive(frequency_hz), &cfg, &mut trace)?;
     let wall = clock.elapsed().as_secs_f64();
     Ok(RunOutput {
         frequency_hz,
@@ -195,7 +194,8 @@ pub fn run_impact_scene(scene: &Scene) -> Result<RunOutput, SimError> {
         sample_from_s: 0.0,
     };
     let clock = Instant::now();
-    let s = crate::impact::simulate(scene, &mut trace, &opts)?;
+    let s = crate::impact::simulate(&scene.resolve_impact()?, &mut trace, &opts)
+        .map_err(crate::setup::keyed)?;
     let wall = clock.elapsed().as_secs_f64();
     Ok(RunOutput {
         frequency_hz: scene.frequency_hz(),

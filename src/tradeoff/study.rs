@@ -289,7 +289,7 @@ pub fn run_study(
             "reference: DEM, Young's modulus / {} (damping × {:.4}, e(v) unchanged), Hertz–Kuwabara–Kono, \
              friction and rotations on, dt = t_s × {}, {} s of drive, last {} analysed",
             rl.reference_softening,
-            rl.reference_softening.powf(-0.6),
+            crate::scene::dem::softening_damping_scale(rl.reference_softening),
             rl.reference_dt_fraction,
             rl.duration_s,
             rl.steady_fraction
