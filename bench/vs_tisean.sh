@@ -15,10 +15,12 @@
 # Usage: TISEAN_SRC=... bench/vs_tisean.sh
 # Environment: LENGTHS (default "50000 200000"), PROGRAMS (default "lyap_k false_nearest"),
 #   WORK (scratch directory, default /tmp/pdamp-vs-tisean), SKIP_TISEAN_ABOVE (skip TISEAN's
-#   lyap_k above this N, e.g. when its ~N² run time is too long; its ratio is then not printed).
-# Order per (program, N): TISEAN, pdamp on 2 threads, pdamp on 1 thread (RAYON_NUM_THREADS=1,
-# taskset -c 0 if available). Load (uptime) is printed before each run: on a shared machine
-# compare CPU seconds (user+sys), which the load disturbs much less than wall time.
+#   lyap_k above this N, e.g. when its ~N² run time is too long; its ratio is then not printed),
+#   REPEAT (runs of each command, default 1; the table then shows medians).
+# Order per (program, N), repeated REPEAT times (alternating): TISEAN, pdamp on 2 threads, pdamp
+# on 1 thread (RAYON_NUM_THREADS=1, taskset -c 0 if available). Load (uptime) is printed before
+# each round: on a shared machine compare CPU seconds (user+sys), which the load disturbs much
+# less than wall time.
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -26,6 +28,7 @@ WORK=${WORK:-/tmp/pdamp-vs-tisean}
 LENGTHS=${LENGTHS:-"50000 200000"}
 PROGRAMS=${PROGRAMS:-"lyap_k false_nearest"}
 SKIP_TISEAN_ABOVE=${SKIP_TISEAN_ABOVE:-0}
+REPEAT=${REPEAT:-1}
 COMMIT=4e51806
 mkdir -p "$WORK"
 
@@ -71,14 +74,22 @@ done
 ONE_CORE=""
 command -v taskset >/dev/null && ONE_CORE="taskset -c 0"
 
-# timed CMD... : prints "wall cpu" (seconds, cpu = user + sys) of the command; its stdout
-# goes to $OUT
+# timed CMD... : prints "wall cpu" (seconds, cpu = user + sys, to the millisecond) of the
+# command (bash's `time`); its stdout goes to $OUT
 timed() {
   local tf
   tf=$(mktemp)
-  /usr/bin/time -o "$tf" -f "%e %U %S" "$@" >"$OUT" 2>/dev/null
-  awk '{ printf "%.2f %.2f\n", $1, $2 + $3 }' "$tf"
+  { TIMEFORMAT="%3R %3U %3S"; time "$@" >"$OUT" 2>/dev/null; } 2>"$tf"
+  awk '{ printf "%.3f %.3f\n", $1, $2 + $3 }' "$tf"
   rm -f "$tf"
+}
+
+# median WALL_CPU... : "wall cpu", the medians of the "wall cpu" pairs given
+median() {
+  printf '%s\n' "$@" | awk '{ w[NR] = $1; c[NR] = $2 }
+    function med(a, n,   i, j, t) { for (i = 2; i <= n; i++) for (j = i; j > 1 && a[j - 1] > a[j]; j--) { t = a[j]; a[j] = a[j - 1]; a[j - 1] = t }
+                                   return n % 2 ? a[(n + 1) / 2] : (a[n / 2] + a[n / 2 + 1]) / 2 }
+    END { printf "%.3f %.3f\n", med(w, NR), med(c, NR) }'
 }
 
 # compare_lyap TISEAN_FILE PDAMP_CSV: every row equal to TISEAN's print precision
@@ -122,25 +133,33 @@ for prog in $PROGRAMS; do
     tfile="$WORK/tisean_n$n.$ext"
     pfile="$WORK/pdamp_n$n.$ext.csv"
     echo "== $prog, N = $n: $prog $(basename "$dat") $opts -V0   |   pdamp $verb $(basename "$dat") --tisean $opts"
-    t_t="- -"
-    if [[ $SKIP_TISEAN_ABOVE -eq 0 || $n -le $SKIP_TISEAN_ABOVE || $prog != lyap_k ]]; then
+    run_tisean=0
+    [[ $SKIP_TISEAN_ABOVE -eq 0 || $n -le $SKIP_TISEAN_ABOVE || $prog != lyap_k ]] && run_tisean=1
+    tt=(); tp2=(); tp1=()
+    for ((rep = 1; rep <= REPEAT; rep++)); do
       echo "   load: $(uptime | sed 's/.*load/load/')"
-      # shellcheck disable=SC2086
-      if [[ $prog == lyap_k ]]; then
-        OUT=/dev/null; t_t=$(timed "$TB/lyap_k" "$dat" $opts -V0 -o "$tfile")
-      else
-        OUT=$tfile; t_t=$(timed "$TB/false_nearest" "$dat" $opts -V0)
+      if [[ $run_tisean -eq 1 ]]; then
+        # shellcheck disable=SC2086
+        if [[ $prog == lyap_k ]]; then
+          OUT=/dev/null; t=$(timed "$TB/lyap_k" "$dat" $opts -V0 -o "$tfile")
+        else
+          OUT=$tfile; t=$(timed "$TB/false_nearest" "$dat" $opts -V0)
+        fi
+        tt+=("$t")
       fi
-      echo "   TISEAN        wall/cpu s: $t_t"
-    fi
-    echo "   load: $(uptime | sed 's/.*load/load/')"
-    # shellcheck disable=SC2086
-    OUT=$pfile; t_p2=$(timed "$PDAMP" "$verb" "$dat" --tisean $opts)
-    echo "   pdamp 2 thr   wall/cpu s: $t_p2"
-    echo "   load: $(uptime | sed 's/.*load/load/')"
-    # shellcheck disable=SC2086
-    OUT=$pfile.1; t_p1=$(RAYON_NUM_THREADS=1 timed $ONE_CORE "$PDAMP" "$verb" "$dat" --tisean $opts)
-    echo "   pdamp 1 thr   wall/cpu s: $t_p1"
+      # shellcheck disable=SC2086
+      OUT=$pfile; t=$(timed "$PDAMP" "$verb" "$dat" --tisean $opts); tp2+=("$t")
+      # shellcheck disable=SC2086
+      OUT=$pfile.1; t=$(RAYON_NUM_THREADS=1 timed $ONE_CORE "$PDAMP" "$verb" "$dat" --tisean $opts); tp1+=("$t")
+      last_t="- -"
+      [[ ${#tt[@]} -gt 0 ]] && last_t=${tt[-1]}
+      echo "   run $rep wall/cpu s: TISEAN $last_t | pdamp 2 thr ${tp2[-1]} | pdamp 1 thr ${tp1[-1]}"
+    done
+    t_t="- -"
+    [[ $run_tisean -eq 1 ]] && t_t=$(median "${tt[@]}")
+    t_p2=$(median "${tp2[@]}")
+    t_p1=$(median "${tp1[@]}")
+    [[ $REPEAT -gt 1 ]] && echo "   medians of $REPEAT: TISEAN $t_t | pdamp 2 thr $t_p2 | pdamp 1 thr $t_p1"
     cmp -s "$pfile" "$pfile.1" || { echo "   pdamp output depends on the thread count!"; exit 1; }
     if [[ -s $tfile && $t_t != "- -" ]]; then
       if [[ $prog == lyap_k ]]; then eq=$(compare_lyap "$tfile" "$pfile"); else eq=$(compare_fnn "$tfile" "$pfile"); fi
@@ -151,6 +170,7 @@ for prog in $PROGRAMS; do
 done
 
 echo
+[[ $REPEAT -gt 1 ]] && echo "(medians of $REPEAT runs each)"
 echo "| program | N | TISEAN wall (cpu) s | pdamp 2 thr wall (cpu) s | pdamp 1 thr wall (cpu) s | ratio wall 2 thr | ratio wall 1 thr | ratio cpu 1 thr |"
 echo "|---|---|---|---|---|---|---|---|"
 for r in "${RESULTS[@]}"; do

@@ -13,6 +13,7 @@ use crate::analysis::false_nearest_neighbors::{
 };
 use crate::analysis::kantz_scan::{kantz_scan, KantzScanOptions};
 use crate::analysis::mutual_information::{mutual_information, MutualInformationOptions};
+use crate::analysis::phase_lock::{phase_lock, PhaseLock};
 use crate::analysis::poincare::{
     classify_section, period_in_samples, stroboscopic_section, ClusterOptions, SecondCoordinate,
     SectionShape, StrobeOptions,
@@ -21,7 +22,7 @@ use crate::analysis::prediction_error::{prediction_error, PredictionErrorOptions
 use crate::analysis::regime::{
     classify, harmonic_fundamental, recurrence_period, Evidence, Regime, RegimeThresholds,
 };
-use crate::analysis::regime::{classify_forced, Exponent, ForcedEvidence};
+use crate::analysis::regime::{classify_forced, Exponent, ForcedEvidence, LOCKED_FRACTION_MIN};
 use crate::analysis::section::{analyze_section, SectionAnalysis, SectionOptions};
 use crate::analysis::section_lyapunov::{
     section_lyapunov, SectionLyapunov, SectionLyapunovOptions,
@@ -179,6 +180,11 @@ pub struct AnalysisReport {
     /// The section exponent's curves S(ε, Δ) and fits.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub section_exponent: Option<SectionLyapunov>,
+    /// Synchronous average of the motion relative to the container
+    /// ([`crate::analysis::phase_lock`]): the shortest window p ≤ 4 periods whose mean waveform
+    /// carries ≥ 90 % of the variance, or else the one-period result; forced runs only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub phase_lock: Option<PhaseLock>,
     /// Sampling interval of the series analysed (s), after any decimation.
     pub series_dt_s: Option<f64>,
     /// All evidence given to the classifier.
@@ -449,6 +455,10 @@ pub struct ForcedRun<'a> {
     pub scales: &'a [f64],
     /// The exponent computed from the model's equations, when the simulator has one.
     pub model_exponent: Option<Exponent>,
+    /// The observed coordinate relative to the container (e.g. grain z − box z, m), sampled as
+    /// `series`; its synchronous average measures the noise level of a phase-locked motion
+    /// (see [`crate::analysis::phase_lock`]). Empty: `series` is used.
+    pub in_box_series: &'a [f64],
 }
 
 /// Returns the regime of a forced run judged from its exact stroboscopic section first, with
@@ -502,6 +512,12 @@ pub fn analyze_forced(
         }
     }
     let sec = analyze_section(run.section, run.scales, &SectionOptions::default())?;
+    let lock_series = if run.in_box_series.is_empty() {
+        run.series
+    } else {
+        run.in_box_series
+    };
+    report.phase_lock = shortest_lock(lock_series, run.dt_s, run.forcing_hz);
     section_verdict(
         &mut report,
         sec,
@@ -513,6 +529,23 @@ pub fn analyze_forced(
     );
     report.evidence = evidence;
     Ok(report)
+}
+
+/// Longest window tried by [`shortest_lock`], in forcing periods.
+const LOCK_MAX_PERIODS: usize = 4;
+
+/// The synchronous average over the shortest window p ≤ [`LOCK_MAX_PERIODS`] forcing periods
+/// whose locked fraction reaches [`LOCKED_FRACTION_MIN`], else the one-period average; `None`
+/// when the series is too short (or not finite) for one.
+fn shortest_lock(x: &[f64], dt_s: f64, forcing_hz: f64) -> Option<PhaseLock> {
+    let one = phase_lock(x, dt_s, forcing_hz, 1).ok()?;
+    if one.locked_fraction >= LOCKED_FRACTION_MIN {
+        return Some(one);
+    }
+    (2..=LOCK_MAX_PERIODS)
+        .filter_map(|p| phase_lock(x, dt_s, forcing_hz, p).ok())
+        .find(|l| l.locked_fraction >= LOCKED_FRACTION_MIN)
+        .or(Some(one))
 }
 
 /// Section exponent, classification and report fields from a section analysis.
@@ -549,6 +582,7 @@ fn section_verdict(
         data_exponent: data_exp,
         model_exponent: model,
         zero_band: 0.01,
+        phase_lock: report.phase_lock,
     });
     report.regime = verdict.regime;
     report.period = verdict.period;
@@ -611,6 +645,7 @@ fn empty_report(n: usize, dt_s: Option<f64>) -> AnalysisReport {
         model_mle_per_s: None,
         model_mle_stderr_per_s: None,
         section_exponent: None,
+        phase_lock: None,
         series_dt_s: dt_s,
         evidence: Evidence::default(),
         notes: Vec::new(),

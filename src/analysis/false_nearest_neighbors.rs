@@ -5,12 +5,17 @@
 //! Exact nearest neighbours in the maximum norm by a box-assisted search, as TISEAN's: the
 //! candidates are sorted into the cells of a grid on two delay coordinates (the first and
 //! the last of the m-dimensional vector; one coordinate for m = 1) and a query scans only
-//! the cells within its current bound, columns outward from its own. The bound starts at
-//! the smallest of σ/R_t (farther neighbours are never accepted), the distance to the
-//! nearest indices outside the Theiler window, and the distance to the previous dimension's
-//! neighbour, and shrinks with every closer candidate, so a query visits a few cells. The
-//! queries of one dimension run in parallel (rayon); each answer depends only on its query,
-//! so the results do not depend on the thread count.
+//! the cells within its current bound, rings of cells outward from its own. The bound
+//! starts at the smaller of σ/R_t (farther neighbours are never accepted) and the distance
+//! to the previous dimension's neighbour (without one: to the nearest indices outside the
+//! Theiler window), and shrinks with every closer candidate, so a query visits a few
+//! cells. The grid stores only the two gridded coordinates (contiguous box tests); the full
+//! vector is read from the series for the few candidates that pass. The queries of one
+//! dimension run in parallel (rayon) over fixed blocks, while the next dimension's grid is
+//! built; each answer depends only on its query, and the blocks' sums are added in block
+//! order, so the results do not depend on the thread count.
+
+use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
 
 use rayon::prelude::*;
 
@@ -189,11 +194,27 @@ pub fn false_nearest_neighbors(
     };
     // nearest neighbour of each reference in the previous dimension: its distance in the next
     // dimension bounds the new nearest-neighbour distance from above (max norm), which
-    // shrinks the search radius
-    let mut prev: Vec<u32> = vec![NONE; setup.n_ref];
-    (opts.m_min..=opts.m_max)
-        .map(|m| fnn_in_dimension(&setup, m, &mut prev))
-        .collect()
+    // shrinks the search radius. Written by one dimension (`next`), read by the next (`prev`).
+    let none = || (0..setup.n_ref).map(|_| AtomicU32::new(NONE)).collect();
+    let (mut prev, mut next): (Vec<AtomicU32>, Vec<AtomicU32>) = (none(), none());
+    // two grids: the next dimension's is built while this one's queries run
+    let (mut grid, mut spare) = (Grid::default(), Grid::default());
+    grid.build(&setup, opts.m_min);
+    let mut points = Vec::with_capacity(opts.m_max - opts.m_min + 1);
+    for m in opts.m_min..=opts.m_max {
+        let (point, ()) = rayon::join(
+            || fnn_in_dimension(&setup, m, &grid, &prev, &next),
+            || {
+                if m < opts.m_max {
+                    spare.build(&setup, m + 1);
+                }
+            },
+        );
+        points.push(point?);
+        std::mem::swap(&mut grid, &mut spare);
+        std::mem::swap(&mut prev, &mut next);
+    }
+    Ok(points)
 }
 
 /// The embedding dimension FNN suggests: the first m whose false fraction is ≤ `threshold`
@@ -245,7 +266,7 @@ struct Setup<'a> {
     range: f64,
 }
 
-/// Accumulated counts of one dimension.
+/// Accumulated counts of one dimension (of one block of queries, then of all).
 #[derive(Default)]
 struct Tally {
     accepted: usize,
@@ -264,6 +285,15 @@ impl Tally {
         if escape > setup.ratio {
             self.false_count += 1;
         }
+    }
+
+    /// The tally of `self`'s queries followed by `other`'s.
+    fn merge(mut self, other: Tally) -> Tally {
+        self.accepted += other.accepted;
+        self.false_count += other.false_count;
+        self.sum_d += other.sum_d;
+        self.sum_d2 += other.sum_d2;
+        self
     }
 
     fn finish(self, m: usize, range: f64) -> FnnPoint {
@@ -288,17 +318,26 @@ impl Tally {
     }
 }
 
-/// Queries per parallel work unit (at least).
+/// Queries per parallel work unit. Fixed (not set by the thread count), so that the
+/// partial sums, added in block order, do not depend on the thread count.
 const QUERY_BLOCK: usize = 2048;
 
-/// Marks "no neighbour found" in the previous-dimension list.
+/// Marks "no neighbour found" in the neighbour lists.
 const NONE: u32 = u32::MAX;
 
-fn fnn_in_dimension(setup: &Setup, m: usize, prev: &mut [u32]) -> Result<FnnPoint, AnalysisError> {
+/// Tests dimension m with `grid` (built for m): reads the previous dimension's neighbours
+/// from `prev`, writes this dimension's to `next`.
+fn fnn_in_dimension(
+    setup: &Setup,
+    m: usize,
+    grid: &Grid,
+    prev: &[AtomicU32],
+    next: &[AtomicU32],
+) -> Result<FnnPoint, AnalysisError> {
     macro_rules! dispatch {
         ($($k:literal),*) => {
             match m {
-                $($k => Ok(fnn_k::<$k>(setup, prev)),)*
+                $($k => Ok(fnn_k::<$k>(setup, grid, prev, next)),)*
                 _ => Err(AnalysisError::bad("m", m, format!("1..={MAX_DIMENSION}"))),
             }
         };
@@ -306,114 +345,144 @@ fn fnn_in_dimension(setup: &Setup, m: usize, prev: &mut [u32]) -> Result<FnnPoin
     dispatch!(1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12)
 }
 
-fn fnn_k<const K: usize>(setup: &Setup, prev: &mut [u32]) -> FnnPoint {
-    let grid = Grid::<K>::new(setup);
+fn fnn_k<const K: usize>(
+    setup: &Setup,
+    grid: &Grid,
+    prev: &[AtomicU32],
+    next: &[AtomicU32],
+) -> FnnPoint {
     // Queries in the grid's cell order (neighbouring queries read the same cells: cache
-    // friendly), in parallel over fixed blocks of that order; each query's answer depends
-    // only on its own n, so results do not depend on the thread count. They are stored per
-    // n and tallied in n order (sums as in a plain loop).
+    // friendly), then the references that are not candidates; in parallel over fixed blocks
+    // of that order. Each query's answer depends only on its own n (and its seed, which only
+    // speeds it up), so the results do not depend on the thread count; the blocks' tallies
+    // are added in block order.
     let n_grid = grid.index.len();
-    let found: Vec<Option<(u32, f64)>> = (0..setup.n_ref)
+    let blocks = setup.n_ref.div_ceil(QUERY_BLOCK);
+    let tallies: Vec<Tally> = (0..blocks)
         .into_par_iter()
-        .with_min_len(QUERY_BLOCK)
-        .map(|k| {
-            let (n, q) = if k < n_grid {
-                (grid.index[k] as usize, grid.points[k])
-            } else {
-                let n = setup.n_cand + (k - n_grid);
-                (n, std::array::from_fn(|c| setup.s[n + c * setup.tau]))
-            };
-            nearest(&grid, setup, n, q, prev[n])
+        .map(|b| {
+            let mut tally = Tally::default();
+            for k in b * QUERY_BLOCK..((b + 1) * QUERY_BLOCK).min(setup.n_ref) {
+                let n = if k < n_grid {
+                    grid.index[k] as usize
+                } else {
+                    k
+                };
+                let found = nearest::<K>(grid, setup, n, prev[n].load(Relaxed));
+                next[n].store(found.map_or(NONE, |(j, _)| j), Relaxed);
+                if let Some((j, d)) = found {
+                    tally.add(setup, K, n, j as usize, d);
+                }
+            }
+            tally
         })
         .collect();
-    let mut dist = vec![0.0f64; setup.n_ref];
-    for (k, f) in found.into_iter().enumerate() {
-        let n = if k < n_grid {
-            grid.index[k] as usize
-        } else {
-            setup.n_cand + (k - n_grid)
-        };
-        prev[n] = f.map_or(NONE, |(j, _)| j);
-        dist[n] = f.map_or(0.0, |(_, d)| d);
-    }
-    let mut tally = Tally::default();
-    for (n, (&j, &d)) in prev.iter().zip(&dist).enumerate() {
-        if j != NONE {
-            tally.add(setup, K, n, j as usize, d);
-        }
-    }
-    tally.finish(K, setup.range)
+    tallies
+        .into_iter()
+        .fold(Tally::default(), Tally::merge)
+        .finish(K, setup.range)
 }
 
 /// Box-assisted search structure (as TISEAN's): the candidates sorted by the cell of their
-/// first and last coordinates `(s_j, s_{j+(K−1)τ})` on a `g1 × g2` grid over [0, 1]² (the
-/// first coordinate only, `g2 = 1`, for K = 1), column-major, so that the cells of one
-/// column form one contiguous run. The delay vectors are stored in that order (contiguous
-/// reads while scanning a run).
-struct Grid<const K: usize> {
+/// first and last coordinates `(s_j, s_{j+(m−1)τ})` on a `g1 × g2` grid over [0, 1]² (the
+/// first coordinate only, `g2 = 1`, for m = 1), column-major, so that the cells of one
+/// column form one contiguous run. Those two coordinates are stored in that order (the box
+/// test reads them contiguously); the others are read from the series when a candidate
+/// passes it. Its buffers are reused from one dimension to the next.
+#[derive(Default)]
+struct Grid {
     g1: usize,
     g2: usize,
     /// `start[c]..start[c + 1]`: the candidates of cell `c = cx·g2 + cy`.
     start: Vec<u32>,
-    /// Delay vectors of the candidates, in cell order.
-    points: Vec<[f64; K]>,
+    /// `(s_j, s_{j+(m−1)τ})` of the candidates, in cell order.
+    ends: Vec<[f64; 2]>,
     /// Index j of each of them.
     index: Vec<u32>,
-    /// Position of candidate j in cell order (inverse of `index`).
-    pos: Vec<u32>,
+    /// Cell of candidate j (scratch of [`Grid::build`]).
+    cell_of: Vec<u32>,
 }
 
-/// Cell of a rescaled coordinate `v ∈ [0, 1]` on a grid of `g` cells (monotone in `v`).
-fn cell(v: f64, g: usize) -> usize {
-    ((v * g as f64) as usize).min(g - 1)
+/// Cell of a rescaled coordinate `v` on a grid of `g` cells over [0, 1] (monotone in `v`;
+/// values outside [0, 1] go to the first or last cell).
+#[inline]
+fn cell(v: f64, g: usize) -> isize {
+    // f64 → i64 is one instruction on x86-64 (→ usize is not)
+    ((v * g as f64) as i64).clamp(0, g as i64 - 1) as isize
 }
 
-impl<const K: usize> Grid<K> {
-    fn new(setup: &Setup) -> Self {
+impl Grid {
+    /// Files the candidates `j < n_cand` for dimension `m` (a counting sort by cell).
+    fn build(&mut self, setup: &Setup, m: usize) {
         let n = setup.n_cand;
-        // a few candidates per occupied cell (the attractor covers part of the square)
-        let (g1, g2) = if K == 1 {
+        // 4N cells (at most 4096²): the attractor covers part of the square, so an occupied
+        // cell holds a few candidates, and a cell is not much wider than a typical
+        // nearest-neighbour distance
+        let (g1, g2) = if m == 1 {
             (n.max(1), 1)
         } else {
-            let g = ((n as f64).sqrt().ceil() as usize).clamp(1, 1 << 12);
+            let g = ((4.0 * n as f64).sqrt().ceil() as usize).clamp(1, 1 << 12);
             (g, g)
         };
-        let (s, tau) = (setup.s, setup.tau);
-        let point = |j: usize| -> [f64; K] { std::array::from_fn(|k| s[j + k * tau]) };
-        let key = |p: &[f64; K]| cell(p[0], g1) * g2 + cell(p[K - 1], g2);
-        let mut start = vec![0u32; g1 * g2 + 1];
-        for j in 0..n {
-            start[key(&point(j)) + 1] += 1;
+        let (s, last) = (setup.s, (m - 1) * setup.tau);
+        let cells = g1 * g2;
+        self.start.clear();
+        self.start.resize(cells + 1, 0);
+        self.cell_of.resize(n, 0);
+        self.ends.resize(n, [0.0; 2]);
+        self.index.resize(n, 0);
+        for (j, c) in self.cell_of.iter_mut().enumerate() {
+            let key = cell(s[j], g1) as usize * g2 + cell(s[j + last], g2) as usize;
+            *c = key as u32;
+            self.start[key + 1] += 1;
         }
-        for c in 0..g1 * g2 {
-            start[c + 1] += start[c];
+        for c in 0..cells {
+            self.start[c + 1] += self.start[c];
         }
-        let mut fill = start.clone();
-        let mut points = vec![[0.0; K]; n];
-        let mut index = vec![0u32; n];
-        let mut pos = vec![0u32; n];
-        for (j, pos_j) in pos.iter_mut().enumerate() {
-            let p = point(j);
-            let c = key(&p);
-            let at = fill[c] as usize;
-            points[at] = p;
-            index[at] = j as u32;
-            *pos_j = at as u32;
-            fill[c] += 1;
+        // file each candidate at the running start of its cell, then shift the starts back
+        for (j, &c) in self.cell_of.iter().enumerate() {
+            let at = self.start[c as usize] as usize;
+            self.ends[at] = [s[j], s[j + last]];
+            self.index[at] = j as u32;
+            self.start[c as usize] += 1;
         }
-        Self {
-            g1,
-            g2,
-            start,
-            points,
-            index,
-            pos,
-        }
+        self.start.copy_within(0..cells, 1);
+        self.start[0] = 0;
+        (self.g1, self.g2) = (g1, g2);
     }
 
     /// Positions (in cell order) of the candidates of the cells `cx × (cy0..=cy1)`.
-    fn run(&self, cx: usize, cy0: usize, cy1: usize) -> std::ops::Range<usize> {
-        self.start[cx * self.g2 + cy0] as usize..self.start[cx * self.g2 + cy1 + 1] as usize
+    #[inline]
+    fn run(&self, cx: isize, cy0: isize, cy1: isize) -> std::ops::Range<usize> {
+        let col = cx as usize * self.g2;
+        self.start[col + cy0 as usize] as usize..self.start[col + cy1 as usize + 1] as usize
+    }
+}
+
+/// The query's cell `(cx, cy)` and the cells `lo..=hi × ylo..=yhi` of the box of half-width
+/// r around it (with a margin far below any distance, against rounding at a cell edge).
+#[derive(Default)]
+struct CellBox {
+    cx: isize,
+    cy: isize,
+    lo: isize,
+    hi: isize,
+    ylo: isize,
+    yhi: isize,
+}
+
+impl CellBox {
+    #[inline]
+    fn new(grid: &Grid, qx: f64, qy: f64, r: f64) -> Self {
+        let (g1, g2, r) = (grid.g1, grid.g2, r + 1e-12);
+        Self {
+            cx: cell(qx, g1),
+            cy: cell(qy, g2),
+            lo: cell(qx - r, g1),
+            hi: cell(qx + r, g1),
+            ylo: cell(qy - r, g2),
+            yhi: cell(qy + r, g2),
+        }
     }
 }
 
@@ -425,123 +494,144 @@ struct Search<'a, const K: usize> {
     /// Current bound on the distance (σ/R_t, then the best distance).
     r: f64,
     best: Option<(u32, f64)>,
-    grid: &'a Grid<K>,
+    s: &'a [f64],
+    tau: usize,
 }
 
 impl<const K: usize> Search<'_, K> {
-    /// Max-norm distance from the query to `p`, or `None` beyond the bound (early exit).
-    fn distance(&self, p: &[f64; K]) -> Option<f64> {
-        let mut d = 0.0f64;
-        for (a, b) in self.q.iter().zip(p) {
-            d = d.max((a - b).abs());
-            if d > self.r {
-                return None;
-            }
-        }
-        Some(d)
-    }
-
-    /// Takes candidate j at point p if it is admissible and beats the best `(distance, j)`.
-    fn consider(&mut self, j: u32, p: &[f64; K]) {
-        if !outside_theiler_window(self.n, j as usize, self.w) {
+    /// Takes candidate j if it is admissible and beats the best `(distance, j)`; its vector
+    /// is read from the series (max-norm distance with an early exit beyond the bound).
+    #[inline]
+    fn consider(&mut self, j: usize) {
+        if !outside_theiler_window(self.n, j, self.w) {
             return;
         }
-        if let Some(d) = self.distance(p) {
-            let better = d > 0.0
-                && match self.best {
-                    None => true,
-                    Some((bj, bd)) => d < bd || (d == bd && j < bj),
-                };
-            if better {
-                self.best = Some((j, d));
-                self.r = d;
+        let mut d = 0.0f64;
+        for (k, &q) in self.q.iter().enumerate() {
+            // (no NaN here: the series is finite)
+            let a = (q - self.s[j + k * self.tau]).abs();
+            if a > d {
+                d = a;
             }
+            if d > self.r {
+                return;
+            }
+        }
+        let better = d > 0.0
+            && match self.best {
+                None => true,
+                Some((bj, bd)) => d < bd || (d == bd && (j as u32) < bj),
+            };
+        if better {
+            self.best = Some((j as u32, d));
+            self.r = d;
         }
     }
 
-    /// [`Search::consider`] for candidate j (`j < n_cand`).
-    fn consider_index(&mut self, j: usize) {
-        let p = self.grid.points[self.grid.pos[j] as usize];
-        self.consider(j as u32, &p);
-    }
-
-    /// Scans the candidates at positions `range` of the grid (box test on the first and
-    /// last coordinates first).
-    fn scan(&mut self, range: std::ops::Range<usize>) {
-        let grid = self.grid;
+    /// Scans the candidates at positions `range` of the grid: box test on the first and
+    /// last coordinates (one branch), then the full distance.
+    #[inline(always)]
+    fn scan(&mut self, grid: &Grid, range: std::ops::Range<usize>) {
         let (qx, qy) = (self.q[0], self.q[K - 1]);
-        for (p, &j) in grid.points[range.clone()].iter().zip(&grid.index[range]) {
-            if (p[0] - qx).abs() <= self.r && (p[K - 1] - qy).abs() <= self.r {
-                self.consider(j, p);
+        for (p, &j) in grid.ends[range.clone()].iter().zip(&grid.index[range]) {
+            if ((p[0] - qx).abs() <= self.r) & ((p[1] - qy).abs() <= self.r) {
+                self.consider(j as usize);
             }
         }
     }
 }
 
-/// The nearest candidate of reference `n` (delay vector `q`) in the max norm, ties to the smallest index:
-/// the minimum of `(distance, j)` over `j < n_cand` with `|n − j| > w` and distance in
+/// The nearest candidate of reference `n` in the max norm, ties to the smallest index: the
+/// minimum of `(distance, j)` over `j < n_cand` with `|n − j| > w` and distance in
 /// `(0, σ/R_t]` (neighbours farther than σ/R_t are never accepted, so the search stops
-/// there). `seed` (the neighbour of the previous dimension) and the nearest indices outside
-/// the Theiler window give the first bound on the distance; the grid scan is exact.
-fn nearest<const K: usize>(
-    grid: &Grid<K>,
-    setup: &Setup,
-    n: usize,
-    q: [f64; K],
-    seed: u32,
-) -> Option<(u32, f64)> {
+/// there). `seed` (the neighbour of the previous dimension), or without one the nearest
+/// indices outside the Theiler window, give the first bound on the distance; the grid scan
+/// is exact (the first bound only makes it shorter).
+fn nearest<const K: usize>(grid: &Grid, setup: &Setup, n: usize, seed: u32) -> Option<(u32, f64)> {
     let w = setup.theiler;
-    let mut sr = Search {
-        q,
+    let (s, tau) = (setup.s, setup.tau);
+    let mut sr = Search::<K> {
+        q: std::array::from_fn(|k| s[n + k * tau]),
         n,
         w,
         r: setup.max_dist,
         best: None,
-        grid,
+        s,
+        tau,
     };
     if seed != NONE {
-        sr.consider_index(seed as usize);
+        sr.consider(seed as usize);
+    } else {
+        // no neighbour in the previous dimension (or the first dimension): the nearest
+        // indices outside the Theiler window (rarely better than the seed, so not tried then)
+        if n > w && n - w - 1 < setup.n_cand {
+            sr.consider(n - w - 1);
+        }
+        if n + w + 1 < setup.n_cand {
+            sr.consider(n + w + 1);
+        }
     }
-    if n > w && n - w - 1 < setup.n_cand {
-        sr.consider_index(n - w - 1);
-    }
-    if n + w + 1 < setup.n_cand {
-        sr.consider_index(n + w + 1);
-    }
-    let (g1, g2) = (grid.g1, grid.g2);
     let (qx, qy) = (sr.q[0], sr.q[K - 1]);
-    let (cx_q, cy_q) = (cell(qx, g1), cell(qy, g2));
-    // rings of cells at Chebyshev cell distance d around the query's cell, nearest first,
-    // so that the bound shrinks early; only cells inside the current bound's box are read
-    for d in 0..g1.max(g2) {
-        let r = sr.r;
-        let (lo, hi) = (cell((qx - r).max(0.0), g1), cell((qx + r).min(1.0), g1));
-        let (ylo, yhi) = (cell((qy - r).max(0.0), g2), cell((qy + r).min(1.0), g2));
-        if d == 0 {
-            sr.scan(grid.run(cx_q, cy_q, cy_q));
-            continue;
-        }
-        let left = cx_q.checked_sub(d).filter(|&c| c >= lo);
-        let right = Some(cx_q + d).filter(|&c| c <= hi);
-        let below = cy_q.checked_sub(d).filter(|&c| c >= ylo);
-        let above = Some(cy_q + d).filter(|&c| c <= yhi);
-        if left.is_none() && right.is_none() && below.is_none() && above.is_none() {
-            break;
-        }
-        // columns cx_q ± d, rows strictly inside the ring (one contiguous run each)
-        let (c0, c1) = (
-            (cy_q + 1).saturating_sub(d).max(ylo),
-            (cy_q + d).min(yhi + 1),
-        );
-        for cx in [left, right].into_iter().flatten() {
-            if c0 < c1 {
-                sr.scan(grid.run(cx, c0, c1 - 1));
+    if K >= 3 && sr.best.is_some() {
+        // The seed (the previous dimension's neighbour, whose distance gains one coordinate)
+        // is usually within a few per cent of the answer: scan the bound's box directly,
+        // column by column outward (each column one contiguous run).
+        let mut r_box = f64::NAN;
+        let mut b = CellBox::default();
+        for d in 0.. {
+            if sr.r != r_box {
+                r_box = sr.r;
+                b = CellBox::new(grid, qx, qy, r_box);
+            }
+            let (left, right) = (b.cx - d, b.cx + d);
+            let (l_in, r_in) = (left >= b.lo, right <= b.hi && d > 0);
+            if !(l_in | r_in) {
+                break;
+            }
+            if l_in {
+                sr.scan(grid, grid.run(left, b.ylo, b.yhi));
+            }
+            if r_in {
+                sr.scan(grid, grid.run(right, b.ylo, b.yhi));
             }
         }
-        // rows cy_q ± d, columns across the ring (corners included)
-        for cy in [below, above].into_iter().flatten() {
-            for cx in cx_q.saturating_sub(d).max(lo)..=(cx_q + d).min(hi) {
-                sr.scan(grid.run(cx, cy, cy));
+    } else {
+        // No seed, or one from one dimension (a poor bound in two): rings of cells at
+        // Chebyshev cell distance d around the query's cell, nearest first, so that the bound
+        // shrinks early; only cells inside the current bound's box are read.
+        let mut b = CellBox::new(grid, qx, qy, sr.r);
+        let (cx_q, cy_q) = (b.cx, b.cy);
+        sr.scan(grid, grid.run(cx_q, cy_q, cy_q));
+        let mut r_box = f64::NAN;
+        for d in 1.. {
+            if sr.r != r_box {
+                r_box = sr.r;
+                b = CellBox::new(grid, qx, qy, r_box);
+            }
+            let (left, right, below, above) = (cx_q - d, cx_q + d, cy_q - d, cy_q + d);
+            let (l_in, r_in) = (left >= b.lo, right <= b.hi);
+            let (b_in, a_in) = (below >= b.ylo, above <= b.yhi);
+            if !(l_in | r_in | b_in | a_in) {
+                break;
+            }
+            // columns cx_q ± d, rows strictly inside the ring (one contiguous run each)
+            let (c0, c1) = ((cy_q - d + 1).max(b.ylo), (cy_q + d - 1).min(b.yhi));
+            if c0 <= c1 {
+                if l_in {
+                    sr.scan(grid, grid.run(left, c0, c1));
+                }
+                if r_in {
+                    sr.scan(grid, grid.run(right, c0, c1));
+                }
+            }
+            // rows cy_q ± d, columns across the ring (corners included)
+            let (x0, x1) = ((cx_q - d).max(b.lo), (cx_q + d).min(b.hi));
+            for (cy, inside) in [(below, b_in), (above, a_in)] {
+                if inside {
+                    for cx in x0..=x1 {
+                        sr.scan(grid, grid.run(cx, cy, cy));
+                    }
+                }
             }
         }
     }

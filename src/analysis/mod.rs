@@ -21,6 +21,7 @@ pub mod kantz_scan;
 pub mod mutual_information;
 pub mod noise_reduction;
 pub mod optimum;
+pub mod phase_lock;
 pub mod poincare;
 pub mod prediction_error;
 pub mod recurrence;

@@ -6,6 +6,7 @@
 //! and tested on their own: period detection from recurrence ([`recurrence_period`]) and from a
 //! harmonic line set ([`harmonic_fundamental`]), and the decision [`classify`].
 
+use crate::analysis::phase_lock::PhaseLock;
 use crate::analysis::poincare::{SectionShape, SectionSummary};
 use crate::analysis::section::{SectionAnalysis, SectionPattern};
 use crate::analysis::spectrum::SpectralLine;
@@ -426,7 +427,18 @@ pub struct ForcedEvidence<'a> {
     /// Neutral band of the exponents per period (default 0.01: slower divergence than
     /// e-fold per 100 forcing periods is not called chaos).
     pub zero_band: f64,
+    /// Synchronous average of the motion relative to the container: the measured noise level
+    /// of a phase-locked motion ([`crate::analysis::phase_lock`]).
+    pub phase_lock: Option<PhaseLock>,
 }
+
+/// Locked fraction Λ_p at and above which a forced motion without a model exponent and
+/// without resolved deterministic divergence is periodic-p with noise: the mean waveform
+/// carries ≥ 90 % of the variance, i.e. the noise RMS is ≤ 32 % of the motion's RMS (about
+/// 11 % of a sinusoidal waveform's peak-to-peak height). A granular bed under periodic drive
+/// scatters about its waveform by collisional noise (N grains, each kicked at random phases);
+/// this threshold tells that scatter from a motion that has left the waveform.
+pub const LOCKED_FRACTION_MIN: f64 = 0.9;
 
 /// Returns the regime of a forced system, judged from its exact stroboscopic section first.
 ///
@@ -441,8 +453,10 @@ pub struct ForcedEvidence<'a> {
 ///    number), unless an exponent is clearly positive.
 /// 4. An irregular section: with a model exponent that is not positive → undetermined (a long
 ///    transient or a period above the maximum; the reason says so); without one, chaotic when the
-///    data exponent is positive and the scatter deterministic (determinism ratio < 0.5), else
-///    stochastic (noise-like scatter or no exponential divergence).
+///    data exponent is positive and the scatter deterministic (determinism ratio < 0.5); else
+///    periodic-p with noise when the motion relative to the container is phase-locked
+///    (Λ_p ≥ [`LOCKED_FRACTION_MIN`], the shortest such p ≤ 4); else undetermined for a
+///    deterministic cloud without resolved divergence, stochastic for a noise-like one.
 ///
 /// # Units
 /// Exponents per forcing period.
@@ -553,6 +567,30 @@ pub fn classify_forced(e: &ForcedEvidence<'_>) -> Verdict {
                         "the section is a deterministic cloud (determinism ratio {:.2}) diverging at {}",
                         sec.determinism_ratio.unwrap_or(f64::NAN),
                         fmt(&d)
+                    ),
+                )
+            }
+            (None, d)
+                if e
+                    .phase_lock
+                    .is_some_and(|l| l.locked_fraction >= LOCKED_FRACTION_MIN) =>
+            {
+                let l = e.phase_lock.expect("checked");
+                v(
+                    Regime::Periodic,
+                    Some(l.periods as f64),
+                    format!(
+                        "phase-locked with noise: the mean {}-period waveform carries {:.1} % of the variance (noise RMS {:.3e}, waveform height {:.3e}); the section is a cloud of {:.1} % of the extent (determinism ratio {:.2}{})",
+                        l.periods,
+                        100.0 * l.locked_fraction,
+                        l.noise_rms,
+                        l.waveform_peak_to_peak,
+                        100.0 * sec.size,
+                        sec.determinism_ratio.unwrap_or(f64::NAN),
+                        d.map_or(String::new(), |(d, _)| format!(
+                            ", data exponent {}, not a resolved deterministic divergence",
+                            fmt(&d)
+                        ))
                     ),
                 )
             }

@@ -106,7 +106,7 @@ pub fn parse_columns(
 }
 
 fn parse_lines(
-    reader: impl BufRead,
+    mut reader: impl BufRead,
     name: &str,
     opts: &SeriesReadOptions,
 ) -> Result<Vec<Vec<f64>>, DataError> {
@@ -118,13 +118,22 @@ fn parse_lines(
     let mut indices: Option<Vec<usize>> = None; // 0-based, resolved at the first data/header line
     let mut out: Vec<Vec<f64>> = vec![Vec::new(); opts.columns.len()];
     let mut rows = 0usize;
-    for (k, line) in reader.lines().enumerate() {
-        let lineno = k + 1;
-        let line = line.map_err(|source| DataError::Io {
-            path: name.to_string(),
-            source,
-        })?;
-        if k < opts.skip_lines {
+    // one buffer for all lines (no allocation per line)
+    let mut line = String::new();
+    let mut lineno = 0usize;
+    loop {
+        line.clear();
+        let read = reader
+            .read_line(&mut line)
+            .map_err(|source| DataError::Io {
+                path: name.to_string(),
+                source,
+            })?;
+        if read == 0 {
+            break;
+        }
+        lineno += 1;
+        if lineno <= opts.skip_lines {
             continue;
         }
         let trimmed = line.trim();
@@ -134,8 +143,8 @@ fn parse_lines(
         if opts.max_rows.is_some_and(|m| rows >= m) {
             break;
         }
-        let fields: Vec<&str> = split_fields(trimmed).collect();
         if indices.is_none() {
+            let fields: Vec<&str> = split_fields(trimmed).collect();
             let is_header = fields.iter().any(|f| f.parse::<f64>().is_err());
             indices = Some(resolve_columns(
                 &opts.columns,
@@ -150,13 +159,13 @@ fn parse_lines(
         }
         let idx = indices.as_ref().expect("resolved above");
         for (col, &i) in idx.iter().enumerate() {
-            let field = fields.get(i).ok_or_else(|| {
+            let field = split_fields(trimmed).nth(i).ok_or_else(|| {
                 malformed(
                     lineno,
                     format!(
                         "column {} missing (the line has {} fields)",
                         i + 1,
-                        fields.len()
+                        split_fields(trimmed).count()
                     ),
                 )
             })?;

@@ -92,6 +92,12 @@ fn analyze_into(
     model_exponent: Option<Exponent>,
 ) {
     let (section, scales) = exact_section(summary, collector, forcing_hz);
+    let in_box: Vec<f64> = collector
+        .grain_z_m
+        .iter()
+        .zip(&collector.box_z_m)
+        .map(|(g, b)| g - b)
+        .collect();
     let run = ForcedRun {
         series: &collector.grain_z_m,
         dt_s: collector.dt_s().unwrap_or(1.0 / (64.0 * forcing_hz)),
@@ -99,6 +105,7 @@ fn analyze_into(
         section: &section,
         scales: &scales,
         model_exponent,
+        in_box_series: &in_box,
     };
     match analyze_forced(&run, &AnalyzeOptions::default()) {
         Ok(report) => match serde_json::to_value(&report) {
