@@ -6,4 +6,4 @@ pub mod primary;
 pub mod summary;
 
 pub use primary::{base_motion, Anchor, BoxDrive, PrimarySystem, Sdof};
-pub use summary::{EnergyTotals, RunOptions, RunSummary, RunWindow, StrobePoint};
+pub use summary::{EnergyTotals, RunAnalysis, RunOptions, RunSummary, RunWindow, StrobePoint};

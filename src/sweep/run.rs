@@ -108,7 +108,7 @@ fn analyze_into(
         in_box_series: &in_box,
     };
     match analyze_forced(&run, &AnalyzeOptions::default()) {
-        Ok(report) => match serde_json::to_value(&report) {
+        Ok(report) => match crate::model::RunAnalysis::from_report(&report) {
             Ok(v) => summary.analysis = Some(v),
             Err(e) => summary.analysis_error = Some(format!("analysis report: {e}")),
         },
