@@ -4,7 +4,7 @@
 
 use pdamp::error::SimError;
 use pdamp::model::{RunOptions, RunSummary};
-use pdamp::observe::{NullObserver, Observer, Sample};
+use pdamp::observe::{ModelSample, NullObserver, Observer, Sample};
 use pdamp::scene::{Damper, ImpactParams, Primary, Scene};
 
 fn impact_scene(f: f64, gap: f64, e: f64) -> Scene {
@@ -178,10 +178,13 @@ struct RestTime {
     rest: Option<f64>,
 }
 impl Observer for RestTime {
-    fn sample(&mut self, s: &Sample<'_>) -> Result<(), SimError> {
-        if s.extra[1] == 0.0 {
+    fn sample(&mut self, s: &Sample) -> Result<(), SimError> {
+        let ModelSample::Impact { contact, .. } = s.model else {
+            panic!("the impact model's samples carry its contact code");
+        };
+        if contact == 0.0 {
             self.flew = true;
-        } else if self.flew && self.rest.is_none() && s.extra[1] == 1.0 {
+        } else if self.flew && self.rest.is_none() && contact == 1.0 {
             self.rest = Some(s.time_s);
         }
         Ok(())

@@ -11,7 +11,7 @@ use pdamp::units::TWO_PI;
 #[derive(Default)]
 struct Collect(Vec<(f64, f64, f64)>);
 impl Observer for Collect {
-    fn sample(&mut self, s: &Sample<'_>) -> Result<(), SimError> {
+    fn sample(&mut self, s: &Sample) -> Result<(), SimError> {
         self.0.push((s.time_s, s.box_z_m, s.box_v_m_s));
         Ok(())
     }

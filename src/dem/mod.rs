@@ -10,7 +10,6 @@ pub mod energy;
 pub mod model;
 pub mod replica;
 pub mod run;
-pub mod snapshot;
 pub mod stability;
 pub mod world;
 
@@ -20,5 +19,5 @@ pub use model::{DemModel, Grains, Packing};
 pub use replica::{
     run_replica, ReplicaOptions, ReplicaReport, ReplicaRow, ReplicaTracker, ReplicaVerdict,
 };
-pub use run::{run_dem, DemObserver, DemRunConfig, DemSample, DemSummary, DtChoice, StrobeRow};
+pub use run::{run_dem, DemRunConfig, DemSample, DemSummary, DtChoice};
 pub use world::{BoxDrive, DemWorld, PrimarySystem};

@@ -262,6 +262,18 @@ impl DemWorld {
         })
     }
 
+    /// The grains' state now, for snapshots.
+    pub fn grain_state(&self) -> crate::observe::GrainState<'_> {
+        crate::observe::GrainState {
+            time_s: self.t,
+            pos: &self.pos,
+            vel: &self.vel,
+            omega: &self.omega,
+            radius: &self.radius,
+            orientation: self.orientation.as_deref(),
+        }
+    }
+
     /// Number of grains.
     pub fn len(&self) -> usize {
         self.pos.len()

@@ -40,7 +40,7 @@ use crate::model::primary::base_motion;
 use crate::model::{
     Anchor, BoxDrive, EnergyTotals, RunOptions, RunSummary, RunWindow, Sdof, StrobePoint,
 };
-use crate::observe::{Observer, Sample};
+use crate::observe::{ModelSample, Observer, Sample, SampleKind, StrobeCollector, Tee};
 use collision::collide;
 use events::{first_crossing, time_tolerance};
 use std::collections::BTreeMap;
@@ -80,9 +80,6 @@ pub struct ImpactSetup {
     /// Duration, steady-state and analysis windows (s).
     pub window: RunWindow,
 }
-
-/// Names of the impact model's extra columns in `series.csv`.
-pub const IMPACT_COLUMNS: [&str; 2] = ["grain_v_m_s", "contact"];
 
 /// Where the particle is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -514,12 +511,17 @@ impl ImpactWorld {
         opts: &RunOptions,
         hook: &mut H,
     ) -> Result<RunSummary, SimError> {
-        let extra_names: &[&str] = if self.particle.is_some() {
-            &IMPACT_COLUMNS
-        } else {
-            &[]
+        // the stroboscopic points go to the caller's observer and to the summary
+        let mut strobe = StrobeCollector::default();
+        let mut tee = Tee {
+            observers: vec![obs, &mut strobe],
         };
-        obs.start(extra_names)?;
+        let obs: &mut dyn Observer = &mut tee;
+        obs.start(if self.particle.is_some() {
+            SampleKind::Impact
+        } else {
+            SampleKind::Primary
+        })?;
         let mut st = self.init;
         let e0 = self.mechanical_energy(&st);
         let mut led = Ledger {
@@ -527,7 +529,6 @@ impl ImpactWorld {
             zmin: f64::INFINITY,
             ..Default::default()
         };
-        let mut strobe = Vec::new();
         // sample clock: times k·Δs ≥ sample_from_s
         let ds = opts.sample_interval_s.filter(|d| *d > 0.0);
         let mut k_sample: u64 = ds.map_or(u64::MAX, |d| {
@@ -598,14 +599,14 @@ impl ImpactWorld {
                     Mode::Flight => st.w - self.g * (ts - st.t),
                     _ => v,
                 };
-                strobe.push(StrobePoint {
+                obs.strobe(&StrobePoint {
                     cycle: n_strobe,
                     time_s: ts,
                     grain_z_m: y,
                     box_z_m: z,
                     grain_v_m_s: w,
                     box_v_m_s: v,
-                });
+                })?;
                 n_strobe += 1;
             }
             // quadrature of base work and viscous loss, extrema of z
@@ -688,7 +689,8 @@ impl ImpactWorld {
         }
         obs.progress(self.duration, self.duration);
         obs.finish()?;
-        Ok(self.summarize(&st, e0, &led, strobe))
+        drop(tee);
+        Ok(self.summarize(&st, e0, &led, strobe.points))
     }
 
     /// Segment length: a sixteenth of the fastest time scale, or of the forcing period once
@@ -899,7 +901,6 @@ impl ImpactWorld {
             (m, Some(p)) if m.stuck() => -p.mass * (motion.accel(t, z, v) + self.g),
             _ => 0.0,
         };
-        let extra = [w, st.mode.code()];
         let s = Sample {
             time_s: t,
             base_u_m: u,
@@ -908,7 +909,14 @@ impl ImpactWorld {
             floor_z_m: z,
             ceiling_z_m: z + gap,
             grain_z_m: y,
-            extra: if self.particle.is_some() { &extra } else { &[] },
+            model: if self.particle.is_some() {
+                ModelSample::Impact {
+                    grain_v_m_s: w,
+                    contact: st.mode.code(),
+                }
+            } else {
+                ModelSample::Primary
+            },
             grain_force_n: force,
         };
         obs.sample(&s)

@@ -9,30 +9,13 @@ use std::path::PathBuf;
 use crate::contact::{AttractionPolicy, ContactModel, NormalLaw, TangentialLaw, WallContact};
 use crate::dem::model::{DemModel, Grains, Packing};
 use crate::dem::replica::{run_replica, ReplicaOptions};
-use crate::dem::run::{run_dem, DemObserver, DemRunConfig, DemSample, DtChoice};
-use crate::dem::snapshot::{write_csv, write_vtk};
+use crate::dem::run::{run_dem, DemRunConfig, DtChoice};
 use crate::dem::stability::choose_dt;
-use crate::dem::world::DemWorld;
 use crate::error::{SceneError, SimError};
-use crate::model::{BoxDrive, EnergyTotals, RunOptions, RunSummary, RunWindow, StrobePoint};
-use crate::observe::{Observer, Sample};
+use crate::model::{BoxDrive, EnergyTotals, RunOptions, RunSummary, RunWindow};
+use crate::observe::{Observer, SnapshotWriter, StrobeCollector, Tee};
 use crate::scene::dem::{ContactKind, DemParams, PackingKind, SnapshotFormat};
 use crate::scene::{Damper, DtSpec, Scene};
-
-/// Model-specific columns of `series.csv` for the DEM, after `grain_z_m`.
-pub const DEM_EXTRA_COLUMNS: [&str; 11] = [
-    "grain_zmin_m",
-    "grain_zmax_m",
-    "e_collision_j",
-    "e_friction_j",
-    "e_viscous_j",
-    "e_base_work_j",
-    "e_kinetic_j",
-    "e_potential_j",
-    "e_elastic_j",
-    "e_primary_j",
-    "e_balance_residual_j",
-];
 
 /// A resolved DEM scene: the damper, its drive, gravity, the run settings and outputs.
 #[derive(Debug, Clone, PartialEq)]
@@ -255,72 +238,14 @@ pub fn run_params(
     params: &DemParams,
     drive: BoxDrive,
     cfg: &DemRunConfig,
-    obs: &mut dyn DemObserver,
+    obs: &mut dyn Observer,
 ) -> Result<crate::dem::DemSummary, SimError> {
     let model = dem_model(params)?;
     run_dem(&model, drive, cfg, obs).map_err(super::keyed)
 }
 
-struct Forward<'a> {
-    obs: &'a mut dyn Observer,
-    snapshot_dir: Option<PathBuf>,
-    format: SnapshotFormat,
-    snapshots: usize,
-}
-
-impl DemObserver for Forward<'_> {
-    fn sample(&mut self, s: &DemSample) -> Result<(), SimError> {
-        let extra = [
-            s.grain_zmin_m,
-            s.grain_zmax_m,
-            s.e_collision_j,
-            s.e_friction_j,
-            s.e_viscous_j,
-            s.e_base_work_j,
-            s.e_kinetic_j,
-            s.e_potential_j,
-            s.e_elastic_j,
-            s.e_primary_j,
-            s.e_balance_residual_j,
-        ];
-        self.obs.sample(&Sample {
-            time_s: s.time_s,
-            base_u_m: s.base_u_m,
-            box_z_m: s.box_z_m,
-            box_v_m_s: s.box_v_m_s,
-            floor_z_m: s.floor_z_m,
-            ceiling_z_m: s.ceiling_z_m,
-            grain_z_m: s.grain_z_m,
-            extra: &extra,
-            grain_force_n: s.grain_force_n,
-        })
-    }
-
-    fn snapshot(&mut self, world: &DemWorld) -> Result<(), SimError> {
-        let Some(dir) = &self.snapshot_dir else {
-            return Ok(());
-        };
-        let io =
-            |e: std::io::Error| SimError::Output(format!("snapshot in {}: {e}", dir.display()));
-        std::fs::create_dir_all(dir).map_err(io)?;
-        let stem = format!("grains_{:06}", self.snapshots);
-        if matches!(self.format, SnapshotFormat::Csv | SnapshotFormat::Both) {
-            write_csv(world, &dir.join(format!("{stem}.csv"))).map_err(io)?;
-        }
-        if matches!(self.format, SnapshotFormat::Vtk | SnapshotFormat::Both) {
-            write_vtk(world, &dir.join(format!("{stem}.vtk"))).map_err(io)?;
-        }
-        self.snapshots += 1;
-        Ok(())
-    }
-
-    fn progress(&mut self, t_s: f64, duration_s: f64) {
-        self.obs.progress(t_s, duration_s);
-    }
-}
-
-/// Runs a DEM scene: samples go to `obs` (columns of the shared contract plus
-/// [`DEM_EXTRA_COLUMNS`]), the summary follows `summary.json`'s keys; the DEM's own figures
+/// Runs a DEM scene: samples go to `obs` (model part [`crate::observe::ModelSample::Dem`]),
+/// snapshots to a [`SnapshotWriter`], the stroboscopic points to the summary; the summary follows `summary.json`'s keys; the DEM's own figures
 /// (`energy_collision_j_per_cycle`, `energy_friction_j_per_cycle`, `steps`, `wall_time_s`,
 /// `particle_steps_per_s`, `dt_s`, `contact_time_s`, `volume_fraction`, …) are in `extra`.
 /// Without `[primary]` the box moves kinematically with the base. With `run.replica` the
@@ -335,16 +260,19 @@ pub fn simulate(
     opts: &RunOptions,
 ) -> Result<RunSummary, SimError> {
     let (drive, cfg) = (setup.drive, setup.config(opts));
-    obs.start(&DEM_EXTRA_COLUMNS)?;
-    let mut fwd = Forward {
-        obs,
-        snapshot_dir: setup.snapshots.as_ref().map(|(dir, _)| dir.clone()),
-        format: setup
-            .snapshots
-            .as_ref()
-            .map_or(SnapshotFormat::Both, |(_, f)| *f),
-        snapshots: 0,
-    };
+    let mut snapshots = setup.snapshots.as_ref().map(|(dir, format)| {
+        SnapshotWriter::new(
+            dir.clone(),
+            matches!(format, SnapshotFormat::Csv | SnapshotFormat::Both),
+            matches!(format, SnapshotFormat::Vtk | SnapshotFormat::Both),
+        )
+    });
+    let mut strobe = StrobeCollector::default();
+    let mut observers: Vec<&mut dyn Observer> = vec![obs, &mut strobe];
+    if let Some(w) = snapshots.as_mut() {
+        observers.push(w);
+    }
+    let mut fwd = Tee { observers };
     // `run.replica`: replica B perturbed at the start of the analysis window
     let (s, replica) = match setup.replica_m {
         Some(delta_m) => {
@@ -354,7 +282,7 @@ pub fn simulate(
         }
         None => (run_dem(&setup.model, drive, &cfg, &mut fwd)?, None),
     };
-    fwd.obs.finish()?;
+    drop(fwd);
     let cycles = (cfg.duration_s - s.steady_start_s) * drive.frequency_hz;
     let l = s.ledger;
     let mut extra = BTreeMap::new();
@@ -423,18 +351,7 @@ pub fn simulate(
         impacts_total: s.bed_impacts.total(),
         events_total: 0,
         extra,
-        strobe: s
-            .strobe
-            .iter()
-            .map(|r| StrobePoint {
-                cycle: r.cycle,
-                time_s: r.time_s,
-                grain_z_m: r.grain_z_m,
-                box_z_m: r.box_z_m,
-                grain_v_m_s: r.grain_v_m_s,
-                box_v_m_s: r.box_v_m_s,
-            })
-            .collect(),
+        strobe: strobe.points,
         analysis: None,
         analysis_error: None,
         replica,

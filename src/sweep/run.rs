@@ -194,7 +194,7 @@ struct Decimate<'a> {
 }
 
 impl Observer for Decimate<'_> {
-    fn sample(&mut self, s: &crate::observe::Sample<'_>) -> Result<(), SimError> {
+    fn sample(&mut self, s: &crate::observe::Sample) -> Result<(), SimError> {
         if s.time_s < self.inner.from_s {
             return Ok(());
         }

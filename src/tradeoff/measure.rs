@@ -3,11 +3,11 @@
 
 use std::time::Instant;
 
-use crate::dem::{BoxDrive, DemObserver, DemRunConfig, DemSample, DtChoice};
+use crate::dem::{BoxDrive, DemRunConfig, DtChoice};
 use crate::error::{SceneError, SimError};
 use crate::model::PrimarySystem;
 use crate::model::RunOptions;
-use crate::observe::{Observer, Sample};
+use crate::observe::{ModelSample, Observer, Sample};
 use crate::scene::{Damper, ImpactParams, Run, Scene};
 
 use super::ladder::Case;
@@ -70,22 +70,15 @@ pub struct Trace {
     pub collision_j: Vec<f64>,
 }
 
-impl DemObserver for Trace {
-    fn sample(&mut self, s: &DemSample) -> Result<(), SimError> {
-        self.time_s.push(s.time_s);
-        self.box_z_m.push(s.box_z_m);
-        self.grain_z_m.push(s.grain_z_m);
-        self.dissipated_j.push(s.e_collision_j + s.e_friction_j);
-        self.collision_j.push(s.e_collision_j);
-        Ok(())
-    }
-}
-
 impl Observer for Trace {
-    fn sample(&mut self, s: &Sample<'_>) -> Result<(), SimError> {
+    fn sample(&mut self, s: &Sample) -> Result<(), SimError> {
         self.time_s.push(s.time_s);
         self.box_z_m.push(s.box_z_m);
         self.grain_z_m.push(s.grain_z_m);
+        if let ModelSample::Dem(d) = s.model {
+            self.dissipated_j.push(d.e_collision_j + d.e_friction_j);
+            self.collision_j.push(d.e_collision_j);
+        }
         Ok(())
     }
 }
