@@ -6,7 +6,8 @@
 //!
 //! ## Architecture (dependencies point one way)
 //! ```text
-//! cli → sweep / plot / io / observe → dem / impact → contact / neighbor / integrate → model / scene → units / error
+//! cli → sweep / plot / io → setup (scene → resolved objects) → dem / impact → observe / contact / neighbor / integrate → model → units / error
+//! scene (the TOML form) is read by setup, sweep, tradeoff, study and cli; dem, impact and model never import it
 //! analysis → (nothing of the simulators);  systems = reference dynamical systems for tests, benches and examples
 //! ```
 //! - [`scene`]: TOML scene files → validated [`scene::Scene`].

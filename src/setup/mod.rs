@@ -142,13 +142,27 @@ pub fn simulate(
 ) -> Result<RunSummary, SimError> {
     let mut s = match &resolved.setup {
         Setup::Impact(setup) => crate::impact::simulate(setup, obs, opts),
-        Setup::Dem(setup) => dem::simulate(setup, obs, opts),
+        Setup::Dem(setup) => dem::simulate(setup, obs, opts).map_err(dem_instability_keys),
     }
     .map_err(keyed)?;
     if resolved.auto.is_some() {
         s.model = resolved.model_name(&s.model);
     }
     Ok(s)
+}
+
+/// The DEM's instabilities (non-finite state, escaped grains, energy created) all come from
+/// a time step too long for the contact stiffness: name the keys that set it.
+fn dem_instability_keys(e: SimError) -> SimError {
+    match e {
+        SimError::Unstable { t_s, reason } => SimError::Unstable {
+            t_s,
+            reason: format!(
+                "{reason} (in the scene: lower run.dt or run.dt_fraction, or damper.youngs_modulus)"
+            ),
+        },
+        other => other,
+    }
 }
 
 /// The scene key that sets an engine quantity.
