@@ -52,6 +52,9 @@ fn verdicts_agree_with_the_model_exponent() {
     let (mut clear, mut agree) = (0, 0);
     let (mut chaotic, mut close) = (0, 0);
     let mut misses = Vec::new();
+    // confusion matrix: (reference class, verdict) → count; data/model exponent ratios
+    let mut confusion: std::collections::BTreeMap<(&str, String), usize> = Default::default();
+    let mut ratios = Vec::new();
     for e in ["0.8", "0.5"] {
         let out = dir.path().join(e);
         let st = Command::new(env!("CARGO_BIN_EXE_pdamp"))
@@ -80,6 +83,9 @@ fn verdicts_agree_with_the_model_exponent() {
             }
             clear += 1;
             let want = if lam > 0.0 { "chaotic" } else { "periodic" };
+            *confusion
+                .entry((if lam > 0.0 { "λ > 0" } else { "λ < 0" }, v[cr].to_string()))
+                .or_default() += 1;
             if v[cr] == want {
                 agree += 1;
             } else {
@@ -88,6 +94,7 @@ fn verdicts_agree_with_the_model_exponent() {
             if lam > 0.0 {
                 chaotic += 1;
                 if let Ok(d) = v[cm].parse::<f64>() {
+                    ratios.push(d / lam);
                     if (d / lam - 1.0).abs() <= 0.3 {
                         close += 1;
                     }
@@ -98,6 +105,23 @@ fn verdicts_agree_with_the_model_exponent() {
     eprintln!(
         "agree {agree}/{clear}; data exponent within 30 %: {close}/{chaotic}; misses {misses:?}"
     );
+    eprintln!("reference class | verdict | frequencies");
+    for ((class, verdict), n) in &confusion {
+        eprintln!("{class} | {verdict} | {n}");
+    }
+    ratios.sort_by(f64::total_cmp);
+    if !ratios.is_empty() {
+        let q = |p: f64| ratios[((ratios.len() - 1) as f64 * p).round() as usize];
+        eprintln!(
+            "data/model exponent ratio at the chaotic frequencies ({} with a data estimate): min {:.3}, quartiles {:.3} / {:.3} / {:.3}, max {:.3}",
+            ratios.len(),
+            q(0.0),
+            q(0.25),
+            q(0.5),
+            q(0.75),
+            q(1.0)
+        );
+    }
     assert!(clear >= 100, "{clear}");
     assert!(
         agree as f64 >= 0.95 * clear as f64,

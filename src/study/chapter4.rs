@@ -27,6 +27,7 @@ use crate::plot::regime_frf::{Exponents, RegimeFrfFigure};
 use crate::plot::spectrum::SpectrumFigure;
 use crate::plot::table::Table;
 use crate::plot::Series;
+use rayon::prelude::*;
 
 use super::dem_figures::{E_B as E_STEEL, GAMMA_N_B, GAMMA_S_B};
 use super::pipeline::{
@@ -207,9 +208,10 @@ pub fn all(
         figures.push(run_length(&info, &pts, &long, &long_pts)?);
     }
     if want("ch4_panels") || want("ch4_reconstruction") {
+        // one DEM run per panel, in parallel (each run is single-threaded and deterministic)
         let runs = c
             .panel_freqs_hz
-            .iter()
+            .par_iter()
             .map(|&f| panel_run(d, c, f))
             .collect::<Result<Vec<_>, _>>()?;
         if want("ch4_panels") {

@@ -231,17 +231,22 @@ impl Settings {
                     counts: vec![125, 250],
                     gamma_n: vec![0.0, 500.0, 3660.0, 10000.0],
                     bed_duration_s: 1.0,
-                    chapter4: Some(Chapter4Settings {
-                        // 5–26 Hz step 1 and the panel frequencies between
-                        frequencies_hz: vec![
+                    chapter4: Some({
+                        // 5–26 Hz step 1 and the panel frequencies between; every point is
+                        // repeated with its run doubled (the run-length check of every verdict
+                        // and every amplitude of the DEM FRF)
+                        let frequencies_hz = vec![
                             5.0, 5.5, 6.0, 7.0, 7.5, 8.0, 9.0, 10.0, 10.5, 11.0, 12.0, 13.0, 14.0,
                             14.5, 15.0, 16.0, 17.0, 18.0, 19.0, 20.0, 21.0, 22.0, 23.0, 24.0, 25.0,
                             26.0,
-                        ],
-                        periods: 100.0,
-                        duration_s: None,
-                        panel_freqs_hz: CH4_PANEL_HZ.to_vec(),
-                        doubling_freqs_hz: CH4_PANEL_HZ.to_vec(),
+                        ];
+                        Chapter4Settings {
+                            doubling_freqs_hz: frequencies_hz.clone(),
+                            frequencies_hz,
+                            periods: 100.0,
+                            duration_s: None,
+                            panel_freqs_hz: CH4_PANEL_HZ.to_vec(),
+                        }
                     }),
                 }),
             },
