@@ -58,7 +58,7 @@ fn main() -> anyhow::Result<()> {
             if let Damper::Impact(p) = &mut s.damper {
                 p.restitution = e;
             }
-            let w = ImpactWorld::new(&s)?;
+            let w = ImpactWorld::new(&s.resolve_impact()?);
             let t0 = Instant::now();
             let tan = w.model_lyapunov(&opts)?;
             let t_tan = t0.elapsed().as_secs_f64();

@@ -48,6 +48,73 @@ impl SceneError {
     }
 }
 
+/// A physical quantity that the engine cannot use, in the words of the physics: the engine
+/// (`dem`, `impact`, `model`) knows no scene file; the resolve step ([`crate::setup`]) maps
+/// [`Quantity`] to the scene key that set it (e.g. [`Quantity::TimeStep`] → `run.dt`).
+#[derive(Debug, Error, Clone, PartialEq)]
+#[error("{quantity} = {value}: {hint}")]
+pub struct ModelError {
+    /// Which quantity.
+    pub quantity: Quantity,
+    /// The value as given.
+    pub value: String,
+    /// What is wrong and how to fix it, in physical terms.
+    pub hint: String,
+}
+
+impl ModelError {
+    /// Shorthand constructor.
+    pub fn new(quantity: Quantity, value: impl ToString, hint: impl Into<String>) -> Self {
+        ModelError {
+            quantity,
+            value: value.to_string(),
+            hint: hint.into(),
+        }
+    }
+}
+
+/// The physical quantities an engine error can be about.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    /// Integration time step dt (s).
+    TimeStep,
+    /// Time step as a fraction of the contact duration, dt / t_s (–).
+    TimeStepFraction,
+    /// Simulated (driven) duration (s).
+    Duration,
+    /// Output sampling interval (s).
+    SampleInterval,
+    /// Fraction of the run treated as steady state (–).
+    SteadyFraction,
+    /// Grain–grain coefficient of restitution e (–).
+    Restitution,
+    /// Grain–wall coefficient of restitution e (–).
+    WallRestitution,
+    /// Yield strength Y of the grain material (Pa).
+    YieldStrength,
+    /// Number of grains (positions and radii).
+    GrainCount,
+    /// Perturbation δ0 of the two-replica test (m).
+    ReplicaPerturbation,
+}
+
+impl std::fmt::Display for Quantity {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Quantity::TimeStep => "time step dt",
+            Quantity::TimeStepFraction => "time step fraction dt/t_s",
+            Quantity::Duration => "duration",
+            Quantity::SampleInterval => "sample interval",
+            Quantity::SteadyFraction => "steady-state fraction",
+            Quantity::Restitution => "grain–grain restitution e",
+            Quantity::WallRestitution => "grain–wall restitution e",
+            Quantity::YieldStrength => "yield strength Y",
+            Quantity::GrainCount => "number of grains",
+            Quantity::ReplicaPerturbation => "replica perturbation δ0",
+        })
+    }
+}
+
 /// A simulation that had to stop.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum SimError {
@@ -62,6 +129,10 @@ pub enum SimError {
     /// The scene was rejected.
     #[error(transparent)]
     Scene(#[from] SceneError),
+    /// A physical quantity was rejected by the engine (mapped to a scene key by
+    /// [`crate::setup`] when the run came from a scene).
+    #[error(transparent)]
+    Model(#[from] ModelError),
     /// Output (series, summary, sweep files) could not be written: names the file.
     #[error("output: {0}")]
     Output(String),

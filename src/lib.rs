@@ -6,10 +6,13 @@
 //!
 //! ## Architecture (dependencies point one way)
 //! ```text
-//! cli → sweep / plot / io / observe → dem / impact → contact / neighbor / integrate → model / scene → units / error
+//! cli → sweep / plot / io → setup (scene → resolved objects) → dem / impact → observe / contact / neighbor / integrate → model → units / error
+//! scene (the TOML form) is read by setup, sweep, tradeoff, study and cli; dem, impact and model never import it
 //! analysis → (nothing of the simulators);  systems = reference dynamical systems for tests, benches and examples
 //! ```
 //! - [`scene`]: TOML scene files → validated [`scene::Scene`].
+//! - [`setup`]: the resolve step, [`scene::Scene::resolve`] → the engine's objects
+//!   ([`impact::ImpactSetup`], [`setup::DemSetup`]); `dem`, `impact` and `model` never see a scene.
 //! - [`model`]: equations of the primary system (2.1.2), its analytic FRF (2.1.21).
 //! - [`impact`]: event-driven one-particle impact damper (SPEC §3).
 //! - [`contact`], [`neighbor`], [`integrate`], [`dem`], [`packing`]: the discrete element model (SPEC §2, §5).
@@ -37,6 +40,7 @@ pub mod observe;
 pub mod packing;
 pub mod plot;
 pub mod scene;
+pub mod setup;
 pub mod study;
 pub mod sweep;
 pub mod systems;

@@ -34,7 +34,14 @@ fn params(gamma_n: f64) -> DemParams {
 fn two_sphere(p: &DemParams, v: f64, dt: f64) -> (f64, f64) {
     let r = 0.003;
     let pos = vec![[0.05 - r - 1e-6, 0.05, 0.05], [0.05 + r + 1e-6, 0.05, 0.05]];
-    let mut w = DemWorld::new(p, STILL, dt, vec![r, r], pos).unwrap();
+    let mut w = DemWorld::new(
+        &pdamp::setup::dem_model(p).unwrap(),
+        STILL,
+        dt,
+        vec![r, r],
+        pos,
+    )
+    .unwrap();
     w.gravity = 0.0;
     w.set_velocities(&[[0.5 * v, 0.0, 0.0], [-0.5 * v, 0.0, 0.0]], &[[0.0; 3]; 2]);
     w.refresh();
@@ -56,7 +63,14 @@ fn sphere_wall(p: &DemParams, v: f64, dt: f64) -> (f64, f64) {
     let r = 0.003;
     let mut q = p.clone();
     q.count = 1;
-    let mut w = DemWorld::new(&q, STILL, dt, vec![r], vec![[0.05, 0.05, r + 1e-6]]).unwrap();
+    let mut w = DemWorld::new(
+        &pdamp::setup::dem_model(&q).unwrap(),
+        STILL,
+        dt,
+        vec![r],
+        vec![[0.05, 0.05, r + 1e-6]],
+    )
+    .unwrap();
     w.gravity = 0.0;
     w.set_velocities(&[[0.0, 0.0, -v]], &[[0.0; 3]]);
     w.refresh();

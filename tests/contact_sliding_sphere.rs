@@ -22,7 +22,14 @@ fn sliding_sphere_decelerates_at_mu_g_and_rolls_at_five_sevenths() {
         frequency_hz: 0.0,
     };
     let dt = 2e-7;
-    let mut w = DemWorld::new(&p, still, dt, vec![r], vec![[0.05, 0.05, r]]).unwrap();
+    let mut w = DemWorld::new(
+        &pdamp::setup::dem_model(&p).unwrap(),
+        still,
+        dt,
+        vec![r],
+        vec![[0.05, 0.05, r]],
+    )
+    .unwrap();
     // rest on the floor first (static overlap (mg/k)^{2/3} ≈ 7 nm), damped by γ_n
     for _ in 0..50_000 {
         w.step();
@@ -73,7 +80,14 @@ fn sliding_sphere_decelerates_at_mu_g_and_rolls_at_five_sevenths() {
     // negative control: without friction the sphere keeps sliding at v0
     let mut p0 = p.clone();
     p0.friction = 0.0;
-    let mut w0 = DemWorld::new(&p0, still, dt, vec![r], vec![[0.05, 0.05, r]]).unwrap();
+    let mut w0 = DemWorld::new(
+        &pdamp::setup::dem_model(&p0).unwrap(),
+        still,
+        dt,
+        vec![r],
+        vec![[0.05, 0.05, r]],
+    )
+    .unwrap();
     for _ in 0..50_000 {
         w0.step();
     }

@@ -36,7 +36,14 @@ fn cluster(p: &DemParams) -> DemWorld {
         amplitude_m: 0.0,
         frequency_hz: 0.0,
     };
-    let mut w = DemWorld::new(p, still, 1e-6, vec![r; n], pos).unwrap();
+    let mut w = DemWorld::new(
+        &pdamp::setup::dem_model(p).unwrap(),
+        still,
+        1e-6,
+        vec![r; n],
+        pos,
+    )
+    .unwrap();
     w.gravity = 0.0;
     let omega: Vec<[f64; 3]> = (0..n)
         .map(|_| [0, 1, 2].map(|_| rng.random_range(-50.0..50.0)))
@@ -174,7 +181,14 @@ fn too_large_time_step_is_reported_as_unstable() {
         frequency_hz: 0.0,
     };
     let pos = vec![[0.05 - r - 1e-5, 0.05, 0.05], [0.05 + r + 1e-5, 0.05, 0.05]];
-    let mut w = DemWorld::new(&p, still, 4e-5, vec![r; 2], pos).unwrap();
+    let mut w = DemWorld::new(
+        &pdamp::setup::dem_model(&p).unwrap(),
+        still,
+        4e-5,
+        vec![r; 2],
+        pos,
+    )
+    .unwrap();
     w.gravity = 0.0;
     w.set_velocities(&[[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]], &[[0.0; 3]; 2]);
     w.refresh();
@@ -194,7 +208,7 @@ fn too_large_time_step_is_reported_as_unstable() {
     assert!(msg.contains("time step"), "{msg}");
     // the same collision with the automatic step is stable and conserves energy to 1e-4
     let mut w = DemWorld::new(
-        &p,
+        &pdamp::setup::dem_model(&p).unwrap(),
         still,
         2e-7,
         vec![r; 2],

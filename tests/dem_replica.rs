@@ -11,7 +11,6 @@
 //! Run in release: `cargo test --release --test dem_replica`.
 
 use pdamp::dem::replica::{run_replica, ReplicaOptions, ReplicaVerdict};
-use pdamp::dem::scene_run::{resolve, simulate};
 use pdamp::dem::DemSample;
 use pdamp::model::RunOptions;
 use pdamp::observe::NullObserver;
@@ -138,13 +137,21 @@ fn zero_perturbation_is_bit_identical_through_simulate() {
 #[test]
 fn first_separation_is_of_order_delta0() {
     let s = scene(&["excitation.frequency=14.5", "run.duration=0.7"]);
-    let (params, drive, cfg) = resolve(&s, &RunOptions::summary_only()).unwrap();
+    let setup = s.resolve_dem().unwrap();
+    let (drive, cfg) = (setup.drive, setup.config(&RunOptions::summary_only()));
     // perturbed ≈ 38 time steps before the strobe t = 8 T
     let opts = ReplicaOptions {
         delta_m: 1e-9,
         perturb_at_s: 8.0 / 14.5 - 2e-4,
     };
-    let (_, r) = run_replica(params, drive, &cfg, &opts, &mut Vec::<DemSample>::new()).unwrap();
+    let (_, r) = run_replica(
+        &setup.model,
+        drive,
+        &cfg,
+        &opts,
+        &mut Vec::<DemSample>::new(),
+    )
+    .unwrap();
     eprintln!("{r:?}");
     assert!(r.perturbed_at_s < 8.0 / 14.5 && r.perturbed_at_s > 8.0 / 14.5 - 3e-4);
     let first = &r.rows[0];
@@ -166,7 +173,12 @@ fn period_one_with_granular_noise_stays_in_noise_band() {
         "run.duration=5",
         "run.replica=true",
     ]);
-    let summary = simulate(&s, &mut NullObserver, &RunOptions::summary_only()).unwrap();
+    let summary = pdamp::setup::simulate(
+        &s.resolve().unwrap(),
+        &mut NullObserver,
+        &RunOptions::summary_only(),
+    )
+    .unwrap();
     let r = summary.replica.expect("replica report");
     let mut shown = r.clone();
     shown.rows.clear();

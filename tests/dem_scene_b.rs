@@ -9,7 +9,7 @@
 //! (volume fraction 0.55–0.64, between random loose and random close packing; the thesis's
 //! bed at rest is ≈ 0.039 m high).
 
-use pdamp::dem::{run_dem, BoxDrive, DemRunConfig, DemSample, PrimarySystem};
+use pdamp::dem::{BoxDrive, DemRunConfig, DemSample, PrimarySystem};
 use pdamp::scene::dem::{DemParams, PackingKind};
 
 fn drive() -> BoxDrive {
@@ -31,7 +31,7 @@ fn check_run(p: &DemParams, duration: f64) -> pdamp::dem::DemSummary {
         ..Default::default()
     };
     let mut samples: Vec<DemSample> = Vec::new();
-    let s = run_dem(p, drive(), &cfg, &mut samples).expect("stable run");
+    let s = pdamp::setup::dem::run_params(p, drive(), &cfg, &mut samples).expect("stable run");
     eprintln!("{}", serde_json::to_string_pretty(&s).unwrap());
     // no grain ever leaves the box: every sampled grain centre between floor and ceiling
     for x in &samples {
@@ -91,7 +91,7 @@ fn scene_b_kinematic_box_ledger_balances() {
         ..Default::default()
     };
     let mut samples: Vec<DemSample> = Vec::new();
-    let s = run_dem(&p, d, &cfg, &mut samples).expect("stable run");
+    let s = pdamp::setup::dem::run_params(&p, d, &cfg, &mut samples).expect("stable run");
     // box amplitude is the base amplitude exactly (kinematic)
     assert!(
         (s.amplitude_m / 4.5e-3 - 1.0).abs() < 1e-3,

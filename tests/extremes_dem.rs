@@ -7,7 +7,7 @@
 
 use pdamp::dem::run::initial_world;
 use pdamp::dem::stability::choose_dt;
-use pdamp::dem::{run_dem, BoxDrive, DemRunConfig, DemSample, DemSummary, DtChoice, PrimarySystem};
+use pdamp::dem::{BoxDrive, DemRunConfig, DemSample, DemSummary, DtChoice, PrimarySystem};
 use pdamp::error::SimError;
 use pdamp::scene::dem::{ContactKind, DemParams};
 
@@ -37,7 +37,7 @@ fn run(p: &DemParams, f: f64, duration: f64) -> Result<(DemSummary, Vec<DemSampl
         ..Default::default()
     };
     let mut v = Vec::new();
-    run_dem(p, drive(f), &cfg, &mut v).map(|s| (s, v))
+    pdamp::setup::dem::run_params(p, drive(f), &cfg, &mut v).map(|s| (s, v))
 }
 
 /// Finite samples, every grain between floor and ceiling, ledger closed within `tol`.
@@ -78,8 +78,8 @@ fn conservative_bed_holds_energy_over_a_long_run() {
         amplitude_m: 0.0,
         frequency_hz: 1.0,
     };
-    let (dt, _) = choose_dt(&p, &still, None, 0.02).unwrap();
-    let mut w = initial_world(&p, still, dt, 0.0).unwrap();
+    let (dt, _) = choose_dt(&pdamp::setup::dem_model(&p).unwrap(), &still, None, 0.02).unwrap();
+    let mut w = initial_world(&pdamp::setup::dem_model(&p).unwrap(), still, dt, 0.0).unwrap();
     w.refresh();
     let above_floor = |w: &pdamp::dem::DemWorld| -> f64 {
         (0..w.len())
@@ -112,7 +112,13 @@ fn very_stiff_contacts_with_auto_dt() {
     p.count = 8;
     p.settle_time = Some(0.0);
     let (s, v) = run(&p, 15.0, 0.01).expect("stiff run");
-    let (dt_steel, _) = choose_dt(&DemParams::thesis_b(), &drive(15.0), None, 0.02).unwrap();
+    let (dt_steel, _) = choose_dt(
+        &pdamp::setup::dem_model(&DemParams::thesis_b()).unwrap(),
+        &drive(15.0),
+        None,
+        0.02,
+    )
+    .unwrap();
     // dt shrinks by 100^{2/5} = 6.3 (Hertz t_s scaling, SPEC §2); 0.1 %: run_dem may trim
     // dt slightly (e.g. to a whole number of steps per sample)
     assert!(
@@ -134,7 +140,7 @@ fn explicit_dt_above_the_stability_limit_is_refused_before_any_output() {
         ..Default::default()
     };
     let mut v: Vec<DemSample> = Vec::new();
-    let e = run_dem(&p, drive(15.0), &cfg, &mut v)
+    let e = pdamp::setup::dem::run_params(&p, drive(15.0), &cfg, &mut v)
         .unwrap_err()
         .to_string();
     // names the key, the limit and the fix; nothing (so no NaN) was emitted
@@ -191,8 +197,20 @@ fn a_single_grain_and_ten_thousand() {
     sane(&s, &v, 0.01);
     // N = 10 000: construct and take a few steps (size, not physics)
     let big = bed(10_000, [0.15, 0.15, 0.2]);
-    let (dt, _) = choose_dt(&big, &drive(15.0), None, 0.02).unwrap();
-    let mut w = initial_world(&big, drive(15.0), dt, 0.0).unwrap();
+    let (dt, _) = choose_dt(
+        &pdamp::setup::dem_model(&big).unwrap(),
+        &drive(15.0),
+        None,
+        0.02,
+    )
+    .unwrap();
+    let mut w = initial_world(
+        &pdamp::setup::dem_model(&big).unwrap(),
+        drive(15.0),
+        dt,
+        0.0,
+    )
+    .unwrap();
     for _ in 0..5 {
         w.step();
     }

@@ -37,11 +37,14 @@ fn a_million_forcing_periods() {
 }
 
 fn long_run(periods: f64) {
-    let short =
-        pdamp::impact::simulate(&scene(1e3), &mut NullObserver, &RunOptions::summary_only())
-            .unwrap();
+    let short = pdamp::impact::simulate(
+        &scene(1e3).resolve_impact().unwrap(),
+        &mut NullObserver,
+        &RunOptions::summary_only(),
+    )
+    .unwrap();
     let long = pdamp::impact::simulate(
-        &scene(periods),
+        &scene(periods).resolve_impact().unwrap(),
         &mut NullObserver,
         &RunOptions::summary_only(),
     )

@@ -3,8 +3,8 @@
 //! must end in sticking (Luck & Mehta 1993) after a finite, analytically known time.
 
 use pdamp::error::SimError;
-use pdamp::model::{frf_amplitude, RunOptions, RunSummary};
-use pdamp::observe::{NullObserver, Observer, Sample};
+use pdamp::model::{RunOptions, RunSummary};
+use pdamp::observe::{ModelSample, NullObserver, Observer, Sample};
 use pdamp::scene::{Damper, ImpactParams, Primary, Scene};
 
 fn impact_scene(f: f64, gap: f64, e: f64) -> Scene {
@@ -29,13 +29,12 @@ fn run(s: &Scene) -> RunSummary {
 /// Amplitude of scene B's primary carrying the particle as rigid added mass (2.1.21, M + m_p).
 fn loaded_reference(s: &Scene) -> f64 {
     let p = s.primary.as_ref().unwrap();
-    frf_amplitude(
-        p.mass + 0.227,
-        p.stiffness,
-        p.damping_n_s_m(),
-        s.excitation.amplitude,
-        s.excitation.omega_rad_s(),
-    )
+    pdamp::model::PrimarySystem {
+        mass_kg: p.mass + 0.227,
+        stiffness_n_m: p.stiffness,
+        damping_n_s_m: p.damping_n_s_m(),
+    }
+    .steady_amplitude_m(s.excitation.amplitude, s.excitation.omega_rad_s())
 }
 
 #[test]
@@ -179,10 +178,13 @@ struct RestTime {
     rest: Option<f64>,
 }
 impl Observer for RestTime {
-    fn sample(&mut self, s: &Sample<'_>) -> Result<(), SimError> {
-        if s.extra[1] == 0.0 {
+    fn sample(&mut self, s: &Sample) -> Result<(), SimError> {
+        let ModelSample::Impact { contact, .. } = s.model else {
+            panic!("the impact model's samples carry its contact code");
+        };
+        if contact == 0.0 {
             self.flew = true;
-        } else if self.flew && self.rest.is_none() && s.extra[1] == 1.0 {
+        } else if self.flew && self.rest.is_none() && contact == 1.0 {
             self.rest = Some(s.time_s);
         }
         Ok(())
@@ -212,7 +214,7 @@ fn chattering_ends_in_sticking_at_the_analytic_time() {
         flew: false,
         rest: None,
     };
-    let r = pdamp::sweep::run_scene(&s, &mut obs, &RunOptions::full_series(&s)).unwrap();
+    let r = pdamp::sweep::run_scene(&s, &mut obs, &pdamp::setup::full_series(&s)).unwrap();
     let t_inf = (2.0 * h / g).sqrt() * (1.0 + e) / (1.0 - e);
     let rest = obs.rest.expect("the ball must come to rest");
     // within one sample interval (1e-5 s) plus the cut of the geometric tail (≪ 1e-6 s)

@@ -6,11 +6,9 @@
 //! states (frequencies from `examples/impact_lyapunov_scan.rs`,
 //! `data/reference/impact_model_lyapunov.csv`).
 
-use pdamp::impact::{
-    model_lyapunov_of_scene, two_trajectory_lyapunov_of_scene, ImpactWorld, ModelLyapunov,
-    ModelLyapunovOptions,
-};
+use pdamp::impact::{ImpactWorld, ModelLyapunov, ModelLyapunovOptions};
 use pdamp::scene::{Damper, Run, Scene};
+use pdamp::setup::{model_lyapunov_of_scene, two_trajectory_lyapunov_of_scene};
 use pdamp::systems::bouncing_ball::{
     existence_gamma, period_doubling_gamma, period_one_lyapunov, scene as ball_scene,
 };
@@ -23,7 +21,7 @@ fn opts() -> ModelLyapunovOptions {
 fn ball(gamma: f64, e: f64, periods: f64, steady_fraction: f64) -> (ModelLyapunov, ModelLyapunov) {
     let mut s = ball_scene(gamma, e, 10.0, 1, periods);
     s.run.steady_fraction = steady_fraction;
-    let w = ImpactWorld::new(&s).unwrap();
+    let w = ImpactWorld::new(&s.resolve_impact().unwrap());
     (
         w.model_lyapunov(&opts()).unwrap(),
         w.model_lyapunov_two_trajectory(&opts()).unwrap(),
@@ -160,7 +158,7 @@ fn locked_ball_is_superstable() {
         p.initial_height = 0.0;
         p.initial_velocity = 0.0;
     }
-    let w = ImpactWorld::new(&s).unwrap();
+    let w = ImpactWorld::new(&s.resolve_impact().unwrap());
     let tan = w.model_lyapunov(&opts()).unwrap();
     let two = w.model_lyapunov_two_trajectory(&opts()).unwrap();
     assert!(tan.locked && two.locked);

@@ -3,8 +3,8 @@
 
 use std::path::Path;
 
-use pdamp::analysis::frf_fit::sdof_amplitude;
 use pdamp::error::PlotError;
+use pdamp::model::PrimarySystem;
 use pdamp::plot::bed_motion::BedMotionFigure;
 use pdamp::plot::bifurcation::BifurcationFigure;
 use pdamp::plot::common::{fmt_axis_tick, fmt_tick};
@@ -92,6 +92,16 @@ fn frf_data() -> (Vec<f64>, Vec<f64>, Vec<f64>) {
     (f, z, z1)
 }
 
+/// Z(f) of (2.1.21) for M, C, K, U (the library's one implementation).
+fn sdof_amplitude(f: f64, m: f64, c: f64, k: f64, u: f64) -> f64 {
+    PrimarySystem {
+        mass_kg: m,
+        stiffness_n_m: k,
+        damping_n_s_m: c,
+    }
+    .steady_amplitude_at_hz(u, f)
+}
+
 #[test]
 fn frf_with_reference_curves() {
     let (f, z, z1) = frf_data();
@@ -109,10 +119,12 @@ fn frf_with_reference_curves() {
             },
         ],
         reference: Some(FrfReference {
-            mass_kg: 2.37,
+            primary: PrimarySystem {
+                mass_kg: 2.37,
+                stiffness_n_m: 21500.0,
+                damping_n_s_m: 7.6,
+            },
             particle_mass_kg: Some(0.227),
-            stiffness_n_per_m: 21500.0,
-            damping_ns_per_m: 7.6,
             base_amplitude_m: 4.5e-3,
         }),
     };
@@ -395,10 +407,10 @@ fn effective_mass_and_damping() {
         x_label: "container height Lz (m)".into(),
         mass_ef_kg: &m,
         mass_ef_stderr_kg: &ms,
-        damping_ef_ns_per_m: &c,
-        damping_ef_stderr_ns_per_m: &cs,
+        damping_ef_n_s_m: &c,
+        damping_ef_stderr_n_s_m: &cs,
         mass_kg: Some(2.37),
-        damping_ns_per_m: Some(7.6),
+        damping_n_s_m: Some(7.6),
     };
     check_renders(&fig, "effective", BLUE, 100);
 }

@@ -20,9 +20,11 @@ fn small_bed() -> DemParams {
 fn rig() -> Rig {
     // scene B's primary with the base amplitude of scene B
     Rig {
-        mass_kg: 2.37,
-        stiffness_n_m: 21500.0,
-        damping_n_s_m: 7.6,
+        primary: pdamp::model::PrimarySystem {
+            mass_kg: 2.37,
+            stiffness_n_m: 21500.0,
+            damping_n_s_m: 7.6,
+        },
         amplitude_m: 4.5e-3,
         gravity: 9.8,
     }

@@ -11,44 +11,18 @@ use nalgebra::storage::Owned;
 use nalgebra::{Dyn, Matrix2, OMatrix, OVector, Vector2, U2};
 
 use crate::error::AnalysisError;
+use crate::model::PrimarySystem;
 use crate::units::TWO_PI;
 
-/// Steady-state amplitude of a base-excited SDOF system: Z(Ω) of (2.1.21).
-///
-/// # Formula
-/// Z(Ω) = U sqrt( (K² + (CΩ)²) / ((K − MΩ²)² + (CΩ)²) ), Ω = 2π f   (2.1.21)
-///
-/// # Units
-/// `frequency_hz` in Hz, `mass_kg` in kg, `damping_ns_per_m` in N s/m, `stiffness_n_per_m` in
-/// N/m, `base_amplitude_m` in m; returns metres.
-///
-/// # Parameters
-/// No defaults: every argument is required. Non-physical inputs (M ≤ 0, K ≤ 0) give a finite
-/// number or ∞ at an undamped resonance; validation is the caller's job (see [`fit_frf`]).
-///
-/// # References
-/// Sánchez, M. (2012), doctoral thesis on particle dampers, eq. (2.1.21); any vibration text,
-/// e.g. Rao, *Mechanical Vibrations*, base excitation transmissibility.
-///
-/// # Example
-/// ```
-/// use pdamp::analysis::frf_fit::sdof_amplitude;
-/// // at Ω → 0 the mass follows the base: Z → U
-/// let z = sdof_amplitude(1e-6, 2.37, 7.6, 21500.0, 4.5e-3);
-/// assert!((z - 4.5e-3).abs() < 1e-12);
-/// ```
-pub fn sdof_amplitude(
-    frequency_hz: f64,
-    mass_kg: f64,
-    damping_ns_per_m: f64,
-    stiffness_n_per_m: f64,
-    base_amplitude_m: f64,
-) -> f64 {
-    let w = TWO_PI * frequency_hz;
-    let cw2 = (damping_ns_per_m * w).powi(2);
-    let num = stiffness_n_per_m.powi(2) + cw2;
-    let den = (stiffness_n_per_m - mass_kg * w * w).powi(2) + cw2;
-    base_amplitude_m * (num / den).sqrt()
+/// Z(Ω) of (2.1.21) at `frequency_hz` (Hz) for trial M (kg), C (N s/m), K (N/m), U (m): the
+/// model of the fit, evaluated by the one implementation [`PrimarySystem::steady_amplitude_m`].
+fn model_amplitude(frequency_hz: f64, mass_kg: f64, damping_n_s_m: f64, k: f64, u: f64) -> f64 {
+    PrimarySystem {
+        mass_kg,
+        stiffness_n_m: k,
+        damping_n_s_m,
+    }
+    .steady_amplitude_at_hz(u, frequency_hz)
 }
 
 /// How residuals are measured in [`fit_frf`].
@@ -69,7 +43,7 @@ pub enum FrfResidual {
 #[derive(Debug, Clone, PartialEq)]
 pub struct FrfFitOptions {
     /// Spring stiffness K held fixed (N/m). Required, > 0.
-    pub stiffness_n_per_m: f64,
+    pub stiffness_n_m: f64,
     /// Base amplitude U held fixed (m). Required, > 0.
     pub base_amplitude_m: f64,
     /// Residual definition (default [`FrfResidual::Log`]).
@@ -84,9 +58,9 @@ pub struct FrfFitOptions {
 
 impl FrfFitOptions {
     /// Options with K and U fixed and every other setting at its default.
-    pub fn new(stiffness_n_per_m: f64, base_amplitude_m: f64) -> Self {
+    pub fn new(stiffness_n_m: f64, base_amplitude_m: f64) -> Self {
         Self {
-            stiffness_n_per_m,
+            stiffness_n_m,
             base_amplitude_m,
             residual: FrfResidual::Log,
             initial: None,
@@ -103,9 +77,11 @@ pub struct FrfFit {
     /// Asymptotic standard error of M_ef (kg).
     pub mass_ef_stderr_kg: f64,
     /// Effective damping C_ef (N s/m), reported ≥ 0 ((2.1.21) depends on C² only).
-    pub damping_ef_ns_per_m: f64,
+    #[serde(rename = "damping_ef_ns_per_m")]
+    pub damping_ef_n_s_m: f64,
     /// Asymptotic standard error of C_ef (N s/m).
-    pub damping_ef_stderr_ns_per_m: f64,
+    #[serde(rename = "damping_ef_stderr_ns_per_m")]
+    pub damping_ef_stderr_n_s_m: f64,
     /// Correlation coefficient between the estimates of M_ef and C_ef.
     pub correlation: f64,
     /// Root-mean-square of Z_model − Z over the points (m), whatever the residual used.
@@ -209,7 +185,7 @@ impl LeastSquaresProblem<f64, Dyn, U2> for FrfProblem<'_> {
 pub fn initial_guess(
     frequency_hz: &[f64],
     amplitude_m: &[f64],
-    stiffness_n_per_m: f64,
+    stiffness_n_m: f64,
     base_amplitude_m: f64,
 ) -> (f64, f64) {
     let (i_max, z_max) =
@@ -222,14 +198,14 @@ pub fn initial_guess(
                 |acc, (i, z)| if z > acc.1 { (i, z) } else { acc },
             );
     let w_p = TWO_PI * frequency_hz[i_max];
-    let m0 = stiffness_n_per_m / (w_p * w_p);
+    let m0 = stiffness_n_m / (w_p * w_p);
     let q = z_max / base_amplitude_m;
     let xi0 = if q > 1.05 {
         0.5 / (q * q - 1.0).sqrt()
     } else {
         0.5
     };
-    (m0, 2.0 * xi0 * (stiffness_n_per_m * m0).sqrt())
+    (m0, 2.0 * xi0 * (stiffness_n_m * m0).sqrt())
 }
 
 /// Checks the inputs of [`fit_frf`].
@@ -256,7 +232,7 @@ fn validate(
         )));
     }
     for (name, v) in [
-        ("stiffness", opts.stiffness_n_per_m),
+        ("stiffness", opts.stiffness_n_m),
         ("base-amplitude", opts.base_amplitude_m),
     ] {
         if !(v.is_finite() && v > 0.0) {
@@ -345,13 +321,15 @@ fn validate(
 ///
 /// # Example
 /// ```
-/// use pdamp::analysis::frf_fit::{fit_frf, sdof_amplitude, FrfFitOptions};
+/// use pdamp::analysis::frf_fit::{fit_frf, FrfFitOptions};
+/// use pdamp::model::PrimarySystem;
 /// let (m, c, k, u) = (2.37, 7.6, 21500.0, 4.5e-3);
 /// let f: Vec<f64> = (1..=60).map(|i| 0.5 * i as f64).collect();
-/// let z: Vec<f64> = f.iter().map(|&f| sdof_amplitude(f, m, c, k, u)).collect();
+/// let p = PrimarySystem { mass_kg: m, stiffness_n_m: k, damping_n_s_m: c };
+/// let z: Vec<f64> = f.iter().map(|&f| p.steady_amplitude_at_hz(u, f)).collect();
 /// let fit = fit_frf(&f, &z, &FrfFitOptions::new(k, u)).unwrap();
 /// assert!((fit.mass_ef_kg / m - 1.0).abs() < 1e-6);
-/// assert!((fit.damping_ef_ns_per_m / c - 1.0).abs() < 1e-6);
+/// assert!((fit.damping_ef_n_s_m / c - 1.0).abs() < 1e-6);
 /// ```
 pub fn fit_frf(
     frequency_hz: &[f64],
@@ -359,7 +337,7 @@ pub fn fit_frf(
     opts: &FrfFitOptions,
 ) -> Result<FrfFit, AnalysisError> {
     validate(frequency_hz, amplitude_m, opts)?;
-    let (k, u) = (opts.stiffness_n_per_m, opts.base_amplitude_m);
+    let (k, u) = (opts.stiffness_n_m, opts.base_amplitude_m);
     let starts: Vec<(f64, f64)> = match opts.initial {
         Some(p) => vec![p],
         None => {
@@ -446,15 +424,15 @@ fn summarise(
     let rms_m = (frequency_hz
         .iter()
         .zip(amplitude_m)
-        .map(|(&f, &z)| (sdof_amplitude(f, m, c, k, u) - z).powi(2))
+        .map(|(&f, &z)| (model_amplitude(f, m, c, k, u) - z).powi(2))
         .sum::<f64>()
         / n as f64)
         .sqrt();
     Ok(FrfFit {
         mass_ef_kg: m,
         mass_ef_stderr_kg: sm,
-        damping_ef_ns_per_m: c,
-        damping_ef_stderr_ns_per_m: sc,
+        damping_ef_n_s_m: c,
+        damping_ef_stderr_n_s_m: sc,
         correlation,
         rms_residual_m: rms_m,
         rms_residual_fit: (ss / n as f64).sqrt(),
@@ -475,7 +453,7 @@ mod tests {
         let f: Vec<f64> = (1..20).map(|i| i as f64 * 1.7).collect();
         let z: Vec<f64> = f
             .iter()
-            .map(|&f| sdof_amplitude(f, 2.0, 9.0, 2e4, 1e-3))
+            .map(|&f| model_amplitude(f, 2.0, 9.0, 2e4, 1e-3))
             .collect();
         for residual in [FrfResidual::Log, FrfResidual::Absolute] {
             let mut p = FrfProblem {

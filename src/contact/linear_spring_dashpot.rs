@@ -4,7 +4,7 @@
 
 use super::material::{Material, PairProperties};
 use super::restitution::linear_damping_ratio;
-use crate::error::SceneError;
+use crate::error::{ModelError, Quantity};
 
 /// Raw total normal force F_n = k_n ζ + c_n ζ' (N), positive = repulsive.
 ///
@@ -61,8 +61,7 @@ impl LinearContactParams {
     /// `yield_strength` Pa, `restitution` e (–).
     ///
     /// # Errors
-    /// [`SceneError::Invalid`] naming `damper.yield_strength` or `damper.restitution` when
-    /// Y ≤ 0 or e ∉ (0, 1].
+    /// [`ModelError`] about the yield strength or the restitution when Y ≤ 0 or e ∉ (0, 1].
     ///
     /// # References
     /// Zhang C., Chen T., Wang X., Chen W., J. Xi'an Jiaotong Univ. 48(3), 96–101 (2014),
@@ -72,17 +71,17 @@ impl LinearContactParams {
         grain: &Material,
         yield_strength: f64,
         restitution: f64,
-    ) -> Result<Self, SceneError> {
+    ) -> Result<Self, ModelError> {
         if !(yield_strength > 0.0 && yield_strength.is_finite()) {
-            return Err(SceneError::invalid(
-                "damper.yield_strength",
+            return Err(ModelError::new(
+                Quantity::YieldStrength,
                 yield_strength,
                 "must be > 0 (Pa), e.g. 1.0e9 for hardened steel",
             ));
         }
         if !(restitution > 0.0 && restitution <= 1.0) {
-            return Err(SceneError::invalid(
-                "damper.restitution",
+            return Err(ModelError::new(
+                Quantity::Restitution,
                 restitution,
                 "must be in (0, 1] (coefficient of restitution)",
             ));

@@ -106,3 +106,44 @@ impl AttractionPolicy {
         }
     }
 }
+
+/// Grain–wall contacts: the wall's material and its laws (R_j, m_j → ∞ in the mixing).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WallContact {
+    /// Wall material E_b (Pa), ν_b (–).
+    pub material: Material,
+    /// Normal law of grain–wall contacts.
+    pub normal: NormalLaw,
+    /// Tangential law of grain–wall contacts.
+    pub tangential: TangentialLaw,
+}
+
+/// The resolved contact model of a DEM damper: grain–grain laws, grain–wall laws and the
+/// attraction policy (LAMMPS-style sub-models selected by the enums; SPEC (2.2.8)–(2.2.15)).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactModel {
+    /// Normal law of grain–grain contacts.
+    pub normal: NormalLaw,
+    /// Tangential law of grain–grain contacts.
+    pub tangential: TangentialLaw,
+    /// Grain–wall contacts.
+    pub wall: WallContact,
+    /// Whether the total normal force may turn attractive.
+    pub attraction: AttractionPolicy,
+}
+
+impl ContactModel {
+    /// Whether any contact has a tangential force.
+    pub fn any_tangential(&self) -> bool {
+        self.tangential != TangentialLaw::None || self.wall.tangential != TangentialLaw::None
+    }
+
+    /// The (normal, tangential) laws of grain–grain (`wall = false`) or grain–wall contacts.
+    pub fn laws(&self, wall: bool) -> (NormalLaw, TangentialLaw) {
+        if wall {
+            (self.wall.normal, self.wall.tangential)
+        } else {
+            (self.normal, self.tangential)
+        }
+    }
+}

@@ -7,17 +7,17 @@
 
 pub mod bed_impacts;
 pub mod energy;
+pub mod model;
 pub mod replica;
 pub mod run;
-pub mod scene_run;
-pub mod snapshot;
 pub mod stability;
 pub mod world;
 
 pub use bed_impacts::BedImpacts;
 pub use energy::{EnergyLedger, EnergyState};
+pub use model::{DemModel, Grains, Packing};
 pub use replica::{
     run_replica, ReplicaOptions, ReplicaReport, ReplicaRow, ReplicaTracker, ReplicaVerdict,
 };
-pub use run::{run_dem, DemObserver, DemRunConfig, DemSample, DemSummary, DtChoice, StrobeRow};
+pub use run::{run_dem, DemRunConfig, DemSample, DemSummary, DtChoice};
 pub use world::{BoxDrive, DemWorld, PrimarySystem};

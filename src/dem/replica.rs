@@ -7,7 +7,7 @@
 //! and the contact state unchanged), and the two worlds are stepped in lockstep with the same
 //! time step. At every forcing period t_k = kT, T = 1/f, both replicas' grain centre of mass
 //! z_cm is interpolated linearly between the two steps around t_k, exactly as the run's own
-//! stroboscopic section ([`super::run::StrobeRow`]), so replica A's column equals `strobe.csv`.
+//! stroboscopic section ([`crate::model::StrobePoint`]), so replica A's column equals `strobe.csv`.
 //!
 //! **Why the perturbation waits for the analysis window.** By then the transient is over and
 //! A is on its attractor: the separation then measures the attractor's stability, the thing
@@ -65,11 +65,12 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::{SceneError, SimError};
-use crate::scene::dem::DemParams;
+use crate::error::{ModelError, Quantity, SimError};
 
-use super::run::{run_dem, DemObserver, DemRunConfig, DemSample, DemSummary, StrobeRow};
+use super::model::DemModel;
+use super::run::{interpolate_strobe, run_dem_stepped, DemRunConfig, DemSummary};
 use super::world::{BoxDrive, DemWorld};
+use crate::observe::Observer;
 
 /// Default perturbation δ0 of every grain's height (m).
 pub const DEFAULT_DELTA_M: f64 = 1e-9;
@@ -263,8 +264,8 @@ impl ReplicaTracker {
                 debug_assert_eq!(a.t, b.t, "replicas out of lockstep");
                 if let Some((cycle, sa, sb)) = self.before.take() {
                     let t_s = cycle as f64 / f;
-                    let za = StrobeRow::interpolate(cycle, t_s, sa, strobe_state(a)).grain_z_m;
-                    let zb = StrobeRow::interpolate(cycle, t_s, sb, strobe_state(b)).grain_z_m;
+                    let za = interpolate_strobe(cycle, t_s, sa, strobe_state(a)).grain_z_m;
+                    let zb = interpolate_strobe(cycle, t_s, sb, strobe_state(b)).grain_z_m;
                     if !zb.is_finite() || !b.box_z.is_finite() {
                         self.failure =
                             Some(format!("replica B turned non-finite at t = {:.4} s", b.t));
@@ -318,51 +319,32 @@ impl ReplicaTracker {
     }
 }
 
-/// Runs the DEM ([`run_dem`]) as replica A with a perturbed replica B stepped in lockstep
+/// Runs the DEM ([`super::run::run_dem`]) as replica A with a perturbed replica B stepped in lockstep
 /// (see the module documentation). Samples and snapshots of A go to `obs`.
 ///
 /// # Errors
-/// [`SimError::Scene`] for δ0 negative or not finite; the errors of [`run_dem`].
+/// [`SimError::Model`] for δ0 negative or not finite; the errors of [`super::run::run_dem`].
 pub fn run_replica(
-    params: &DemParams,
+    model: &DemModel,
     drive: BoxDrive,
     cfg: &DemRunConfig,
     opts: &ReplicaOptions,
-    obs: &mut dyn DemObserver,
+    obs: &mut dyn Observer,
 ) -> Result<(DemSummary, ReplicaReport), SimError> {
     if !(opts.delta_m >= 0.0 && opts.delta_m.is_finite()) {
-        return Err(SceneError::invalid(
-            "run.replica",
+        return Err(ModelError::new(
+            Quantity::ReplicaPerturbation,
             opts.delta_m,
             "the perturbation δ0 must be finite and ≥ 0 (m)",
         )
         .into());
     }
-    struct WithReplica<'a> {
-        inner: &'a mut dyn DemObserver,
-        tracker: ReplicaTracker,
-    }
-    impl DemObserver for WithReplica<'_> {
-        fn sample(&mut self, s: &DemSample) -> Result<(), SimError> {
-            self.inner.sample(s)
-        }
-        fn snapshot(&mut self, world: &DemWorld) -> Result<(), SimError> {
-            self.inner.snapshot(world)
-        }
-        fn progress(&mut self, t_s: f64, duration_s: f64) {
-            self.inner.progress(t_s, duration_s);
-        }
-        fn stepped(&mut self, world: &DemWorld) -> Result<(), SimError> {
-            self.tracker.observe(world);
-            self.inner.stepped(world)
-        }
-    }
-    let mut w = WithReplica {
-        inner: obs,
-        tracker: ReplicaTracker::new(*opts, drive.frequency_hz),
-    };
-    let summary = run_dem(params, drive, cfg, &mut w)?;
-    Ok((summary, w.tracker.finish()))
+    let mut tracker = ReplicaTracker::new(*opts, drive.frequency_hz);
+    let summary = run_dem_stepped(model, drive, cfg, obs, &mut |world| {
+        tracker.observe(world);
+        Ok(())
+    })?;
+    Ok((summary, tracker.finish()))
 }
 
 fn median(v: &mut [f64]) -> f64 {

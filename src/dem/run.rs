@@ -5,13 +5,16 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::error::{SceneError, SimError};
+use crate::error::{ModelError, Quantity, SimError};
 use crate::packing::{advancing_front_packing, fcc_lattice, volume_fraction};
-use crate::scene::dem::{DemParams, PackingKind};
 use crate::units::G;
+
+use crate::model::StrobePoint;
+use crate::observe::{DemSampleState, ModelSample, Observer, Sample, SampleKind};
 
 use super::bed_impacts::BedImpacts;
 use super::energy::{balance, EnergyLedger};
+use super::model::{DemModel, Packing};
 use super::stability::{check, choose_dt, DEFAULT_DT_FRACTION};
 use super::world::{BoxDrive, DemWorld};
 
@@ -65,8 +68,9 @@ impl Default for DemRunConfig {
     }
 }
 
-/// One row of `series.csv` for a DEM run (lab frame, SI units; energies cumulative since the
-/// drive started).
+/// A DEM sample as one flat record (lab frame, SI units; energies cumulative since the drive
+/// started): the [`Sample`] with its [`ModelSample::Dem`] part, for callers that keep the
+/// samples of a DEM run ([`DemSample::from_sample`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct DemSample {
     /// Time since the drive started (s).
@@ -109,76 +113,61 @@ pub struct DemSample {
     pub grain_force_n: f64,
 }
 
-/// Receives samples and (optionally) particle snapshots of a run.
-pub trait DemObserver {
-    /// One sample at `sample_interval`.
-    ///
-    /// # Errors
-    /// Output errors, which stop the run.
-    fn sample(&mut self, s: &DemSample) -> Result<(), SimError>;
-    /// A particle snapshot at `damper.snapshot_interval` (default: ignored).
-    ///
-    /// # Errors
-    /// Output errors, which stop the run.
-    fn snapshot(&mut self, _world: &DemWorld) -> Result<(), SimError> {
-        Ok(())
-    }
-    /// Progress: simulated time `t_s` of `duration_s`, about every forcing period.
-    fn progress(&mut self, _t_s: f64, _duration_s: f64) {}
-    /// After every time step of the driven run, with the state the step reached (default:
-    /// ignored). The two-replica test ([`super::replica`]) steps its perturbed copy here; the
-    /// time spent is left out of the run's wall and CPU times.
-    ///
-    /// # Errors
-    /// Errors of the observer, which stop the run.
-    fn stepped(&mut self, _world: &DemWorld) -> Result<(), SimError> {
-        Ok(())
-    }
-}
-
-impl DemObserver for Vec<DemSample> {
-    fn sample(&mut self, s: &DemSample) -> Result<(), SimError> {
-        self.push(*s);
-        Ok(())
-    }
-}
-
-/// One stroboscopic point: the state at the start of a forcing period in the steady state.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct StrobeRow {
-    /// Forcing period index (t = cycle / f).
-    pub cycle: u64,
-    /// Time (s).
-    pub time_s: f64,
-    /// Grains' centre of mass z_cm (m).
-    pub grain_z_m: f64,
-    /// Box position (m).
-    pub box_z_m: f64,
-    /// Grains' centre-of-mass velocity (m/s).
-    pub grain_v_m_s: f64,
-    /// Box velocity (m/s).
-    pub box_v_m_s: f64,
-}
-
-impl StrobeRow {
-    /// The state at `t_s`, interpolated linearly between the states `a` (before) and `b`
-    /// (after), each `(t, z_cm, v_cm, box_z, box_v)`.
-    pub(crate) fn interpolate(cycle: u64, t_s: f64, a: [f64; 5], b: [f64; 5]) -> StrobeRow {
-        let span = b[0] - a[0];
-        let w = if span > 0.0 {
-            ((t_s - a[0]) / span).clamp(0.0, 1.0)
-        } else {
-            1.0
+impl DemSample {
+    /// The DEM sample carried by `s`, if its model part is the DEM's.
+    pub fn from_sample(s: &Sample) -> Option<DemSample> {
+        let ModelSample::Dem(d) = s.model else {
+            return None;
         };
-        let at = |k: usize| a[k] + w * (b[k] - a[k]);
-        StrobeRow {
-            cycle,
-            time_s: t_s,
-            grain_z_m: at(1),
-            grain_v_m_s: at(2),
-            box_z_m: at(3),
-            box_v_m_s: at(4),
-        }
+        Some(DemSample {
+            time_s: s.time_s,
+            base_u_m: s.base_u_m,
+            box_z_m: s.box_z_m,
+            box_v_m_s: s.box_v_m_s,
+            floor_z_m: s.floor_z_m,
+            ceiling_z_m: s.ceiling_z_m,
+            grain_z_m: s.grain_z_m,
+            grain_zmin_m: d.grain_zmin_m,
+            grain_zmax_m: d.grain_zmax_m,
+            e_collision_j: d.e_collision_j,
+            e_friction_j: d.e_friction_j,
+            e_viscous_j: d.e_viscous_j,
+            e_base_work_j: d.e_base_work_j,
+            e_kinetic_j: d.e_kinetic_j,
+            e_potential_j: d.e_potential_j,
+            e_elastic_j: d.e_elastic_j,
+            e_primary_j: d.e_primary_j,
+            e_balance_residual_j: d.e_balance_residual_j,
+            grain_force_n: s.grain_force_n,
+        })
+    }
+}
+
+/// Keeps every DEM sample in memory (tests, small runs).
+impl Observer for Vec<DemSample> {
+    fn sample(&mut self, s: &Sample) -> Result<(), SimError> {
+        self.extend(DemSample::from_sample(s));
+        Ok(())
+    }
+}
+
+/// The stroboscopic point at `t_s`, interpolated linearly between the states `a` (before)
+/// and `b` (after), each `(t, z_cm, v_cm, box_z, box_v)`.
+pub(crate) fn interpolate_strobe(cycle: u64, t_s: f64, a: [f64; 5], b: [f64; 5]) -> StrobePoint {
+    let span = b[0] - a[0];
+    let w = if span > 0.0 {
+        ((t_s - a[0]) / span).clamp(0.0, 1.0)
+    } else {
+        1.0
+    };
+    let at = |k: usize| a[k] + w * (b[k] - a[k]);
+    StrobePoint {
+        cycle,
+        time_s: t_s,
+        grain_z_m: at(1),
+        grain_v_m_s: at(2),
+        box_z_m: at(3),
+        box_v_m_s: at(4),
     }
 }
 
@@ -242,9 +231,6 @@ pub struct DemSummary {
     /// Stored mechanical energy at the end (J).
     #[serde(skip)]
     pub energy_end_j: f64,
-    /// Stroboscopic points of the analysis window (one per forcing period).
-    #[serde(skip)]
-    pub strobe: Vec<StrobeRow>,
     /// Collective impacts of the bed on the floor and the ceiling in the steady window
     /// ([`BedImpacts`]).
     #[serde(skip)]
@@ -253,32 +239,29 @@ pub struct DemSummary {
     pub cycles_steady: f64,
 }
 
-/// Builds the initial bed of `params` (radii, lattice or advancing front) at rest, with the
-/// box held still at `box_z` (m).
+/// Builds the initial bed of `model` (its grains placed on a lattice or by the advancing
+/// front) at rest, with the box held still at `box_z` (m).
 ///
 /// # Errors
-/// Scene errors (invalid parameters, grains that do not fit).
+/// Grains that do not fit the box (packing errors); [`DemWorld::new`]'s errors.
 pub fn initial_world(
-    params: &DemParams,
+    model: &DemModel,
     drive: BoxDrive,
     dt: f64,
     box_z: f64,
-) -> Result<DemWorld, SceneError> {
-    params.validate()?;
-    let dist = params.radius_distribution()?;
-    let radii = dist.sample_n(params.count, params.seed);
-    let r_max = dist.r_max();
-    let pos = match params.packing {
-        PackingKind::Lattice => fcc_lattice(
-            params.r#box,
-            params.count,
-            r_max,
+) -> Result<DemWorld, SimError> {
+    let radii = model.grains.radius_m.clone();
+    let pos = match model.packing {
+        Packing::Lattice { seed } => fcc_lattice(
+            model.box_size_m,
+            radii.len(),
+            model.grains.r_max_m,
             0.05,
-            params.seed ^ 0x5eed,
+            seed ^ 0x5eed,
         )?,
-        PackingKind::AdvancingFront => advancing_front_packing(params.r#box, &radii)?,
+        Packing::AdvancingFront => advancing_front_packing(model.box_size_m, &radii)?,
     };
-    let mut w = DemWorld::new(params, drive, dt, radii, pos)?;
+    let mut w = DemWorld::new(model, drive, dt, radii, pos)?;
     w.shift_box_to(box_z);
     w.refresh();
     Ok(w)
@@ -324,13 +307,13 @@ fn thread_cpu_time_s() -> Option<f64> {
     Some((utime + stime) / 100.0)
 }
 
-fn sample_of(w: &DemWorld, e0: &super::energy::EnergyState) -> DemSample {
+fn sample_of(w: &DemWorld, e0: &super::energy::EnergyState) -> Sample {
     let (zcm, lo, hi) = w.z_stats();
     let (u, _) = w.base_now();
     let st = w.energy_state();
     let (res, _) = balance(&st, e0, &w.ledger);
     let l: EnergyLedger = w.ledger;
-    DemSample {
+    Sample {
         time_s: w.t,
         base_u_m: u,
         box_z_m: w.box_z,
@@ -338,52 +321,73 @@ fn sample_of(w: &DemWorld, e0: &super::energy::EnergyState) -> DemSample {
         floor_z_m: w.box_z,
         ceiling_z_m: w.box_z + w.box_size[2],
         grain_z_m: zcm,
-        grain_zmin_m: lo,
-        grain_zmax_m: hi,
-        e_collision_j: l.collision_j,
-        e_friction_j: l.friction_j,
-        e_viscous_j: l.viscous_j,
-        e_base_work_j: l.base_work_j,
-        e_kinetic_j: st.kinetic_j + st.rotational_j,
-        e_potential_j: st.potential_j - e0.potential_j,
-        e_elastic_j: st.elastic_j,
-        e_primary_j: st.primary_j,
-        e_balance_residual_j: res,
+        model: ModelSample::Dem(DemSampleState {
+            grain_zmin_m: lo,
+            grain_zmax_m: hi,
+            e_collision_j: l.collision_j,
+            e_friction_j: l.friction_j,
+            e_viscous_j: l.viscous_j,
+            e_base_work_j: l.base_work_j,
+            e_kinetic_j: st.kinetic_j + st.rotational_j,
+            e_potential_j: st.potential_j - e0.potential_j,
+            e_elastic_j: st.elastic_j,
+            e_primary_j: st.primary_j,
+            e_balance_residual_j: res,
+        }),
         grain_force_n: w.grain_force_n,
     }
 }
 
-/// Runs a DEM damper scene: bed, settling, then `cfg.duration_s` of drive.
+/// Runs a DEM damper: bed, settling, then `cfg.duration_s` of drive. `obs` receives
+/// [`Observer::start`] with [`SampleKind::Dem`], the samples, the stroboscopic points of the
+/// analysis window, the particle snapshots and [`Observer::finish`].
 ///
 /// # Errors
-/// [`SimError::Scene`] for invalid parameters or time step; [`SimError::Unstable`] when the
-/// state turns non-finite, a grain leaves the box or energy grows without input.
+/// [`SimError::Model`] for a refused time step or run window; packing errors;
+/// [`SimError::Unstable`] when the state turns non-finite, a grain leaves the box or energy
+/// grows without input.
 pub fn run_dem(
-    params: &DemParams,
+    model: &DemModel,
     drive: BoxDrive,
     cfg: &DemRunConfig,
-    obs: &mut dyn DemObserver,
+    obs: &mut dyn Observer,
+) -> Result<DemSummary, SimError> {
+    run_dem_stepped(model, drive, cfg, obs, &mut |_| Ok(()))
+}
+
+/// [`run_dem`], calling `stepped` after every time step of the driven run with the state
+/// the step reached (the two-replica test steps its perturbed copy there; the time spent is
+/// left out of the run's wall and CPU times).
+///
+/// # Errors
+/// As [`run_dem`]; the errors of `stepped`.
+pub(crate) fn run_dem_stepped(
+    model: &DemModel,
+    drive: BoxDrive,
+    cfg: &DemRunConfig,
+    obs: &mut dyn Observer,
+    stepped: &mut dyn FnMut(&DemWorld) -> Result<(), SimError>,
 ) -> Result<DemSummary, SimError> {
     let explicit = match cfg.dt {
         DtChoice::Auto => None,
         DtChoice::Seconds(s) => Some(s),
     };
-    let (mut dt, ts) = choose_dt(params, &drive, explicit, cfg.dt_fraction)?;
+    let (mut dt, ts) = choose_dt(model, &drive, explicit, cfg.dt_fraction)?;
     if explicit.is_none() && cfg.sample_interval_s > dt && cfg.sample_interval_s.is_finite() {
         // automatic step: shrink it slightly so that samples fall on exact multiples of dt
         dt = cfg.sample_interval_s / (cfg.sample_interval_s / dt).ceil();
     }
-    for (k, v) in [
-        ("run.duration", cfg.duration_s),
-        ("run.sample_interval", cfg.sample_interval_s),
+    for (q, v) in [
+        (Quantity::Duration, cfg.duration_s),
+        (Quantity::SampleInterval, cfg.sample_interval_s),
     ] {
         if !(v > 0.0 && v.is_finite()) {
-            return Err(SceneError::invalid(k, v, "must be > 0 (seconds)").into());
+            return Err(ModelError::new(q, v, "must be > 0 (seconds)").into());
         }
     }
     if !(cfg.steady_fraction > 0.0 && cfg.steady_fraction <= 1.0) {
-        return Err(SceneError::invalid(
-            "run.steady_fraction",
+        return Err(ModelError::new(
+            Quantity::SteadyFraction,
             cfg.steady_fraction,
             "must be in (0, 1]",
         )
@@ -391,7 +395,7 @@ pub fn run_dem(
     }
     // box held at its start position: u(0) for a kinematic box, the static equilibrium with
     // the grains' weight for a primary
-    let mut world = initial_world(params, drive, dt, 0.0)?;
+    let mut world = initial_world(model, drive, dt, 0.0)?;
     world.gravity = cfg.gravity_m_s2;
     let m_p: f64 = world.mass.iter().sum();
     let z_hold = match drive.primary {
@@ -399,7 +403,7 @@ pub fn run_dem(
         None => drive.base(0.0).0,
     };
     world.shift_box_to(z_hold);
-    let (settle_t, settle_steps) = settle(&mut world, params.settle_time.unwrap_or(1.0));
+    let (settle_t, settle_steps) = settle(&mut world, model.settle_time_s);
     let (zcm, _, _) = world.z_stats();
     let bed_height_m = 2.0 * (zcm - world.box_z);
     let phi = volume_fraction(
@@ -412,8 +416,8 @@ pub fn run_dem(
 
     let n_steps = (cfg.duration_s / dt).ceil() as u64;
     let per_sample = ((cfg.sample_interval_s / dt).round() as u64).max(1);
-    let per_snap = params
-        .snapshot_interval
+    let per_snap = model
+        .snapshot_interval_s
         .map(|s| ((s / dt).round() as u64).max(1));
     let steady_from = ((1.0 - cfg.steady_fraction) * n_steps as f64).floor() as u64;
     let steady_start_s = steady_from as f64 * dt;
@@ -423,18 +427,18 @@ pub fn run_dem(
     let abs_floor = 1e-3 * m_p * G * world.radius[0];
     let mut steady_ledger: Option<(f64, EnergyLedger)> = None;
     let (mut zmin, mut zmax) = (f64::INFINITY, f64::NEG_INFINITY);
-    let mut strobe = Vec::new();
     let mut bed_impacts = BedImpacts::new(m_p, cfg.gravity_m_s2, drive.frequency_hz);
     let strobe_state = |w: &DemWorld| {
         let (z, v) = w.z_cm_state();
         [w.t, z, v, w.box_z, w.box_v]
     };
     let sample_now = |w: &DemWorld| cfg.samples && w.t >= cfg.sample_from_s - 0.5 * dt;
+    obs.start(SampleKind::Dem)?;
     if sample_now(&world) {
         obs.sample(&sample_of(&world, &e0))?;
     }
     if per_snap.is_some() {
-        obs.snapshot(&world)?;
+        obs.snapshot(&world.grain_state())?;
     }
     let clock = Instant::now();
     let cpu0 = thread_cpu_time_s();
@@ -451,7 +455,7 @@ pub fn run_dem(
             .flatten();
         world.step();
         let c0 = Instant::now();
-        obs.stepped(&world)?;
+        stepped(&world)?;
         aside += c0.elapsed().as_secs_f64();
         if k >= steady_from {
             if steady_ledger.is_none() {
@@ -464,12 +468,14 @@ pub fn run_dem(
         }
         if let Some((cycle, before)) = strobe_before {
             let t_s = cycle / drive.frequency_hz;
-            strobe.push(StrobeRow::interpolate(
+            let c0 = Instant::now();
+            obs.strobe(&interpolate_strobe(
                 cycle as u64,
                 t_s,
                 before,
                 strobe_state(&world),
-            ));
+            ))?;
+            aside += c0.elapsed().as_secs_f64();
         }
         let do_sample = k % per_sample == 0 || k == n_steps;
         let do_snap = per_snap.is_some_and(|ps| k % ps == 0);
@@ -477,20 +483,24 @@ pub fn run_dem(
             let c0 = Instant::now();
             if do_sample {
                 let s = sample_of(&world, &e0);
-                let rel = s.e_balance_residual_j.abs()
+                let residual = match s.model {
+                    ModelSample::Dem(d) => d.e_balance_residual_j,
+                    _ => 0.0,
+                };
+                let rel = residual.abs()
                     / (world
                         .ledger
                         .base_work_j
                         .abs()
                         .max(world.ledger.dissipated_j())
                         .max(abs_floor));
-                check(&world, s.e_balance_residual_j - abs_floor, rel)?;
+                check(&world, residual - abs_floor, rel)?;
                 if sample_now(&world) {
                     obs.sample(&s)?;
                 }
             }
             if do_snap {
-                obs.snapshot(&world)?;
+                obs.snapshot(&world.grain_state())?;
             }
             if k % per_progress == 0 {
                 obs.progress(world.t, cfg.duration_s);
@@ -510,6 +520,7 @@ pub fn run_dem(
         let cycles = (world.t - t0) * drive.frequency_hz;
         (cycles > 0.0).then(|| (f(&world.ledger) - f(&l0)) / cycles)
     };
+    obs.finish()?;
     Ok(DemSummary {
         amplitude_m: 0.5 * (zmax - zmin),
         energy_balance_relative_error: rel,
@@ -537,7 +548,6 @@ pub fn run_dem(
         ledger: world.ledger,
         energy_start_j: e0.total_j(),
         energy_end_j: st.total_j(),
-        strobe,
         bed_impacts,
         cycles_steady: steady_ledger.map_or(0.0, |(t0, _)| (world.t - t0) * drive.frequency_hz),
     })

@@ -3,11 +3,11 @@
 use crate::contact::linear_spring_dashpot::LinearContactParams;
 use crate::contact::material::PairProperties;
 use crate::contact::restitution::{hertz_contact_time, linear_contact_time};
-use crate::error::{SceneError, SimError};
-use crate::packing::RadiusDistribution;
-use crate::scene::dem::{ContactKind, DemParams};
+use crate::contact::NormalLaw;
+use crate::error::{ModelError, Quantity, SimError};
 use crate::units::{G, TWO_PI};
 
+use super::model::{DemModel, Grains};
 use super::world::{BoxDrive, DemWorld};
 
 /// Default fraction of the contact duration used as time step with `dt = "auto"` (1/50).
@@ -27,50 +27,56 @@ pub fn impact_speed(drive: &BoxDrive, lz: f64) -> f64 {
 /// linear: π/√(k/m* − (c/2m*)²)).
 ///
 /// # Errors
-/// Invalid scene parameters.
-pub fn contact_time(
-    params: &DemParams,
-    dist: &RadiusDistribution,
-    v: f64,
-) -> Result<f64, SceneError> {
-    let r = dist.r_min();
-    let m = params.density * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
-    let (g, w) = (params.grain_material(), params.wall_material());
+/// [`ModelError`] when a linear law's restitution or yield strength is out of range.
+pub fn contact_time(model: &DemModel, v: f64) -> Result<f64, ModelError> {
+    let grains: &Grains = &model.grains;
+    let r = grains.r_min_m;
+    let m = grains.density_kg_m3 * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
+    let (g, w) = (grains.material, model.contact.wall.material);
     let pp = PairProperties::new(r, m, &g, r, m, &g);
     let pw = PairProperties::new(r, m, &g, f64::INFINITY, f64::INFINITY, &w);
-    Ok(match params.contact {
-        ContactKind::HertzKk => hertz_contact_time(pp.m_star, pp.r_star, pp.e_star, v)
-            .min(hertz_contact_time(pw.m_star, pw.r_star, pw.e_star, v)),
-        ContactKind::Linear => {
-            let y = params.yield_strength.unwrap_or(1.0);
-            let e = params.restitution.unwrap_or(1.0);
-            let ew = params.wall_restitution.unwrap_or(e);
-            let lp = LinearContactParams::select(&pp, &g, y, e)?;
-            let lw = LinearContactParams::select(&pw, &g, y, ew)?;
-            linear_contact_time(lp.k_n, lp.c_n, pp.m_star)
-                .min(linear_contact_time(lw.k_n, lw.c_n, pw.m_star))
-        }
-    })
+    let time = |law: NormalLaw, p: &PairProperties, wall: bool| -> Result<f64, ModelError> {
+        Ok(match law {
+            NormalLaw::HertzKuwabaraKono { .. } => {
+                hertz_contact_time(p.m_star, p.r_star, p.e_star, v)
+            }
+            NormalLaw::LinearSpringDashpot {
+                restitution,
+                yield_strength,
+            } => {
+                let l = LinearContactParams::select(p, &g, yield_strength, restitution).map_err(
+                    |mut e| {
+                        if wall && e.quantity == Quantity::Restitution {
+                            e.quantity = Quantity::WallRestitution;
+                        }
+                        e
+                    },
+                )?;
+                linear_contact_time(l.k_n, l.c_n, p.m_star)
+            }
+        })
+    };
+    Ok(time(model.contact.normal, &pp, false)?.min(time(model.contact.wall.normal, &pw, true)?))
 }
 
 /// Chooses or checks the time step (s). `dt = None` means automatic: `fraction` × t_s.
 ///
 /// # Errors
-/// `run.dt` above t_s/20 (names the limit), or `run.dt_fraction` outside (0, 1/20].
+/// [`ModelError`]: a time step above t_s/20 (names the limit), or a fraction outside
+/// (0, 1/20].
 pub fn choose_dt(
-    params: &DemParams,
+    model: &DemModel,
     drive: &BoxDrive,
     dt: Option<f64>,
     fraction: f64,
-) -> Result<(f64, f64), SceneError> {
-    let dist = params.radius_distribution()?;
-    let v = impact_speed(drive, params.r#box[2]);
-    let ts = contact_time(params, &dist, v)?;
+) -> Result<(f64, f64), ModelError> {
+    let v = impact_speed(drive, model.box_size_m[2]);
+    let ts = contact_time(model, v)?;
     match dt {
         None => {
             if !(fraction > 0.0 && fraction <= MAX_DT_FRACTION) {
-                return Err(SceneError::invalid(
-                    "run.dt_fraction",
+                return Err(ModelError::new(
+                    Quantity::TimeStepFraction,
                     fraction,
                     "must be in (0, 0.05]: dt = fraction × t_s (default 1/50; the thesis used ~1/100)",
                 ));
@@ -79,20 +85,21 @@ pub fn choose_dt(
         }
         Some(dt) => {
             if !(dt > 0.0 && dt.is_finite()) {
-                return Err(SceneError::invalid(
-                    "run.dt",
+                return Err(ModelError::new(
+                    Quantity::TimeStep,
                     dt,
-                    "must be > 0 (seconds) or \"auto\"",
+                    "must be > 0 (seconds), or chosen automatically",
                 ));
             }
             if dt > MAX_DT_FRACTION * ts {
-                return Err(SceneError::invalid(
-                    "run.dt",
+                return Err(ModelError::new(
+                    Quantity::TimeStep,
                     format!("{dt:e} s"),
                     format!(
                         "is larger than t_s/20 = {:.3e} s (Hertz contact time {ts:.3e} s at impact speed \
-                         {v:.3} m/s for these materials); lower run.dt (t_s/50 = {:.3e} s recommended), \
-                         use dt = \"auto\", or lower damper.youngs_modulus",
+                         {v:.3} m/s for these materials); lower the time step (t_s/50 = {:.3e} s \
+                         recommended), choose it automatically (dt = auto), or soften the grains \
+                         (lower Young's modulus)",
                         MAX_DT_FRACTION * ts,
                         ts / 50.0
                     ),
@@ -116,7 +123,7 @@ pub fn check(world: &DemWorld, residual_j: f64, relative_balance: f64) -> Result
         return Err(SimError::Unstable {
             t_s: t,
             reason: "box position/velocity became non-finite: time step too large for the contact stiffness \
-                     (lower run.dt or run.dt_fraction)"
+                     (lower the time step or its fraction of the contact time)"
                 .into(),
         });
     }
@@ -129,7 +136,7 @@ pub fn check(world: &DemWorld, residual_j: f64, relative_balance: f64) -> Result
                 t_s: t,
                 reason: format!(
                     "grain {i} has a non-finite position or velocity: time step too large for the contact \
-                     stiffness (lower run.dt or run.dt_fraction, or damper.youngs_modulus)"
+                     stiffness (lower the time step or its fraction of the contact time, or the Young's modulus)"
                 ),
             });
         }
@@ -140,7 +147,7 @@ pub fn check(world: &DemWorld, residual_j: f64, relative_balance: f64) -> Result
                 t_s: t,
                 reason: format!(
                     "grain {i} left the box (centre at {:?} m, box z = {:.4e} m): contacts too stiff for the \
-                     time step or impact speeds above the auto-dt estimate; lower run.dt or run.dt_fraction",
+                     time step or impact speeds above the auto-dt estimate; lower the time step or its fraction of the contact time",
                     p, world.box_z
                 ),
             });
@@ -151,34 +158,10 @@ pub fn check(world: &DemWorld, residual_j: f64, relative_balance: f64) -> Result
             t_s: t,
             reason: format!(
                 "energy grew without input (ledger residual +{residual_j:.3e} J, {:.0} % of the flows): time \
-                 step too large for the contact stiffness; lower run.dt or run.dt_fraction",
+                 step too large for the contact stiffness; lower the time step or its fraction of the contact time",
                 100.0 * relative_balance
             ),
         });
     }
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn explicit_dt_above_limit_is_rejected_with_the_limit() {
-        let p = DemParams::thesis_b();
-        let d = BoxDrive {
-            primary: None,
-            amplitude_m: 4.5e-3,
-            frequency_hz: 15.0,
-        };
-        let (dt, ts) = choose_dt(&p, &d, None, DEFAULT_DT_FRACTION).unwrap();
-        assert!((dt - ts / 50.0).abs() < 1e-20);
-        // steel, R = 3 mm, v ≈ 1.55 m/s (free fall over 0.1225 m): t_s ≈ 1.5e-5 s
-        assert!(ts > 5e-6 && ts < 5e-5, "{ts}");
-        let e = choose_dt(&p, &d, Some(1e-4), DEFAULT_DT_FRACTION)
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("run.dt") && e.contains("t_s/20"), "{e}");
-        assert!(choose_dt(&p, &d, Some(ts / 30.0), DEFAULT_DT_FRACTION).is_ok());
-    }
 }

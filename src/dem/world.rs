@@ -6,46 +6,14 @@ use crate::contact::linear_spring_dashpot::LinearContactParams;
 use crate::contact::material::{Material, PairProperties};
 use crate::contact::{coulomb_viscous_force, hertz_stiffness};
 use crate::contact::{AttractionPolicy, NormalLaw, TangentialLaw};
-use crate::error::SceneError;
+use crate::error::{ModelError, Quantity};
 use crate::integrate::{advance_orientation, half_kick, half_kick_predict, kick_drift};
+pub use crate::model::{BoxDrive, PrimarySystem};
 use crate::neighbor::{NeighborList, Pair};
-use crate::scene::dem::DemParams;
-use crate::units::{G, TWO_PI};
+use crate::units::G;
 
 use super::energy::{EnergyLedger, EnergyState};
-
-/// The primary system carrying the box (SPEC §1): M z'' + C z' + K z = C u' + K u + F_gz.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PrimarySystem {
-    /// Primary mass M (kg).
-    pub mass_kg: f64,
-    /// Spring stiffness K (N/m).
-    pub stiffness_n_m: f64,
-    /// Viscous damping C (N s/m).
-    pub damping_n_s_m: f64,
-}
-
-/// How the box moves: on a primary system driven through its base, or kinematically with the
-/// base (`primary = None`). Base motion u(t) = U cos(Ωt), Ω = 2πf, t = 0 when the drive starts.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BoxDrive {
-    /// Primary system, or `None` for a box moved kinematically with the base.
-    pub primary: Option<PrimarySystem>,
-    /// Base amplitude U (m).
-    pub amplitude_m: f64,
-    /// Base frequency f (Hz).
-    pub frequency_hz: f64,
-}
-
-impl BoxDrive {
-    /// Base displacement u(t) (m) and velocity u'(t) (m/s).
-    #[inline]
-    pub fn base(&self, t: f64) -> (f64, f64) {
-        let w = TWO_PI * self.frequency_hz;
-        let (s, c) = (w * t).sin_cos();
-        (self.amplitude_m * c, -self.amplitude_m * w * s)
-    }
-}
+use super::model::DemModel;
 
 /// Normal-law kernel used by the monomorphised contact loops.
 trait NormalKernel {
@@ -72,7 +40,7 @@ impl NormalKernel for LinearKernel {
     }
 }
 
-/// Contact laws of the scene (grain–grain and grain–wall), resolved from [`DemParams`].
+/// Contact laws (grain–grain and grain–wall) of the [`DemModel`], flattened for the loops.
 #[derive(Debug, Clone)]
 struct Laws {
     normal: NormalLaw,
@@ -198,32 +166,41 @@ pub struct DemWorld {
 type LoopOut = (f64, f64, f64);
 
 impl DemWorld {
-    /// Builds a world with grains at rest at `pos` (m) with `radius` (m).
+    /// Builds a world of `model`'s box, material and contact laws with grains at rest at
+    /// `pos` (m) with `radius` (m) (usually `model.grains.radius_m`; masses from the density).
     ///
     /// # Errors
-    /// Scene errors from [`DemParams::validate`] or inconsistent array lengths.
+    /// [`ModelError`] for empty or inconsistent arrays, or a time step that is not > 0.
     pub fn new(
-        params: &DemParams,
+        model: &DemModel,
         drive: BoxDrive,
         dt: f64,
         radius: Vec<f64>,
         pos: Vec<[f64; 3]>,
-    ) -> Result<Self, SceneError> {
-        params.validate()?;
+    ) -> Result<Self, ModelError> {
         if radius.len() != pos.len() || radius.is_empty() {
-            return Err(SceneError::invalid(
-                "damper.count",
+            return Err(ModelError::new(
+                Quantity::GrainCount,
                 pos.len(),
-                "positions and radii differ in length",
+                format!(
+                    "{} positions for {} radii (need ≥ 1 grain, one radius each)",
+                    pos.len(),
+                    radius.len()
+                ),
             ));
         }
         if !(dt > 0.0 && dt.is_finite()) {
-            return Err(SceneError::invalid("run.dt", dt, "must be > 0 (seconds)"));
+            return Err(ModelError::new(
+                Quantity::TimeStep,
+                dt,
+                "must be > 0 (seconds)",
+            ));
         }
         let n = pos.len();
+        let density = model.grains.density_kg_m3;
         let mass: Vec<f64> = radius
             .iter()
-            .map(|r| params.density * 4.0 / 3.0 * std::f64::consts::PI * r * r * r)
+            .map(|&r| super::model::Grains::sphere_mass(density, r))
             .collect();
         let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
         let inv_inertia = mass
@@ -231,22 +208,19 @@ impl DemWorld {
             .zip(&radius)
             .map(|(m, r)| 1.0 / (0.4 * m * r * r))
             .collect();
+        let c = &model.contact;
         let laws = Laws {
-            normal: params.normal_law(false),
-            wall_normal: params.normal_law(true),
-            tangential: params.tangential_law(false),
-            wall_tangential: params.tangential_law(true),
-            attraction: if params.attractive_normal_force {
-                AttractionPolicy::Allow
-            } else {
-                AttractionPolicy::Clamp
-            },
-            rotations: params.rotations,
-            grain: params.grain_material(),
-            wall: params.wall_material(),
+            normal: c.normal,
+            wall_normal: c.wall.normal,
+            tangential: c.tangential,
+            wall_tangential: c.wall.tangential,
+            attraction: c.attraction,
+            rotations: model.rotations,
+            grain: model.grains.material,
+            wall: c.wall.material,
         };
         let r_max = radius.iter().cloned().fold(0.0, f64::max);
-        let neighbors = NeighborList::new(params.r#box, r_max, params.skin(r_max));
+        let neighbors = NeighborList::new(model.box_size_m, r_max, model.skin(r_max));
         let wall_coef = (0..n)
             .map(|i| laws.coefficients(radius[i], mass[i], f64::INFINITY, f64::INFINITY, true))
             .collect();
@@ -265,10 +239,10 @@ impl DemWorld {
             mass,
             inv_mass,
             inv_inertia,
-            orientation: params
+            orientation: model
                 .orientations
                 .then(|| vec![UnitQuaternion::identity(); n]),
-            box_size: params.r#box,
+            box_size: model.box_size_m,
             box_z: 0.0,
             box_v: 0.0,
             box_a: 0.0,
@@ -286,6 +260,18 @@ impl DemWorld {
             wall_coef,
             steps: 0,
         })
+    }
+
+    /// The grains' state now, for snapshots.
+    pub fn grain_state(&self) -> crate::observe::GrainState<'_> {
+        crate::observe::GrainState {
+            time_s: self.t,
+            pos: &self.pos,
+            vel: &self.vel,
+            omega: &self.omega,
+            radius: &self.radius,
+            orientation: self.orientation.as_deref(),
+        }
     }
 
     /// Number of grains.

@@ -27,10 +27,9 @@
 
 use super::collision::collide;
 use super::{BoxMotion, Event, ImpactWorld, Mode, SegmentHook, State};
-use crate::error::{SceneError, SimError};
+use crate::error::{ModelError, Quantity, SimError};
 use crate::model::{RunOptions, Sdof};
 use crate::observe::NullObserver;
-use crate::scene::{Damper, Scene};
 use serde::{Deserialize, Serialize};
 
 /// Which estimator produced a [`ModelLyapunov`].
@@ -171,13 +170,13 @@ impl ImpactWorld {
         let k_end = (self.duration / self.period + 1e-9).floor() as u64;
         if k_end < k0 + 2 {
             let frac = 1.0 - self.steady_start / self.duration;
-            return Err(SimError::Scene(SceneError::invalid(
-                "run.steady_fraction",
+            return Err(SimError::Model(ModelError::new(
+                Quantity::SteadyFraction,
                 frac,
                 format!(
                     "the steady window {:.6} … {:.6} s holds {} complete forcing period(s) of \
-                     {:.6} s; the Lyapunov exponent needs at least 2: raise run.duration \
-                     (or run.periods) or run.steady_fraction",
+                     {:.6} s; the Lyapunov exponent needs at least 2: raise the duration or the \
+                     steady-state fraction",
                     self.steady_start,
                     self.duration,
                     k_end.saturating_sub(k0),
@@ -269,7 +268,7 @@ impl ImpactWorld {
     /// s.excitation.frequency = 2.0;
     /// s.run = Run::with_duration(200.0);
     /// s.run.steady_fraction = 0.5;
-    /// let l = ImpactWorld::new(&s)?.model_lyapunov(&ModelLyapunovOptions::default())?;
+    /// let l = ImpactWorld::new(&s.resolve_impact()?).model_lyapunov(&ModelLyapunovOptions::default())?;
     /// assert!(l.locked && l.periods == 200);
     /// assert!((l.per_second + 7.6 / (2.0 * (2.37 + 0.227))).abs() < 0.05);
     /// # Ok::<(), pdamp::error::SimError>(())
@@ -345,7 +344,7 @@ impl ImpactWorld {
     /// s.excitation.frequency = 2.0;
     /// s.run = Run::with_duration(200.0);
     /// s.run.steady_fraction = 0.5;
-    /// let w = ImpactWorld::new(&s)?;
+    /// let w = ImpactWorld::new(&s.resolve_impact()?);
     /// let l = w.model_lyapunov_two_trajectory(&ModelLyapunovOptions::default())?;
     /// assert!((l.per_second + 7.6 / (2.0 * (2.37 + 0.227))).abs() < 0.05);
     /// # Ok::<(), pdamp::error::SimError>(())
@@ -735,99 +734,9 @@ impl SegmentHook for Tangent<'_> {
     }
 }
 
-/// Largest Lyapunov exponent of an impact-damper scene's stroboscopic map from the model's
-/// tangent dynamics (see [`ImpactWorld::model_lyapunov`]); `None` for a scene whose damper is
-/// not `impact`. The entry point for sweeps.
-///
-/// # Formula
-/// As [`ImpactWorld::model_lyapunov`] (saltation matrices of (2.1.25)–(2.1.27)).
-///
-/// # Units
-/// `per_period` per forcing period, `per_second` and `stderr_per_second` 1/s.
-///
-/// # Parameters
-/// [`ModelLyapunovOptions::default`]: 10 batch-means blocks. The run is the scene's own
-/// (duration, steady window = last `run.steady_fraction`).
-///
-/// # Errors
-/// [`ImpactWorld::new`]'s and [`ImpactWorld::model_lyapunov`]'s.
-///
-/// # Pitfalls
-/// Costs about one more run of the scene; the 10 % steady window of a short run holds few
-/// periods at low frequency (look at `stderr_per_second` and `periods`).
-///
-/// # References
-/// See [`ImpactWorld::model_lyapunov`].
-///
-/// # Example
-/// ```
-/// # use pdamp::impact::{model_lyapunov_of_scene, ModelLyapunovOptions};
-/// # use pdamp::scene::{Run, Scene};
-/// let mut s = Scene::primary_only();
-/// assert!(model_lyapunov_of_scene(&s, &ModelLyapunovOptions::default())?.is_none());
-/// s = Scene::thesis_b_impact();
-/// s.excitation.frequency = 2.0;
-/// s.run = Run::with_duration(10.0);
-/// let l = model_lyapunov_of_scene(&s, &ModelLyapunovOptions::default())?.unwrap();
-/// assert!(l.per_second < 0.0);
-/// # Ok::<(), pdamp::error::SimError>(())
-/// ```
-pub fn model_lyapunov_of_scene(
-    scene: &Scene,
-    opts: &ModelLyapunovOptions,
-) -> Result<Option<ModelLyapunov>, SimError> {
-    if !matches!(scene.damper, Damper::Impact(_)) {
-        return Ok(None);
-    }
-    ImpactWorld::new(scene)?.model_lyapunov(opts).map(Some)
-}
-
-/// Largest Lyapunov exponent of an impact-damper scene from two diverging copies of the model
-/// (see [`ImpactWorld::model_lyapunov_two_trajectory`]); `None` for a scene whose damper is not
-/// `impact`.
-///
-/// # Formula
-/// As [`ImpactWorld::model_lyapunov_two_trajectory`].
-///
-/// # Units
-/// As [`model_lyapunov_of_scene`].
-///
-/// # Parameters
-/// [`ModelLyapunovOptions::default`]: d0 = 1e-7, 10 blocks.
-///
-/// # Errors
-/// [`ImpactWorld::new`]'s and [`ImpactWorld::model_lyapunov_two_trajectory`]'s.
-///
-/// # Pitfalls
-/// About twice the cost of a run.
-///
-/// # References
-/// Benettin et al. (1980), Meccanica 15, 9–20, doi:10.1007/BF02128236.
-///
-/// # Example
-/// ```
-/// # use pdamp::impact::{two_trajectory_lyapunov_of_scene, ModelLyapunovOptions};
-/// # use pdamp::scene::Scene;
-/// let s = Scene::primary_only();
-/// assert!(two_trajectory_lyapunov_of_scene(&s, &ModelLyapunovOptions::default())?.is_none());
-/// # Ok::<(), pdamp::error::SimError>(())
-/// ```
-pub fn two_trajectory_lyapunov_of_scene(
-    scene: &Scene,
-    opts: &ModelLyapunovOptions,
-) -> Result<Option<ModelLyapunov>, SimError> {
-    if !matches!(scene.damper, Damper::Impact(_)) {
-        return Ok(None);
-    }
-    ImpactWorld::new(scene)?
-        .model_lyapunov_two_trajectory(opts)
-        .map(Some)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::Run;
 
     #[test]
     fn impact_lyapunov_plastic_law_gives_bitwise_equal_velocities() {
@@ -856,40 +765,5 @@ mod tests {
         let (fz, fv) = box_flow(&sd, tau, dz, dv);
         assert!(((z1 - z0) - fz).abs() < 1e-12 * dz.abs().max(fz.abs()) * 10.0);
         assert!(((v1 - v0) - fv).abs() < 1e-11 * fv.abs().max(dv.abs()) * 10.0);
-    }
-
-    #[test]
-    fn impact_lyapunov_primary_alone_decays_at_c_over_2m() {
-        // no particle: the stroboscopic map is the linear primary's, with multipliers
-        // e^{(−a ± iω_d)T}: λ = −a = −C/(2M) exactly. The estimate telescopes to
-        // (ln|M^N δ| − ln|δ|)/(N T) = −a + O(ln κ/(N T)), κ ≈ ω_d/Ω = 2.2 the eigenbasis'
-        // aspect ratio in the scaled norm: ≤ 0.008 1/s for N = 700 periods at 7 Hz
-        let mut s = Scene::primary_only();
-        s.excitation.frequency = 7.0;
-        s.run = Run::with_duration(200.0);
-        s.run.steady_fraction = 0.5;
-        let w = ImpactWorld::new(&s).unwrap();
-        let l = w.model_lyapunov(&ModelLyapunovOptions::default()).unwrap();
-        assert!((l.per_second + 7.6 / (2.0 * 2.37)).abs() < 0.01, "{l:?}");
-        assert!(!l.locked);
-    }
-
-    #[test]
-    fn impact_lyapunov_rejects_a_window_without_periods_and_bad_options() {
-        let mut s = Scene::thesis_b_impact();
-        s.excitation.frequency = 2.0;
-        s.run = Run::with_duration(5.0); // steady window 0.5 s = 1 period
-        let w = ImpactWorld::new(&s).unwrap();
-        let err = w
-            .model_lyapunov(&ModelLyapunovOptions::default())
-            .unwrap_err();
-        assert!(err.to_string().contains("run.steady_fraction"), "{err}");
-        let bad = ModelLyapunovOptions {
-            separation: 0.1,
-            ..Default::default()
-        };
-        s.run = Run::with_duration(20.0);
-        let w = ImpactWorld::new(&s).unwrap();
-        assert!(w.model_lyapunov_two_trajectory(&bad).is_err());
     }
 }

@@ -37,20 +37,49 @@ pub mod lyapunov;
 
 use crate::error::SimError;
 use crate::model::primary::base_motion;
-use crate::model::{Anchor, EnergyTotals, RunOptions, RunSummary, Sdof, StrobePoint};
-use crate::observe::{Observer, Sample};
-use crate::scene::{Damper, Scene};
+use crate::model::{
+    Anchor, BoxDrive, EnergyTotals, RunOptions, RunSummary, RunWindow, Sdof, StrobePoint,
+};
+use crate::observe::{ModelSample, Observer, Sample, SampleKind, StrobeCollector, Tee};
 use collision::collide;
 use events::{first_crossing, time_tolerance};
 use std::collections::BTreeMap;
 
-pub use lyapunov::{
-    model_lyapunov_of_scene, two_trajectory_lyapunov_of_scene, LyapunovMethod, ModelLyapunov,
-    ModelLyapunovOptions,
-};
+pub use lyapunov::{LyapunovMethod, ModelLyapunov, ModelLyapunovOptions};
 
-/// Names of the impact model's extra columns in `series.csv`.
-pub const IMPACT_COLUMNS: [&str; 2] = ["grain_v_m_s", "contact"];
+/// The one effective particle of the impact damper (SPEC §3), resolved.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ImpactParticle {
+    /// Effective particle mass m_p (kg), > 0.
+    pub mass_kg: f64,
+    /// Free travel between floor and ceiling (m), ≥ 0; `inf`: no ceiling; 0: clamped.
+    pub gap_m: f64,
+    /// Effective coefficient of restitution e (–), 0 ≤ e ≤ 1 (2.1.23).
+    pub restitution: f64,
+    /// Initial height above the floor (m), 0 ≤ h ≤ gap.
+    pub initial_height_m: f64,
+    /// Initial velocity in the lab frame (m/s).
+    pub initial_velocity_m_s: f64,
+}
+
+/// Everything the event-driven model needs, resolved and validated by [`crate::setup`]:
+/// gravity, the box drive (primary + base motion, or a kinematic box), the particle (none:
+/// the primary alone), the initial box state and the run's windows.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ImpactSetup {
+    /// Gravitational acceleration g (m/s², along −z), ≥ 0.
+    pub gravity_m_s2: f64,
+    /// The box drive; `primary = None` moves the box with the base (bouncing ball).
+    pub drive: BoxDrive,
+    /// The particle, or `None` for the primary alone.
+    pub particle: Option<ImpactParticle>,
+    /// Initial displacement z(0) (m); `None`: static equilibrium with a resting particle.
+    pub initial_box_z_m: Option<f64>,
+    /// Initial velocity z'(0) (m/s); `None`: 0.
+    pub initial_box_v_m_s: Option<f64>,
+    /// Duration, steady-state and analysis windows (s).
+    pub window: RunWindow,
+}
 
 /// Where the particle is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -137,6 +166,16 @@ struct Particle {
     mass: f64,
     gap: f64,
     e: f64,
+}
+
+impl From<ImpactParticle> for Particle {
+    fn from(p: ImpactParticle) -> Particle {
+        Particle {
+            mass: p.mass_kg,
+            gap: p.gap_m,
+            e: p.restitution,
+        }
+    }
 }
 
 /// Dynamic state.
@@ -312,43 +351,27 @@ struct Ledger {
 }
 
 impl ImpactWorld {
-    /// Build the simulation of a scene whose damper is `none` or `impact`.
-    ///
-    /// # Errors
-    /// [`SimError::Unavailable`] for other damper kinds; [`SimError::Scene`] if the scene does
-    /// not validate.
-    pub fn new(scene: &Scene) -> Result<ImpactWorld, SimError> {
-        scene.validate()?;
-        let particle = match &scene.damper {
-            Damper::None => None,
-            Damper::Impact(p) => Some(Particle {
-                mass: p.mass,
-                gap: p.gap,
-                e: p.restitution,
-            }),
-            Damper::Dem(_) | Damper::Auto(_) => {
-                return Err(SimError::Unavailable(
-                    "damper.kind = \"dem\" / \"auto\" is not handled by the impact model".into(),
-                ))
-            }
-        };
-        let g = scene.gravity;
-        let omega = scene.excitation.omega_rad_s();
-        let u_amp = scene.excitation.amplitude;
-        let period = scene.excitation.period_s();
+    /// Build the simulation of a resolved impact setup (see [`crate::setup`]; the setup is
+    /// already validated, so this cannot fail).
+    pub fn new(setup: &ImpactSetup) -> ImpactWorld {
+        let particle = setup.particle.map(Particle::from);
+        let g = setup.gravity_m_s2;
+        let omega = setup.drive.omega_rad_s();
+        let u_amp = setup.drive.amplitude_m;
+        let period = setup.drive.period_s();
         let mp = particle.map_or(0.0, |p| p.mass);
-        let (free, loaded, box_mass, k, c, mut ts, reference) = match &scene.primary {
+        let (free, loaded, box_mass, k, c, mut ts, reference) = match &setup.drive.primary {
             Some(p) => {
-                let c = p.damping_n_s_m();
-                let free = Sdof::new(p.mass, p.stiffness, c, u_amp, omega, 0.0);
-                let loaded = Sdof::new(p.mass + mp, p.stiffness, c, u_amp, omega, -mp * g);
+                let (m, k, c) = (p.mass_kg, p.stiffness_n_m, p.damping_n_s_m);
+                let free = Sdof::new(m, k, c, u_amp, omega, 0.0);
+                let loaded = Sdof::new(m + mp, k, c, u_amp, omega, -mp * g);
                 let ts = free.time_scale().min(loaded.time_scale());
-                let reference = crate::model::frf_amplitude(p.mass, p.stiffness, c, u_amp, omega);
+                let reference = p.steady_amplitude_m(u_amp, omega);
                 (
                     BoxMotion::Spring(free),
                     BoxMotion::Spring(loaded),
-                    p.mass,
-                    p.stiffness,
+                    m,
+                    k,
                     c,
                     ts,
                     Some(reference),
@@ -360,12 +383,12 @@ impl ImpactWorld {
             }
         };
         ts = ts.min(period);
-        let static_defl = match &scene.primary {
-            Some(p) => mp * g / p.stiffness,
+        let static_defl = match &setup.drive.primary {
+            Some(p) => mp * g / p.stiffness_n_m,
             None => 0.0,
         };
         let length = u_amp.max(static_defl).max(1e-6);
-        let duration = scene.duration_s();
+        let duration = setup.window.duration_s;
         let mut world = ImpactWorld {
             g,
             omega,
@@ -382,8 +405,8 @@ impl ImpactWorld {
             negligible: 1e-13 * length.max(reference.unwrap_or(0.0)),
             h_star: 1e-11 * length,
             duration,
-            steady_start: scene.steady_start_s(),
-            strobe_start: scene.analysis_start_s(),
+            steady_start: setup.window.steady_start_s,
+            strobe_start: setup.window.analysis_start_s,
             init: State {
                 t: 0.0,
                 z: 0.0,
@@ -395,29 +418,28 @@ impl ImpactWorld {
             },
             reference_amplitude: reference,
         };
-        world.init = world.initial_state(scene);
-        Ok(world)
+        world.init = world.initial_state(setup);
+        world
     }
 
     /// Initial state: box at the static equilibrium with the particle resting on the floor
-    /// (z = −m_p g/K) unless the scene says otherwise; kinematic box at u(0).
-    fn initial_state(&self, scene: &Scene) -> State {
-        let (h0, w0) = match &scene.damper {
-            Damper::Impact(p) => (p.initial_height, p.initial_velocity),
-            _ => (0.0, 0.0),
-        };
+    /// (z = −m_p g/K) unless the setup says otherwise; kinematic box at u(0).
+    fn initial_state(&self, setup: &ImpactSetup) -> State {
+        let (h0, w0) = setup
+            .particle
+            .map_or((0.0, 0.0), |p| (p.initial_height_m, p.initial_velocity_m_s));
         let resting = h0 == 0.0 && w0 == 0.0;
-        let (z0, v0) = match &scene.primary {
+        let (z0, v0) = match &setup.drive.primary {
             Some(p) => {
                 let mp = self.particle.map_or(0.0, |q| q.mass);
                 let zdef = if resting {
-                    -mp * self.g / p.stiffness
+                    -mp * self.g / p.stiffness_n_m
                 } else {
                     0.0
                 };
                 (
-                    p.initial_displacement.unwrap_or(zdef),
-                    p.initial_velocity.unwrap_or(0.0),
+                    setup.initial_box_z_m.unwrap_or(zdef),
+                    setup.initial_box_v_m_s.unwrap_or(0.0),
                 )
             }
             None => {
@@ -489,12 +511,17 @@ impl ImpactWorld {
         opts: &RunOptions,
         hook: &mut H,
     ) -> Result<RunSummary, SimError> {
-        let extra_names: &[&str] = if self.particle.is_some() {
-            &IMPACT_COLUMNS
-        } else {
-            &[]
+        // the stroboscopic points go to the caller's observer and to the summary
+        let mut strobe = StrobeCollector::default();
+        let mut tee = Tee {
+            observers: vec![obs, &mut strobe],
         };
-        obs.start(extra_names)?;
+        let obs: &mut dyn Observer = &mut tee;
+        obs.start(if self.particle.is_some() {
+            SampleKind::Impact
+        } else {
+            SampleKind::Primary
+        })?;
         let mut st = self.init;
         let e0 = self.mechanical_energy(&st);
         let mut led = Ledger {
@@ -502,7 +529,6 @@ impl ImpactWorld {
             zmin: f64::INFINITY,
             ..Default::default()
         };
-        let mut strobe = Vec::new();
         // sample clock: times k·Δs ≥ sample_from_s
         let ds = opts.sample_interval_s.filter(|d| *d > 0.0);
         let mut k_sample: u64 = ds.map_or(u64::MAX, |d| {
@@ -573,14 +599,14 @@ impl ImpactWorld {
                     Mode::Flight => st.w - self.g * (ts - st.t),
                     _ => v,
                 };
-                strobe.push(StrobePoint {
+                obs.strobe(&StrobePoint {
                     cycle: n_strobe,
                     time_s: ts,
                     grain_z_m: y,
                     box_z_m: z,
                     grain_v_m_s: w,
                     box_v_m_s: v,
-                });
+                })?;
                 n_strobe += 1;
             }
             // quadrature of base work and viscous loss, extrema of z
@@ -663,7 +689,8 @@ impl ImpactWorld {
         }
         obs.progress(self.duration, self.duration);
         obs.finish()?;
-        Ok(self.summarize(&st, e0, &led, strobe))
+        drop(tee);
+        Ok(self.summarize(&st, e0, &led, strobe.points))
     }
 
     /// Segment length: a sixteenth of the fastest time scale, or of the forcing period once
@@ -874,7 +901,6 @@ impl ImpactWorld {
             (m, Some(p)) if m.stuck() => -p.mass * (motion.accel(t, z, v) + self.g),
             _ => 0.0,
         };
-        let extra = [w, st.mode.code()];
         let s = Sample {
             time_s: t,
             base_u_m: u,
@@ -883,7 +909,14 @@ impl ImpactWorld {
             floor_z_m: z,
             ceiling_z_m: z + gap,
             grain_z_m: y,
-            extra: if self.particle.is_some() { &extra } else { &[] },
+            model: if self.particle.is_some() {
+                ModelSample::Impact {
+                    grain_v_m_s: w,
+                    contact: st.mode.code(),
+                }
+            } else {
+                ModelSample::Primary
+            },
             grain_force_n: force,
         };
         obs.sample(&s)
@@ -1026,14 +1059,14 @@ impl ImpactWorld {
     }
 }
 
-/// Simulate a scene with damper `none` or `impact` (convenience wrapper of [`ImpactWorld`]).
+/// Simulate a resolved impact setup (convenience wrapper of [`ImpactWorld`]).
 ///
 /// # Errors
-/// See [`ImpactWorld::new`] and [`ImpactWorld::run`].
+/// See [`ImpactWorld::run`].
 pub fn simulate(
-    scene: &Scene,
+    setup: &ImpactSetup,
     obs: &mut dyn Observer,
     opts: &RunOptions,
 ) -> Result<RunSummary, SimError> {
-    ImpactWorld::new(scene)?.run(obs, opts)
+    ImpactWorld::new(setup).run(obs, opts)
 }

@@ -5,5 +5,5 @@
 pub mod primary;
 pub mod summary;
 
-pub use primary::{base_motion, frf_amplitude, Anchor, Sdof};
-pub use summary::{EnergyTotals, RunOptions, RunSummary, StrobePoint};
+pub use primary::{base_motion, Anchor, BoxDrive, PrimarySystem, Sdof};
+pub use summary::{EnergyTotals, RunAnalysis, RunOptions, RunSummary, RunWindow, StrobePoint};

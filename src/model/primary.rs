@@ -3,24 +3,112 @@
 
 use crate::units::TWO_PI;
 
-/// Steady-state amplitude Z(Ω) of a base-excited SDOF.
-///
-/// # Formula
-/// Z(Ω) = U sqrt( (K² + (CΩ)²) / ((K − MΩ²)² + (CΩ)²) )  (2.1.21), equivalently
-/// |Z/U| = sqrt(1 + (2ξr)²)/sqrt((1 − r²)² + (2ξr)²), r = Ω/Ω₀.
+/// The primary system (SPEC §1): mass M on a spring K with a viscous damper C, mounted on a
+/// moving base, M z'' + C z' + K z = C u' + K u + F (2.1.2). The one engine type of the
+/// primary; `scene::Primary` is its TOML form (which also allows a damping ratio).
 ///
 /// # Units
-/// `mass` kg, `stiffness` N/m, `damping` N s/m, `amplitude` m, `omega` rad/s → m.
-///
-/// # Pitfalls
-/// Infinite for C = 0 at Ω = sqrt(K/M).
-///
-/// # References
-/// Sánchez, M. (2012), doctoral thesis, eq. (2.1.21); any vibrations text (base excitation).
-pub fn frf_amplitude(mass: f64, stiffness: f64, damping: f64, amplitude: f64, omega: f64) -> f64 {
-    let co = damping * omega;
-    let det = stiffness - mass * omega * omega;
-    amplitude * ((stiffness * stiffness + co * co) / (det * det + co * co)).sqrt()
+/// `mass_kg` kg, `stiffness_n_m` N/m, `damping_n_s_m` N s/m.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PrimarySystem {
+    /// Primary mass M (kg).
+    pub mass_kg: f64,
+    /// Spring stiffness K (N/m).
+    pub stiffness_n_m: f64,
+    /// Viscous damping C (N s/m).
+    pub damping_n_s_m: f64,
+}
+
+impl PrimarySystem {
+    /// Steady-state amplitude Z(Ω) (m) of the primary under base motion U cos(Ω t).
+    ///
+    /// # Formula
+    /// Z(Ω) = U sqrt( (K² + (CΩ)²) / ((K − MΩ²)² + (CΩ)²) )  (2.1.21), equivalently
+    /// |Z/U| = sqrt(1 + (2ξr)²)/sqrt((1 − r²)² + (2ξr)²), r = Ω/Ω₀.
+    ///
+    /// # Units
+    /// `base_amplitude_m` m, `omega_rad_s` rad/s → m.
+    ///
+    /// # Pitfalls
+    /// Infinite for C = 0 at Ω = sqrt(K/M).
+    ///
+    /// # References
+    /// Sánchez, M. (2012), doctoral thesis, eq. (2.1.21); any vibrations text (base excitation).
+    ///
+    /// # Example
+    /// ```
+    /// # use pdamp::model::PrimarySystem;
+    /// let p = PrimarySystem { mass_kg: 1.0, stiffness_n_m: 100.0, damping_n_s_m: 0.2 };
+    /// assert!((p.steady_amplitude_m(0.01, 1e-6) - 0.01).abs() < 1e-12); // Ω → 0: Z → U
+    /// ```
+    pub fn steady_amplitude_m(&self, base_amplitude_m: f64, omega_rad_s: f64) -> f64 {
+        let (m, k, c) = (self.mass_kg, self.stiffness_n_m, self.damping_n_s_m);
+        let co = c * omega_rad_s;
+        let det = k - m * omega_rad_s * omega_rad_s;
+        base_amplitude_m * ((k * k + co * co) / (det * det + co * co)).sqrt()
+    }
+
+    /// [`PrimarySystem::steady_amplitude_m`] at forcing frequency `frequency_hz` (Hz), (2.1.21).
+    pub fn steady_amplitude_at_hz(&self, base_amplitude_m: f64, frequency_hz: f64) -> f64 {
+        self.steady_amplitude_m(base_amplitude_m, TWO_PI * frequency_hz)
+    }
+
+    /// The same system with `extra_kg` (kg) added to the moving mass (e.g. a particle
+    /// clamped to the box: M + m_p).
+    pub fn with_added_mass(&self, extra_kg: f64) -> PrimarySystem {
+        PrimarySystem {
+            mass_kg: self.mass_kg + extra_kg,
+            ..*self
+        }
+    }
+
+    /// Damping ratio ξ = C / (2 sqrt(K M)) (dimensionless).
+    pub fn damping_ratio(&self) -> f64 {
+        self.damping_n_s_m / (2.0 * (self.stiffness_n_m * self.mass_kg).sqrt())
+    }
+
+    /// Natural frequency f0 = sqrt(K/M)/(2π) (Hz).
+    pub fn natural_frequency_hz(&self) -> f64 {
+        (self.stiffness_n_m / self.mass_kg).sqrt() / TWO_PI
+    }
+}
+
+/// How the box moves: on a primary system driven through its base, or kinematically with the
+/// base (`primary = None`). Base motion u(t) = U cos(Ωt), Ω = 2πf, t = 0 when the drive starts.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BoxDrive {
+    /// Primary system, or `None` for a box moved kinematically with the base.
+    pub primary: Option<PrimarySystem>,
+    /// Base amplitude U (m).
+    pub amplitude_m: f64,
+    /// Base frequency f (Hz).
+    pub frequency_hz: f64,
+}
+
+impl BoxDrive {
+    /// Base displacement u(t) (m) and velocity u'(t) (m/s).
+    #[inline]
+    pub fn base(&self, t: f64) -> (f64, f64) {
+        let (u, du, _) = base_motion(self.amplitude_m, self.omega_rad_s(), t);
+        (u, du)
+    }
+
+    /// Angular forcing frequency Ω = 2π f (rad/s).
+    pub fn omega_rad_s(&self) -> f64 {
+        TWO_PI * self.frequency_hz
+    }
+
+    /// Forcing period T = 1/f (s).
+    pub fn period_s(&self) -> f64 {
+        1.0 / self.frequency_hz
+    }
+
+    /// Reference amplitude of the primary alone at this forcing, (2.1.21) with M (m); `None`
+    /// for a kinematic box.
+    pub fn reference_amplitude_m(&self) -> Option<f64> {
+        self.primary
+            .map(|p| p.steady_amplitude_m(self.amplitude_m, self.omega_rad_s()))
+    }
 }
 
 /// Anchor of a closed-form segment: the homogeneous state at time `t0_s`.
@@ -247,9 +335,14 @@ mod tests {
     #[test]
     fn frf_static_limit_and_resonance() {
         // Ω → 0: Z → U; at resonance with ξ: |Z/U| = sqrt(1 + 4ξ²)/(2ξ)
-        assert!((frf_amplitude(1.0, 100.0, 0.2, 0.01, 1e-6) - 0.01).abs() < 1e-12);
+        let p = |c| PrimarySystem {
+            mass_kg: 1.0,
+            stiffness_n_m: 100.0,
+            damping_n_s_m: c,
+        };
+        assert!((p(0.2).steady_amplitude_m(0.01, 1e-6) - 0.01).abs() < 1e-12);
         let xi: f64 = 0.01;
-        let z = frf_amplitude(1.0, 100.0, 2.0 * xi * 10.0, 1.0, 10.0);
+        let z = p(2.0 * xi * 10.0).steady_amplitude_m(1.0, 10.0);
         assert!((z - (1.0 + 4.0 * xi * xi).sqrt() / (2.0 * xi)).abs() < 1e-9);
     }
 }

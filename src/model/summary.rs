@@ -1,8 +1,11 @@
 //! What a run reports: [`RunSummary`] (written as `summary.json`), and how it is run
 //! ([`RunOptions`]). Shared by every simulator (impact, DEM).
 
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::collections::BTreeMap;
+
+use crate::analysis::analyze::AnalysisReport;
+use crate::analysis::regime::Regime;
 
 /// Options of one run that are not part of the physics.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -13,26 +16,39 @@ pub struct RunOptions {
     pub sample_from_s: f64,
 }
 
+/// The time windows of a run (s): its duration, the steady-state window (per-cycle figures)
+/// and the analysis window (stroboscopic section and analysed series).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RunWindow {
+    /// Simulated (driven) time (s).
+    pub duration_s: f64,
+    /// Start of the steady-state window (s).
+    pub steady_start_s: f64,
+    /// Start of the analysis window (s), ≤ `steady_start_s`.
+    pub analysis_start_s: f64,
+}
+
 impl RunOptions {
-    /// Samples every `run.sample_interval` from t = 0 (what `pdamp simulate` writes).
-    pub fn full_series(scene: &crate::scene::Scene) -> RunOptions {
+    /// Samples every `sample_interval_s` (s) from t = 0 (what `pdamp simulate` writes).
+    pub fn full_series(sample_interval_s: f64) -> RunOptions {
         RunOptions {
-            sample_interval_s: Some(scene.run.sample_interval),
+            sample_interval_s: Some(sample_interval_s),
             sample_from_s: 0.0,
         }
     }
 
-    /// Samples of the analysis window only (`run.analysis_fraction`), decimated so that at
-    /// most `run.analysis_max_samples` are produced (input of the nonlinear analysis).
-    pub fn steady_series(scene: &crate::scene::Scene) -> RunOptions {
-        let steady = scene.duration_s() - scene.analysis_start_s();
-        let dt = scene
-            .run
-            .sample_interval
-            .max(steady / scene.run.analysis_max_samples as f64);
+    /// Samples of the analysis window of `window` only, every `sample_interval_s` (s) but
+    /// decimated so that at most `max_samples` are produced (input of the nonlinear analysis).
+    pub fn steady_series(
+        window: &RunWindow,
+        sample_interval_s: f64,
+        max_samples: usize,
+    ) -> RunOptions {
+        let steady = window.duration_s - window.analysis_start_s;
+        let dt = sample_interval_s.max(steady / max_samples as f64);
         RunOptions {
             sample_interval_s: Some(dt),
-            sample_from_s: scene.analysis_start_s(),
+            sample_from_s: window.analysis_start_s,
         }
     }
 
@@ -143,11 +159,153 @@ pub struct RunSummary {
     pub strobe: Vec<StrobePoint>,
     /// Nonlinear analysis of the steady-state grain series, when run.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub analysis: Option<serde_json::Value>,
+    pub analysis: Option<RunAnalysis>,
     /// Why the analysis could not be carried out, when it failed.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub analysis_error: Option<String>,
     /// The DEM two-replica test (`run.replica`), when run; its rows go to `replica.csv`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub replica: Option<crate::dem::replica::ReplicaReport>,
+}
+
+/// The nonlinear analysis of a run (`summary.analysis`), typed: the fields the sweep tables,
+/// the study and the figures read are checked at compile time, and the rest of the
+/// [`AnalysisReport`] (spectral lines, evidence, section, notes, …) travels as written.
+/// Serializes to exactly the report's JSON object (same keys, same order) and reads it
+/// back ([`RunAnalysis::from_report`] builds it from the report itself, not by names).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunAnalysis {
+    /// The verdict.
+    pub regime: Regime,
+    /// Period in forcing periods; `None` unless periodic.
+    pub period: Option<f64>,
+    /// Exponent of the stroboscopic map from the data (1/s).
+    pub data_mle_per_s: Option<f64>,
+    /// Standard error of `data_mle_per_s` (1/s).
+    pub data_mle_stderr_per_s: Option<f64>,
+    /// Exponent from the model's equations (1/s), when known.
+    pub model_mle_per_s: Option<f64>,
+    /// Standard error of `model_mle_per_s` (1/s).
+    pub model_mle_stderr_per_s: Option<f64>,
+    /// Number of points of the stroboscopic section.
+    pub poincare_section_points: Option<usize>,
+    /// The whole report as a JSON object (the typed fields above are written over their
+    /// entries when serialized).
+    pub report: serde_json::Map<String, serde_json::Value>,
+}
+
+impl RunAnalysis {
+    /// The typed analysis of an [`AnalysisReport`].
+    ///
+    /// # Errors
+    /// A report that does not serialize to a JSON object (does not happen).
+    pub fn from_report(r: &AnalysisReport) -> Result<RunAnalysis, serde_json::Error> {
+        let report = match serde_json::to_value(r)? {
+            serde_json::Value::Object(m) => m,
+            _ => {
+                return Err(serde::ser::Error::custom(
+                    "analysis report is not an object",
+                ))
+            }
+        };
+        Ok(RunAnalysis {
+            regime: r.regime,
+            period: r.period,
+            data_mle_per_s: r.data_mle_per_s,
+            data_mle_stderr_per_s: r.data_mle_stderr_per_s,
+            model_mle_per_s: r.model_mle_per_s,
+            model_mle_stderr_per_s: r.model_mle_stderr_per_s,
+            poincare_section_points: r.poincare_section_points,
+            report,
+        })
+    }
+
+    /// `periodic-p` for a periodic verdict with a period, else the regime's name
+    /// (`chaotic`, `quasi-periodic`, …).
+    pub fn verdict(&self) -> String {
+        match (self.regime, self.period) {
+            (Regime::Periodic, Some(p)) => format!("periodic-{p}"),
+            (r, _) => r.as_str().to_string(),
+        }
+    }
+
+    fn typed(&self) -> [(&'static str, serde_json::Value); 7] {
+        use serde_json::Value;
+        let num = |x: Option<f64>| x.map_or(Value::Null, Value::from);
+        [
+            ("regime", Value::from(self.regime.as_str())),
+            ("period", num(self.period)),
+            ("data_mle_per_s", num(self.data_mle_per_s)),
+            ("data_mle_stderr_per_s", num(self.data_mle_stderr_per_s)),
+            ("model_mle_per_s", num(self.model_mle_per_s)),
+            ("model_mle_stderr_per_s", num(self.model_mle_stderr_per_s)),
+            (
+                "poincare_section_points",
+                self.poincare_section_points
+                    .map_or(Value::Null, Value::from),
+            ),
+        ]
+    }
+}
+
+impl Serialize for RunAnalysis {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut m = self.report.clone();
+        for (k, v) in self.typed() {
+            if m.contains_key(k) || !v.is_null() {
+                m.insert(k.to_string(), v);
+            }
+        }
+        m.serialize(s)
+    }
+}
+
+impl<'de> Deserialize<'de> for RunAnalysis {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::Error;
+        let report = serde_json::Map::<String, serde_json::Value>::deserialize(d)?;
+        let get = |k: &str| report.get(k).cloned().unwrap_or(serde_json::Value::Null);
+        let regime: Regime = serde_json::from_value(get("regime")).map_err(D::Error::custom)?;
+        let f = |k: &str| -> Result<Option<f64>, D::Error> {
+            serde_json::from_value(get(k)).map_err(D::Error::custom)
+        };
+        Ok(RunAnalysis {
+            regime,
+            period: f("period")?,
+            data_mle_per_s: f("data_mle_per_s")?,
+            data_mle_stderr_per_s: f("data_mle_stderr_per_s")?,
+            model_mle_per_s: f("model_mle_per_s")?,
+            model_mle_stderr_per_s: f("model_mle_stderr_per_s")?,
+            poincare_section_points: serde_json::from_value(get("poincare_section_points"))
+                .map_err(D::Error::custom)?,
+            report,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn run_analysis_roundtrips_as_the_report_object() {
+        // the typed view reads the report's keys and writes back exactly the same object
+        // (a wrong key name would leave a typed field None and fail here)
+        let v = serde_json::json!({
+            "regime": "periodic",
+            "period": 2.0,
+            "data_mle_per_s": null,
+            "model_mle_per_s": -1.5,
+            "lag": 3,
+            "notes": ["x"],
+            "poincare_section_points": 48
+        });
+        let a: RunAnalysis = serde_json::from_value(v.clone()).unwrap();
+        assert_eq!(a.regime, Regime::Periodic);
+        assert_eq!(a.period, Some(2.0));
+        assert_eq!(a.model_mle_per_s, Some(-1.5));
+        assert_eq!(a.poincare_section_points, Some(48));
+        assert_eq!(a.verdict(), "periodic-2");
+        assert_eq!(serde_json::to_value(&a).unwrap(), v);
+    }
 }

@@ -2,6 +2,7 @@
 
 use super::{Observer, Sample};
 use crate::error::SimError;
+use crate::model::StrobePoint;
 
 /// Keeps `grain_z_m` of the samples with `time_s ≥ from_s` (the steady state).
 #[derive(Debug, Clone, Default)]
@@ -32,12 +33,29 @@ impl SteadyCollector {
 }
 
 impl Observer for SteadyCollector {
-    fn sample(&mut self, s: &Sample<'_>) -> Result<(), SimError> {
+    fn sample(&mut self, s: &Sample) -> Result<(), SimError> {
         if s.time_s >= self.from_s {
             self.time_s.push(s.time_s);
             self.grain_z_m.push(s.grain_z_m);
             self.box_z_m.push(s.box_z_m);
         }
+        Ok(())
+    }
+}
+
+/// Keeps the stroboscopic points of a run (what `strobe.csv` and the section analysis read).
+#[derive(Debug, Clone, Default)]
+pub struct StrobeCollector {
+    /// The points, in time order.
+    pub points: Vec<StrobePoint>,
+}
+
+impl Observer for StrobeCollector {
+    fn sample(&mut self, _s: &Sample) -> Result<(), SimError> {
+        Ok(())
+    }
+    fn strobe(&mut self, p: &StrobePoint) -> Result<(), SimError> {
+        self.points.push(*p);
         Ok(())
     }
 }

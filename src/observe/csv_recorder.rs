@@ -1,11 +1,11 @@
 //! Writes samples to `series.csv` (header row, SI units in column names).
 
-use super::{Observer, Sample, FIXED_COLUMNS};
+use super::{Observer, Sample, SampleKind, FIXED_COLUMNS};
 use crate::error::SimError;
 use std::io::Write;
 
-/// CSV recorder: one row per sample; columns [`FIXED_COLUMNS`], the model's extra columns,
-/// then `grain_force_n`. Numbers use Rust's shortest round-trip formatting.
+/// CSV recorder: one row per sample; columns [`FIXED_COLUMNS`], the model's columns
+/// ([`SampleKind::columns`]), then `grain_force_n`. Numbers use Rust's shortest round-trip formatting.
 pub struct CsvRecorder<W: Write> {
     out: W,
     line: String,
@@ -48,15 +48,15 @@ impl<W: Write> CsvRecorder<W> {
 }
 
 impl<W: Write> Observer for CsvRecorder<W> {
-    fn start(&mut self, extra: &[&str]) -> Result<(), SimError> {
+    fn start(&mut self, kind: SampleKind) -> Result<(), SimError> {
         let mut cols: Vec<&str> = FIXED_COLUMNS.to_vec();
-        cols.extend_from_slice(extra);
+        cols.extend_from_slice(kind.columns());
         cols.push("grain_force_n");
         self.line = cols.join(",");
         self.write_line()
     }
 
-    fn sample(&mut self, s: &Sample<'_>) -> Result<(), SimError> {
+    fn sample(&mut self, s: &Sample) -> Result<(), SimError> {
         use std::fmt::Write as _;
         let fixed = [
             s.time_s,
@@ -67,12 +67,16 @@ impl<W: Write> Observer for CsvRecorder<W> {
             s.ceiling_z_m,
             s.grain_z_m,
         ];
-        for (i, v) in fixed.iter().chain(s.extra.iter()).enumerate() {
+        for (i, v) in fixed.iter().enumerate() {
             if i > 0 {
                 self.line.push(',');
             }
             let _ = write!(self.line, "{}", super::fmt_num(*v));
         }
+        let line = &mut self.line;
+        s.model.for_each_value(|v| {
+            let _ = write!(line, ",{}", super::fmt_num(v));
+        });
         let _ = write!(self.line, ",{}", super::fmt_num(s.grain_force_n));
         self.write_line()
     }

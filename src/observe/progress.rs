@@ -35,7 +35,7 @@ pub fn draw_target() -> ProgressDrawTarget {
 }
 
 impl Observer for ProgressObserver {
-    fn sample(&mut self, _s: &Sample<'_>) -> Result<(), SimError> {
+    fn sample(&mut self, _s: &Sample) -> Result<(), SimError> {
         Ok(())
     }
     fn progress(&mut self, t: f64, d: f64) {

@@ -19,13 +19,13 @@ pub struct EffectiveFigure<'a> {
     /// `mass_ef_stderr_kg` (error bars: ±1 standard error).
     pub mass_ef_stderr_kg: &'a [f64],
     /// `damping_ef_ns_per_m`.
-    pub damping_ef_ns_per_m: &'a [f64],
+    pub damping_ef_n_s_m: &'a [f64],
     /// `damping_ef_stderr_ns_per_m`.
-    pub damping_ef_stderr_ns_per_m: &'a [f64],
+    pub damping_ef_stderr_n_s_m: &'a [f64],
     /// Primary mass M (kg): drawn as a reference line on the M_ef panel.
     pub mass_kg: Option<f64>,
     /// Primary damping C (N s/m): if given the lower panel shows C_ef/C (reference line at 1).
-    pub damping_ns_per_m: Option<f64>,
+    pub damping_n_s_m: Option<f64>,
 }
 
 impl Figure for EffectiveFigure<'_> {
@@ -40,16 +40,13 @@ impl Figure for EffectiveFigure<'_> {
         for (name, v) in [
             ("mass_ef_kg", self.mass_ef_kg),
             ("mass_ef_stderr_kg", self.mass_ef_stderr_kg),
-            ("damping_ef_ns_per_m", self.damping_ef_ns_per_m),
-            (
-                "damping_ef_stderr_ns_per_m",
-                self.damping_ef_stderr_ns_per_m,
-            ),
+            ("damping_ef_ns_per_m", self.damping_ef_n_s_m),
+            ("damping_ef_stderr_ns_per_m", self.damping_ef_stderr_n_s_m),
         ] {
             check_len(k, name, v.len(), n)?;
             check_finite(k, name, v)?;
         }
-        for (name, v) in [("mass", self.mass_kg), ("damping", self.damping_ns_per_m)] {
+        for (name, v) in [("mass", self.mass_kg), ("damping", self.damping_n_s_m)] {
             if let Some(v) = v {
                 if !(v.is_finite() && v > 0.0) {
                     return Err(PlotError::bad(k, name, format!("{v}: must be > 0 (SI)")));
@@ -72,14 +69,14 @@ impl Figure for EffectiveFigure<'_> {
             .titled(title, common::caption_font())
             .map_err(draw_err)?;
         let panels = root.split_evenly((2, 1));
-        let scale = self.damping_ns_per_m.map_or(1.0, |c| 1.0 / c);
-        let c: Vec<f64> = self.damping_ef_ns_per_m.iter().map(|v| v * scale).collect();
+        let scale = self.damping_n_s_m.map_or(1.0, |c| 1.0 / c);
+        let c: Vec<f64> = self.damping_ef_n_s_m.iter().map(|v| v * scale).collect();
         let cs: Vec<f64> = self
-            .damping_ef_stderr_ns_per_m
+            .damping_ef_stderr_n_s_m
             .iter()
             .map(|v| v * scale)
             .collect();
-        let (c_label, c_ref) = match self.damping_ns_per_m {
+        let (c_label, c_ref) = match self.damping_n_s_m {
             Some(_) => ("effective damping C_ef / C", Some(1.0)),
             None => ("effective damping C_ef (N s/m)", None),
         };

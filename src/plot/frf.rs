@@ -5,20 +5,16 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::common::{self, check_finite, draw_err, padded_range, series_color, Figure, Series};
-use crate::analysis::frf_fit::sdof_amplitude;
 use crate::error::PlotError;
+use crate::model::PrimarySystem;
 
 /// Parameters of the reference curves of an FRF figure.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FrfReference {
-    /// Primary mass M (kg).
-    pub mass_kg: f64,
+    /// The primary system M, K, C.
+    pub primary: PrimarySystem,
     /// Mass of the grains m_p (kg); `None` draws only the M curve.
     pub particle_mass_kg: Option<f64>,
-    /// Spring stiffness K (N/m).
-    pub stiffness_n_per_m: f64,
-    /// Primary damping C (N s/m).
-    pub damping_ns_per_m: f64,
     /// Base amplitude U (m).
     pub base_amplitude_m: f64,
 }
@@ -36,9 +32,9 @@ pub struct FrfFigure<'a> {
 impl FrfReference {
     fn validate(&self) -> Result<(), PlotError> {
         let fields = [
-            ("mass", Some(self.mass_kg)),
+            ("mass", Some(self.primary.mass_kg)),
             ("particle-mass", self.particle_mass_kg),
-            ("stiffness", Some(self.stiffness_n_per_m)),
+            ("stiffness", Some(self.primary.stiffness_n_m)),
             ("base-amplitude", Some(self.base_amplitude_m)),
         ];
         for (name, v) in fields {
@@ -52,11 +48,12 @@ impl FrfReference {
                 }
             }
         }
-        if !(self.damping_ns_per_m.is_finite() && self.damping_ns_per_m >= 0.0) {
+        let c = self.primary.damping_n_s_m;
+        if !(c.is_finite() && c >= 0.0) {
             return Err(PlotError::bad(
                 "frf",
                 "damping",
-                format!("{}: must be ≥ 0 N s/m", self.damping_ns_per_m),
+                format!("{c}: must be ≥ 0 N s/m"),
             ));
         }
         Ok(())
@@ -64,30 +61,22 @@ impl FrfReference {
 
     /// The reference curves as (label, points in (Hz, mm)) over `f_lo..f_hi`.
     fn curves(&self, f_lo: f64, f_hi: f64) -> Vec<(String, Vec<(f64, f64)>)> {
-        let mut masses = vec![(
-            format!("reference M = {} kg", fmt(self.mass_kg)),
-            self.mass_kg,
-        )];
+        let m = self.primary.mass_kg;
+        let mut masses = vec![(format!("reference M = {} kg", fmt(m)), self.primary)];
         if let Some(mp) = self.particle_mass_kg {
             masses.push((
-                format!("reference M + m_p = {} kg", fmt(self.mass_kg + mp)),
-                self.mass_kg + mp,
+                format!("reference M + m_p = {} kg", fmt(m + mp)),
+                self.primary.with_added_mass(mp),
             ));
         }
         let n = 600;
         masses
             .into_iter()
-            .map(|(label, m)| {
+            .map(|(label, p)| {
                 let pts = (0..=n)
                     .map(|i| {
                         let f = f_lo + (f_hi - f_lo) * i as f64 / n as f64;
-                        let z = sdof_amplitude(
-                            f,
-                            m,
-                            self.damping_ns_per_m,
-                            self.stiffness_n_per_m,
-                            self.base_amplitude_m,
-                        );
+                        let z = p.steady_amplitude_at_hz(self.base_amplitude_m, f);
                         (f, 1e3 * z)
                     })
                     .collect();

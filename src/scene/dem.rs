@@ -22,7 +22,6 @@
 use serde::{Deserialize, Serialize};
 
 use crate::contact::material::Material;
-use crate::contact::{NormalLaw, TangentialLaw};
 use crate::error::SceneError;
 use crate::packing::RadiusDistribution;
 
@@ -183,6 +182,12 @@ pub struct DemParams {
     pub settle_time: Option<f64>,
 }
 
+/// Factor of the damping coefficients γ_n, γ_s when Young's modulus is divided by `factor`:
+/// factor^{-3/5} (keeps e(v) of Kuwabara–Kono, β ∝ γ_n k_n^{-3/5}, SPEC §9).
+pub fn softening_damping_scale(factor: f64) -> f64 {
+    factor.powf(-0.6)
+}
+
 fn default_seed() -> u64 {
     1
 }
@@ -267,16 +272,28 @@ impl DemParams {
         }
     }
 
-    /// Scene B with both Young's moduli divided by `factor` and the damping rescaled so that
-    /// the restitution curve e(v) is unchanged: β ∝ γ_n k_n^{-3/5} (SPEC §9) ⇒ γ ∝ E^{3/5}.
-    /// Used by tests and benchmarks to take ~factor^{2/5} larger time steps.
+    /// Scene B softened by `factor` ([`DemParams::softened`]). Used by tests and benchmarks
+    /// to take ~factor^{2/5} larger time steps.
     pub fn thesis_b_softened(factor: f64) -> Self {
-        let mut p = Self::thesis_b();
-        p.youngs_modulus /= factor;
-        let s = factor.powf(-0.6);
-        p.gamma_n *= s;
-        p.gamma_s *= s;
-        p
+        Self::thesis_b().softened(factor)
+    }
+
+    /// The softening rule, the one place it is written: every Young's modulus (grains and
+    /// walls) divided by `factor`, every γ_n, γ_s multiplied by [`softening_damping_scale`]
+    /// = factor^{-3/5}, so that the Kuwabara–Kono restitution curve e(v) is unchanged
+    /// (β ∝ γ_n k_n^{-3/5}, SPEC §9, k_n ∝ E); a linear law's yield strength is divided by
+    /// `factor` too (same yield overlap, k_n ∝ E).
+    pub fn softened(&self, factor: f64) -> DemParams {
+        let mut q = self.clone();
+        let s = softening_damping_scale(factor);
+        q.youngs_modulus /= factor;
+        q.wall_youngs_modulus = q.wall_youngs_modulus.map(|e| e / factor);
+        q.gamma_n *= s;
+        q.gamma_s *= s;
+        q.wall_gamma_n = q.wall_gamma_n.map(|g| g * s);
+        q.wall_gamma_s = q.wall_gamma_s.map(|g| g * s);
+        q.yield_strength = q.yield_strength.map(|y| y / factor);
+        q
     }
 
     /// The resolved radius distribution.
@@ -418,63 +435,6 @@ impl DemParams {
             youngs_modulus: self.wall_youngs_modulus.unwrap_or(self.youngs_modulus),
             poisson: self.wall_poisson.unwrap_or(self.poisson),
         }
-    }
-
-    /// Normal contact law of grain–grain (`wall = false`) or grain–wall contacts.
-    pub fn normal_law(&self, wall: bool) -> NormalLaw {
-        match self.contact {
-            ContactKind::HertzKk => NormalLaw::HertzKuwabaraKono {
-                gamma_n: if wall {
-                    self.wall_gamma_n.unwrap_or(self.gamma_n)
-                } else {
-                    self.gamma_n
-                },
-            },
-            ContactKind::Linear => NormalLaw::LinearSpringDashpot {
-                restitution: if wall {
-                    self.wall_restitution.or(self.restitution).unwrap_or(1.0)
-                } else {
-                    self.restitution.unwrap_or(1.0)
-                },
-                yield_strength: self.yield_strength.unwrap_or(1.0),
-            },
-        }
-    }
-
-    /// Tangential contact law of grain–grain (`wall = false`) or grain–wall contacts
-    /// ([`TangentialLaw::None`] when μ = 0 or, for Hertz, γ_s = 0).
-    pub fn tangential_law(&self, wall: bool) -> TangentialLaw {
-        let mu = if wall {
-            self.wall_friction.unwrap_or(self.friction)
-        } else {
-            self.friction
-        };
-        if mu <= 0.0 {
-            return TangentialLaw::None;
-        }
-        match self.contact {
-            ContactKind::HertzKk => {
-                let gamma_s = if wall {
-                    self.wall_gamma_s.unwrap_or(self.gamma_s)
-                } else {
-                    self.gamma_s
-                };
-                if gamma_s > 0.0 {
-                    TangentialLaw::CoulombViscous {
-                        gamma_s,
-                        friction: mu,
-                    }
-                } else {
-                    TangentialLaw::None
-                }
-            }
-            ContactKind::Linear => TangentialLaw::LinearDashpotCoulomb { friction: mu },
-        }
-    }
-
-    /// Verlet skin (m): `neighbor_skin` or 0.3 R_max.
-    pub fn skin(&self, r_max: f64) -> f64 {
-        self.neighbor_skin.unwrap_or(0.3 * r_max)
     }
 
     /// Checks every constraint once; the error names the key, the value and the fix.

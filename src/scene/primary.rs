@@ -2,6 +2,7 @@
 
 use super::{non_negative, positive};
 use crate::error::SceneError;
+use crate::model::PrimarySystem;
 use serde::{Deserialize, Serialize};
 
 /// The primary system M z'' + C z' + K z = C u' + K u + F_gz (2.1.2).
@@ -52,14 +53,23 @@ impl Primary {
         }
     }
 
+    /// The engine's primary system M, K, C (C resolved from `damping` or `damping_ratio`).
+    pub fn system(&self) -> PrimarySystem {
+        PrimarySystem {
+            mass_kg: self.mass,
+            stiffness_n_m: self.stiffness,
+            damping_n_s_m: self.damping_n_s_m(),
+        }
+    }
+
     /// Damping ratio ξ = C / (2 sqrt(K M)) (dimensionless).
     pub fn damping_ratio(&self) -> f64 {
-        self.damping_n_s_m() / (2.0 * (self.stiffness * self.mass).sqrt())
+        self.system().damping_ratio()
     }
 
     /// Natural frequency f0 = sqrt(K/M)/(2π) (Hz).
     pub fn natural_frequency_hz(&self) -> f64 {
-        (self.stiffness / self.mass).sqrt() / crate::units::TWO_PI
+        self.system().natural_frequency_hz()
     }
 
     /// Check M > 0, K > 0, exactly one of C ≥ 0 / ξ ≥ 0, finite initial state.

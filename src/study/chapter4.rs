@@ -495,15 +495,10 @@ struct PanelRun {
 
 impl PanelRun {
     fn verdict(&self) -> String {
-        let a = self.summary.analysis.as_ref();
-        let regime = a
-            .and_then(|a| a.get("regime"))
-            .and_then(|r| r.as_str())
-            .unwrap_or("not analysed");
-        match a.and_then(|a| a.get("period")).and_then(|p| p.as_f64()) {
-            Some(p) if regime == "periodic" => format!("periodic-{p}"),
-            _ => regime.to_string(),
-        }
+        self.summary
+            .analysis
+            .as_ref()
+            .map_or_else(|| "not analysed".to_string(), |a| a.verdict())
     }
 }
 

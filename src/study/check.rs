@@ -16,9 +16,9 @@ pub struct EffectiveRow {
     /// Its asymptotic standard error (kg).
     pub mass_ef_stderr_kg: f64,
     /// Effective damping C_ef (N s/m).
-    pub damping_ef_ns_per_m: f64,
+    pub damping_ef_n_s_m: f64,
     /// Its asymptotic standard error (N s/m).
-    pub damping_ef_stderr_ns_per_m: f64,
+    pub damping_ef_stderr_n_s_m: f64,
 }
 
 /// What [`check_effective`] found.
@@ -49,7 +49,7 @@ pub fn check_effective(
     rows: &[EffectiveRow],
     mass_kg: f64,
     particle_mass_kg: f64,
-    damping_ns_per_m: f64,
+    damping_n_s_m: f64,
     rel_tol: f64,
 ) -> Result<QualitativeCheck, StudyError> {
     if rows.len() < 3 {
@@ -65,8 +65,8 @@ pub fn check_effective(
     let best_index = (0..rows.len())
         .max_by(|&a, &b| {
             rows[a]
-                .damping_ef_ns_per_m
-                .total_cmp(&rows[b].damping_ef_ns_per_m)
+                .damping_ef_n_s_m
+                .total_cmp(&rows[b].damping_ef_n_s_m)
         })
         .unwrap_or(0);
     let best = rows[best_index];
@@ -75,7 +75,7 @@ pub fn check_effective(
         large_gap_mass_ratio: large,
         best_index,
         best_x_m: best.x_m,
-        best_damping_ratio: best.damping_ef_ns_per_m / damping_ns_per_m,
+        best_damping_ratio: best.damping_ef_n_s_m / damping_n_s_m,
     };
     if (small - 1.0).abs() > rel_tol {
         return Err(StudyError::Check(format!(
@@ -95,18 +95,18 @@ pub fn check_effective(
             rel_tol * 100.0
         )));
     }
-    let ends = first.damping_ef_ns_per_m.max(last.damping_ef_ns_per_m);
+    let ends = first.damping_ef_n_s_m.max(last.damping_ef_n_s_m);
     if best_index == 0
         || best_index == rows.len() - 1
-        || best.damping_ef_ns_per_m < (1.0 + rel_tol) * ends
+        || best.damping_ef_n_s_m < (1.0 + rel_tol) * ends
     {
         return Err(StudyError::Check(format!(
             "C_ef has no clear interior maximum: largest {:.3} N s/m at index {best_index} of {} \
              (ends: {:.3}, {:.3} N s/m)",
-            best.damping_ef_ns_per_m,
+            best.damping_ef_n_s_m,
             rows.len(),
-            first.damping_ef_ns_per_m,
-            last.damping_ef_ns_per_m
+            first.damping_ef_n_s_m,
+            last.damping_ef_n_s_m
         )));
     }
     Ok(check)
@@ -121,8 +121,8 @@ mod tests {
             x_m: x,
             mass_ef_kg: m,
             mass_ef_stderr_kg: 0.0,
-            damping_ef_ns_per_m: c,
-            damping_ef_stderr_ns_per_m: 0.0,
+            damping_ef_n_s_m: c,
+            damping_ef_stderr_n_s_m: 0.0,
         }
     }
 

@@ -68,7 +68,7 @@ pub fn available() -> Result<(), String> {
 
 /// The material and run overrides of the mode (softening, time step, duration).
 fn base_set(d: &DemSettings, duration_s: f64) -> Vec<(&'static str, String)> {
-    let g = d.soften.powf(-0.6);
+    let g = crate::scene::dem::softening_damping_scale(d.soften);
     vec![
         ("damper.youngs_modulus", (E_B / d.soften).to_string()),
         ("damper.gamma_n", (GAMMA_N_B * g).to_string()),
@@ -140,7 +140,7 @@ pub fn all(ctx: &Ctx, s: &Settings, d: &DemSettings) -> Result<DemOutput, StudyE
     for &n in &d.counts {
         let mut set = base_set(d, d.duration_s);
         set.extend(count_set(n, LZ_B));
-        let g = d.soften.powf(-0.6);
+        let g = crate::scene::dem::softening_damping_scale(d.soften);
         let values: Vec<String> = d.gamma_n.iter().map(|x| (x * g).to_string()).collect();
         let sw = ctx.sweep(
             &format!("dem_gamma_n{n}"),
@@ -389,7 +389,7 @@ fn zres_vs_gamma(
     reductions: Vec<String>,
 ) -> Result<FigureRecord, StudyError> {
     let name = "zres_vs_gamma_dem";
-    let g = d.soften.powf(-0.6);
+    let g = crate::scene::dem::softening_damping_scale(d.soften);
     let mut data = Vec::new();
     let mut rows = Vec::new();
     for (n, sw) in curves {

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use crate::error::{SimError, StudyError};
 use crate::model::RunOptions;
-use crate::observe::{fmt_num, Observer, Sample};
+use crate::observe::{fmt_num, ModelSample, Observer, Sample};
 use crate::plot::table::Table;
 use crate::plot::{render, Figure, FigureOptions};
 use crate::scene::{Scene, SceneSource};
@@ -323,26 +323,19 @@ pub struct Recorded {
     pub grain_zmax_m: Vec<f64>,
     /// `grain_force_n`.
     pub grain_force_n: Vec<f64>,
-    zmin_col: Option<usize>,
-    zmax_col: Option<usize>,
 }
 
 impl Observer for Recorded {
-    fn start(&mut self, extra: &[&str]) -> Result<(), SimError> {
-        self.zmin_col = extra.iter().position(|c| *c == "grain_zmin_m");
-        self.zmax_col = extra.iter().position(|c| *c == "grain_zmax_m");
-        Ok(())
-    }
-    fn sample(&mut self, s: &Sample<'_>) -> Result<(), SimError> {
+    fn sample(&mut self, s: &Sample) -> Result<(), SimError> {
         self.time_s.push(s.time_s);
         self.box_z_m.push(s.box_z_m);
         self.floor_z_m.push(s.floor_z_m);
         self.ceiling_z_m.push(s.ceiling_z_m);
         self.grain_z_m.push(s.grain_z_m);
         self.grain_force_n.push(s.grain_force_n);
-        if let (Some(a), Some(b)) = (self.zmin_col, self.zmax_col) {
-            self.grain_zmin_m.push(s.extra[a]);
-            self.grain_zmax_m.push(s.extra[b]);
+        if let ModelSample::Dem(d) = s.model {
+            self.grain_zmin_m.push(d.grain_zmin_m);
+            self.grain_zmax_m.push(d.grain_zmax_m);
         }
         Ok(())
     }

@@ -12,6 +12,7 @@ use crate::analysis::frf_fit::{fit_frf, FrfFitOptions};
 use crate::analysis::mutual_information::{mutual_information, MutualInformationOptions};
 use crate::analysis::spectrum::{power_spectrum, SpectrumOptions};
 use crate::error::StudyError;
+use crate::model::PrimarySystem;
 use crate::plot::bed_motion::BedMotionFigure;
 use crate::plot::bifurcation::BifurcationFigure;
 use crate::plot::effective::EffectiveFigure;
@@ -38,24 +39,22 @@ use super::settings::{Mode, Settings, SCENE_B_GAP_M};
 /// Scene B's primary system and grains (SPEC §6): M, m_p, K, C, U.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SceneB {
-    /// Primary mass M (kg).
-    pub mass_kg: f64,
+    /// The primary system M, K, C.
+    pub primary: PrimarySystem,
     /// Grain mass m_p (kg).
     pub particle_mass_kg: f64,
-    /// Stiffness K (N/m).
-    pub stiffness_n_per_m: f64,
-    /// Damping C (N s/m).
-    pub damping_ns_per_m: f64,
     /// Base amplitude U (m).
     pub base_amplitude_m: f64,
 }
 
 /// Scene B's values (Sánchez 2012 §3.2).
 pub const SCENE_B: SceneB = SceneB {
-    mass_kg: 2.37,
+    primary: PrimarySystem {
+        mass_kg: 2.37,
+        stiffness_n_m: 21500.0,
+        damping_n_s_m: 7.6,
+    },
     particle_mass_kg: 0.227,
-    stiffness_n_per_m: 21500.0,
-    damping_ns_per_m: 7.6,
     base_amplitude_m: 4.5e-3,
 };
 
@@ -63,10 +62,8 @@ impl SceneB {
     /// The FRF reference curves for M and M + m_p.
     pub fn reference(&self) -> FrfReference {
         FrfReference {
-            mass_kg: self.mass_kg,
+            primary: self.primary,
             particle_mass_kg: Some(self.particle_mass_kg),
-            stiffness_n_per_m: self.stiffness_n_per_m,
-            damping_ns_per_m: self.damping_ns_per_m,
             base_amplitude_m: self.base_amplitude_m,
         }
     }
@@ -324,7 +321,7 @@ fn impact_gap_grid(ctx: &Ctx, s: &Settings, e: f64) -> Result<SweepResult, Study
 pub fn fit_groups(step: &str, t: &Table, key: &str) -> Result<Vec<EffectiveRow>, StudyError> {
     let f = col(step, t, "frequency_hz")?;
     let z = col(step, t, "amplitude_m")?;
-    let opts = FrfFitOptions::new(SCENE_B.stiffness_n_per_m, SCENE_B.base_amplitude_m);
+    let opts = FrfFitOptions::new(SCENE_B.primary.stiffness_n_m, SCENE_B.base_amplitude_m);
     group_by(step, t, key)?
         .into_iter()
         .map(|(x, idx)| {
@@ -336,8 +333,8 @@ pub fn fit_groups(step: &str, t: &Table, key: &str) -> Result<Vec<EffectiveRow>,
                 x_m: x,
                 mass_ef_kg: fit.mass_ef_kg,
                 mass_ef_stderr_kg: fit.mass_ef_stderr_kg,
-                damping_ef_ns_per_m: fit.damping_ef_ns_per_m,
-                damping_ef_stderr_ns_per_m: fit.damping_ef_stderr_ns_per_m,
+                damping_ef_n_s_m: fit.damping_ef_n_s_m,
+                damping_ef_stderr_n_s_m: fit.damping_ef_stderr_n_s_m,
             })
         })
         .collect()
@@ -357,8 +354,8 @@ pub fn draw_effective(
     let x: Vec<f64> = rows.iter().map(|r| r.x_m).collect();
     let me: Vec<f64> = rows.iter().map(|r| r.mass_ef_kg).collect();
     let ms: Vec<f64> = rows.iter().map(|r| r.mass_ef_stderr_kg).collect();
-    let ce: Vec<f64> = rows.iter().map(|r| r.damping_ef_ns_per_m).collect();
-    let cs: Vec<f64> = rows.iter().map(|r| r.damping_ef_stderr_ns_per_m).collect();
+    let ce: Vec<f64> = rows.iter().map(|r| r.damping_ef_n_s_m).collect();
+    let cs: Vec<f64> = rows.iter().map(|r| r.damping_ef_stderr_n_s_m).collect();
     ctx.write_csv(
         name,
         &[
@@ -375,8 +372,8 @@ pub fn draw_effective(
                     r.x_m,
                     r.mass_ef_kg,
                     r.mass_ef_stderr_kg,
-                    r.damping_ef_ns_per_m,
-                    r.damping_ef_stderr_ns_per_m,
+                    r.damping_ef_n_s_m,
+                    r.damping_ef_stderr_n_s_m,
                 ]
             })
             .collect::<Vec<_>>(),
@@ -388,10 +385,10 @@ pub fn draw_effective(
             x_label: x_label.into(),
             mass_ef_kg: &me,
             mass_ef_stderr_kg: &ms,
-            damping_ef_ns_per_m: &ce,
-            damping_ef_stderr_ns_per_m: &cs,
-            mass_kg: Some(SCENE_B.mass_kg),
-            damping_ns_per_m: Some(SCENE_B.damping_ns_per_m),
+            damping_ef_n_s_m: &ce,
+            damping_ef_stderr_n_s_m: &cs,
+            mass_kg: Some(SCENE_B.primary.mass_kg),
+            damping_n_s_m: Some(SCENE_B.primary.damping_n_s_m),
         },
     )
 }

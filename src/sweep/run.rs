@@ -3,31 +3,24 @@
 use crate::analysis::analyze::{analyze_forced, AnalyzeOptions, ForcedRun};
 use crate::analysis::regime::Exponent;
 use crate::error::SimError;
-use crate::impact::lyapunov::{model_lyapunov_of_scene, ModelLyapunovOptions};
+use crate::impact::{ImpactWorld, ModelLyapunovOptions};
 use crate::model::{RunOptions, RunSummary};
 use crate::observe::{Observer, SteadyCollector, Tee};
-use crate::scene::{Damper, Scene};
+use crate::scene::Scene;
+use crate::setup::{Resolved, Setup};
 
-/// Run one scene, sending samples to `obs`, dispatching on the damper kind: `none` and
-/// `impact` → the event-driven model ([`crate::impact`]); `dem` → the DEM model.
+/// Run one scene, sending samples to `obs`: resolves it once ([`Scene::resolve`], which
+/// makes the `kind = "auto"` choice) and runs the simulator it resolves to
+/// ([`crate::setup::simulate`]).
 ///
 /// # Errors
-/// [`SimError::Unavailable`] for a model not in this build; the model's own errors otherwise.
+/// Scene errors naming the key; the model's own errors otherwise.
 pub fn run_scene(
     scene: &Scene,
     obs: &mut dyn Observer,
     opts: &RunOptions,
 ) -> Result<RunSummary, SimError> {
-    match &scene.damper {
-        Damper::None | Damper::Impact(_) => crate::impact::simulate(scene, obs, opts),
-        Damper::Auto(_) => {
-            let choice = crate::tradeoff::choose(scene)?;
-            let mut s = run_scene(&choice.scene, obs, opts)?;
-            s.model = format!("auto:{}", s.model);
-            Ok(s)
-        }
-        Damper::Dem(_) => crate::dem::scene_run::simulate(scene, obs, opts),
-    }
+    crate::setup::simulate(&scene.resolve()?, obs, opts)
 }
 
 /// Run one scene and, if `analyze` is set, the nonlinear analysis of the steady-state grain
@@ -43,10 +36,24 @@ pub fn run_with_analysis(
     opts: &RunOptions,
     analyze: bool,
 ) -> Result<RunSummary, SimError> {
+    run_resolved(&scene.resolve()?, obs, opts, analyze)
+}
+
+/// [`run_with_analysis`] for a scene already resolved.
+///
+/// # Errors
+/// As [`run_scene`].
+pub fn run_resolved(
+    resolved: &Resolved,
+    obs: &mut dyn Observer,
+    opts: &RunOptions,
+    analyze: bool,
+) -> Result<RunSummary, SimError> {
     if !analyze {
-        return run_scene(scene, obs, opts);
+        return crate::setup::simulate(resolved, obs, opts);
     }
-    let steady = RunOptions::steady_series(scene);
+    let scene = &resolved.scene;
+    let steady = crate::setup::steady_series(scene);
     let mut collector = SteadyCollector::new(scene.analysis_start_s());
     // the analysis wants evenly spaced samples: use the coarser of the two clocks only when the
     // caller asked for none; otherwise decimate the caller's samples.
@@ -65,8 +72,8 @@ pub fn run_with_analysis(
     let mut tee = Tee {
         observers: vec![obs, &mut decimator],
     };
-    let mut summary = run_scene(scene, &mut tee, &run_opts)?;
-    let model = model_exponent(scene, &mut summary);
+    let mut summary = crate::setup::simulate(resolved, &mut tee, &run_opts)?;
+    let model = model_exponent(resolved, &mut summary);
     analyze_into(&mut summary, &collector, scene.frequency_hz(), model);
     Ok(summary)
 }
@@ -101,7 +108,7 @@ fn analyze_into(
         in_box_series: &in_box,
     };
     match analyze_forced(&run, &AnalyzeOptions::default()) {
-        Ok(report) => match serde_json::to_value(&report) {
+        Ok(report) => match crate::model::RunAnalysis::from_report(&report) {
             Ok(v) => summary.analysis = Some(v),
             Err(e) => summary.analysis_error = Some(format!("analysis report: {e}")),
         },
@@ -112,10 +119,19 @@ fn analyze_into(
 /// The impact model's own exponent (tangent dynamics with saltation matrices,
 /// [`crate::impact::lyapunov`]) over the analysis window; `None` for other models. A failure
 /// is noted in `summary.analysis_error` and does not stop the run.
-fn model_exponent(scene: &Scene, summary: &mut RunSummary) -> Option<Exponent> {
-    let mut window = scene.clone();
-    window.run.steady_fraction = scene.run.analysis_fraction.max(scene.run.steady_fraction);
-    match model_lyapunov_of_scene(&window, &ModelLyapunovOptions::default()) {
+fn model_exponent(resolved: &Resolved, summary: &mut RunSummary) -> Option<Exponent> {
+    let Setup::Impact(setup) = &resolved.setup else {
+        return None;
+    };
+    setup.particle?;
+    // the exponent over the analysis window: its start is the steady start of the estimate
+    let mut window = *setup;
+    window.window.steady_start_s = window.window.analysis_start_s;
+    let estimate = ImpactWorld::new(&window)
+        .model_lyapunov(&ModelLyapunovOptions::default())
+        .map(Some)
+        .map_err(crate::setup::keyed);
+    match estimate {
         Ok(Some(m)) if m.per_period.is_finite() => Some(Exponent {
             per_period: m.per_period,
             stderr_per_period: m.stderr_per_period,
@@ -178,7 +194,7 @@ struct Decimate<'a> {
 }
 
 impl Observer for Decimate<'_> {
-    fn sample(&mut self, s: &crate::observe::Sample<'_>) -> Result<(), SimError> {
+    fn sample(&mut self, s: &crate::observe::Sample) -> Result<(), SimError> {
         if s.time_s < self.inner.from_s {
             return Ok(());
         }

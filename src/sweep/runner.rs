@@ -282,28 +282,25 @@ fn run_point(
     for (k, v) in &s.extra {
         cells.insert(k.clone(), fmt_opt(Some(*v)));
     }
-    // the analysis report's fields by their exact names (AnalysisReport in
-    // src/analysis/analyze.rs); a missing field is an empty cell
+    // the analysis's typed fields (RunAnalysis); no analysis: empty cells
     let a = s.analysis.as_ref();
-    let field = |name: &str| -> String {
-        match a.and_then(|a| a.get(name)) {
-            Some(serde_json::Value::String(x)) => x.clone(),
-            Some(serde_json::Value::Number(x)) => x
-                .as_f64()
-                .map_or_else(|| x.to_string(), |v| fmt_opt(Some(v))),
-            _ => String::new(),
-        }
-    };
-    for (col, name) in [
-        ("regime", "regime"),
-        ("period", "period"),
-        ("mle_per_s", "data_mle_per_s"),
-        ("mle_stderr_per_s", "data_mle_stderr_per_s"),
-        ("model_mle_per_s", "model_mle_per_s"),
-        ("model_mle_stderr_per_s", "model_mle_stderr_per_s"),
-        ("section_points", "poincare_section_points"),
+    let num = |x: Option<f64>| fmt_opt(x);
+    for (col, v) in [
+        ("regime", a.map(|a| a.regime.as_str().to_string())),
+        ("period", a.map(|a| num(a.period))),
+        ("mle_per_s", a.map(|a| num(a.data_mle_per_s))),
+        ("mle_stderr_per_s", a.map(|a| num(a.data_mle_stderr_per_s))),
+        ("model_mle_per_s", a.map(|a| num(a.model_mle_per_s))),
+        (
+            "model_mle_stderr_per_s",
+            a.map(|a| num(a.model_mle_stderr_per_s)),
+        ),
+        (
+            "section_points",
+            a.map(|a| num(a.poincare_section_points.map(|n| n as f64))),
+        ),
     ] {
-        cells.insert(col.to_string(), field(name));
+        cells.insert(col.to_string(), v.unwrap_or_default());
     }
     let strobe = s
         .strobe

@@ -146,20 +146,9 @@ impl Case {
     }
 }
 
-/// Divides every Young's modulus by `factor` and rescales γ_n, γ_s by factor^{-3/5}, so that
-/// the Kuwabara–Kono restitution curve e(v) is unchanged (β ∝ γ_n k_n^{-3/5}, SPEC §9).
-/// A linear law's yield strength is divided by `factor` too (same yield overlap, k_n ∝ E).
+/// The softening rule ([`DemParams::softened`]): E/f, γ·f^{-3/5}, Y/f.
 pub fn soften(p: &DemParams, factor: f64) -> DemParams {
-    let mut q = p.clone();
-    let s = factor.powf(-0.6);
-    q.youngs_modulus /= factor;
-    q.wall_youngs_modulus = q.wall_youngs_modulus.map(|e| e / factor);
-    q.gamma_n *= s;
-    q.gamma_s *= s;
-    q.wall_gamma_n = q.wall_gamma_n.map(|g| g * s);
-    q.wall_gamma_s = q.wall_gamma_s.map(|g| g * s);
-    q.yield_strength = q.yield_strength.map(|y| y / factor);
-    q
+    p.softened(factor)
 }
 
 /// Kuwabara–Kono restitution (–) of two of the scene's grains colliding at the design impact

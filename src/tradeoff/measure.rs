@@ -3,12 +3,11 @@
 
 use std::time::Instant;
 
-use crate::dem::{
-    run_dem, BoxDrive, DemObserver, DemRunConfig, DemSample, DtChoice, PrimarySystem,
-};
+use crate::dem::{BoxDrive, DemRunConfig, DtChoice};
 use crate::error::{SceneError, SimError};
+use crate::model::PrimarySystem;
 use crate::model::RunOptions;
-use crate::observe::{Observer, Sample};
+use crate::observe::{ModelSample, Observer, Sample};
 use crate::scene::{Damper, ImpactParams, Run, Scene};
 
 use super::ladder::Case;
@@ -20,12 +19,8 @@ pub const SAMPLE_INTERVAL_S: f64 = 2.5e-4;
 /// The primary system and base motion of a scene (what every setting shares).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Rig {
-    /// Primary mass M (kg).
-    pub mass_kg: f64,
-    /// Stiffness K (N/m).
-    pub stiffness_n_m: f64,
-    /// Damping C (N s/m).
-    pub damping_n_s_m: f64,
+    /// The primary system M, K, C.
+    pub primary: PrimarySystem,
     /// Base amplitude U (m).
     pub amplitude_m: f64,
     /// Gravity (m/s²).
@@ -43,9 +38,7 @@ impl Rig {
             hint: "the trade-off compares the primary's response Z; add a [primary] table".into(),
         })?;
         Ok(Rig {
-            mass_kg: p.mass,
-            stiffness_n_m: p.stiffness,
-            damping_n_s_m: p.damping_n_s_m(),
+            primary: p.system(),
             amplitude_m: scene.excitation.amplitude,
             gravity: scene.gravity,
         })
@@ -54,11 +47,7 @@ impl Rig {
     /// The DEM drive at `frequency_hz`.
     pub fn drive(&self, frequency_hz: f64) -> BoxDrive {
         BoxDrive {
-            primary: Some(PrimarySystem {
-                mass_kg: self.mass_kg,
-                stiffness_n_m: self.stiffness_n_m,
-                damping_n_s_m: self.damping_n_s_m,
-            }),
+            primary: Some(self.primary),
             amplitude_m: self.amplitude_m,
             frequency_hz,
         }
@@ -81,22 +70,15 @@ pub struct Trace {
     pub collision_j: Vec<f64>,
 }
 
-impl DemObserver for Trace {
-    fn sample(&mut self, s: &DemSample) -> Result<(), SimError> {
-        self.time_s.push(s.time_s);
-        self.box_z_m.push(s.box_z_m);
-        self.grain_z_m.push(s.grain_z_m);
-        self.dissipated_j.push(s.e_collision_j + s.e_friction_j);
-        self.collision_j.push(s.e_collision_j);
-        Ok(())
-    }
-}
-
 impl Observer for Trace {
-    fn sample(&mut self, s: &Sample<'_>) -> Result<(), SimError> {
+    fn sample(&mut self, s: &Sample) -> Result<(), SimError> {
         self.time_s.push(s.time_s);
         self.box_z_m.push(s.box_z_m);
         self.grain_z_m.push(s.grain_z_m);
+        if let ModelSample::Dem(d) = s.model {
+            self.dissipated_j.push(d.e_collision_j + d.e_friction_j);
+            self.collision_j.push(d.e_collision_j);
+        }
         Ok(())
     }
 }
@@ -143,7 +125,7 @@ pub fn run_dem_case(case: &Case, rig: &Rig, frequency_hz: f64) -> Result<RunOutp
     };
     let mut trace = Trace::default();
     let clock = Instant::now();
-    let s = run_dem(&params, rig.drive(frequency_hz), &cfg, &mut trace)?;
+    let s = crate::setup::dem::run_params(&params, rig.drive(frequency_hz), &cfg, &mut trace)?;
     let wall = clock.elapsed().as_secs_f64();
     Ok(RunOutput {
         frequency_hz,
@@ -174,9 +156,9 @@ pub fn one_particle_scene(
     Scene {
         gravity: rig.gravity,
         primary: Some(crate::scene::Primary::new(
-            rig.mass_kg,
-            rig.stiffness_n_m,
-            rig.damping_n_s_m,
+            rig.primary.mass_kg,
+            rig.primary.stiffness_n_m,
+            rig.primary.damping_n_s_m,
         )),
         excitation: crate::scene::Excitation {
             amplitude: rig.amplitude_m,
@@ -205,7 +187,8 @@ pub fn run_impact_scene(scene: &Scene) -> Result<RunOutput, SimError> {
         sample_from_s: 0.0,
     };
     let clock = Instant::now();
-    let s = crate::impact::simulate(scene, &mut trace, &opts)?;
+    let s = crate::impact::simulate(&scene.resolve_impact()?, &mut trace, &opts)
+        .map_err(crate::setup::keyed)?;
     let wall = clock.elapsed().as_secs_f64();
     Ok(RunOutput {
         frequency_hz: scene.frequency_hz(),

@@ -77,14 +77,23 @@ pub fn effective(
     let fit = fit_frf(&f, &z, &FrfFitOptions::new(stiffness_n_m, base_amplitude_m)).ok()?;
     Some(Effective {
         mass_kg: fit.mass_ef_kg,
-        damping_n_s_m: fit.damping_ef_ns_per_m,
+        damping_n_s_m: fit.damping_ef_n_s_m,
     })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::frf_fit::sdof_amplitude;
+    use crate::model::PrimarySystem;
+
+    fn sdof_amplitude(f: f64, m: f64, c: f64, k: f64, u: f64) -> f64 {
+        PrimarySystem {
+            mass_kg: m,
+            stiffness_n_m: k,
+            damping_n_s_m: c,
+        }
+        .steady_amplitude_at_hz(u, f)
+    }
 
     #[test]
     fn relative_error_handles_edges() {

@@ -137,7 +137,8 @@ pub fn default_frequencies(rig: &Rig, params: &DemParams) -> Result<Vec<f64>, Sc
     let d = params.radius_distribution()?;
     let r = 0.5 * (d.r_min() + d.r_max());
     let m_p = params.count as f64 * params.density * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
-    let fr = (rig.stiffness_n_m / (rig.mass_kg + m_p)).sqrt() / crate::units::TWO_PI;
+    let fr =
+        (rig.primary.stiffness_n_m / (rig.primary.mass_kg + m_p)).sqrt() / crate::units::TWO_PI;
     Ok([0.7, 1.0, 1.3]
         .iter()
         .map(|k| (k * fr * 100.0).round() / 100.0)
@@ -288,7 +289,7 @@ pub fn run_study(
             "reference: DEM, Young's modulus / {} (damping × {:.4}, e(v) unchanged), Hertz–Kuwabara–Kono, \
              friction and rotations on, dt = t_s × {}, {} s of drive, last {} analysed",
             rl.reference_softening,
-            rl.reference_softening.powf(-0.6),
+            crate::scene::dem::softening_damping_scale(rl.reference_softening),
             rl.reference_dt_fraction,
             rl.duration_s,
             rl.steady_fraction
@@ -380,7 +381,7 @@ fn compare(
             .iter()
             .map(|r| r.1.amplitude_m)
             .collect::<Vec<_>>(),
-        rig.stiffness_n_m,
+        rig.primary.stiffness_n_m,
         rig.amplitude_m,
     );
     let mut runs = Vec::new();
@@ -449,7 +450,7 @@ fn compare(
                     .iter()
                     .map(|r| r.amplitude_m.unwrap_or(f64::NAN))
                     .collect();
-                effective(freqs, &z, rig.stiffness_n_m, rig.amplitude_m)
+                effective(freqs, &z, rig.primary.stiffness_n_m, rig.amplitude_m)
             })
             .flatten();
         let wall = if ok.len() == rows.len() && !rows.is_empty() {

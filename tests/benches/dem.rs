@@ -36,8 +36,14 @@ fn vibrated_world(n: usize, soft: f64) -> DemWorld {
     p.r#box[0] *= widen;
     p.r#box[1] *= widen;
     p.count = n;
-    let (dt, _) = choose_dt(&p, &drive(), None, DEFAULT_DT_FRACTION).unwrap();
-    let mut w = initial_world(&p, drive(), dt, 4.5e-3).unwrap();
+    let (dt, _) = choose_dt(
+        &pdamp::setup::dem_model(&p).unwrap(),
+        &drive(),
+        None,
+        DEFAULT_DT_FRACTION,
+    )
+    .unwrap();
+    let mut w = initial_world(&pdamp::setup::dem_model(&p).unwrap(), drive(), dt, 4.5e-3).unwrap();
     if soft > 1.0 {
         // softened: settle first, then two forcing periods
         settle(&mut w, 0.5);

@@ -17,6 +17,9 @@ pub struct Args {
 /// Run `pdamp check-scene`.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let (_, _, scene) = super::simulate::load_scene(&args.scene, &args.set)?;
+    // the resolve step checks what validation alone cannot (e.g. run.dt against the contact
+    // time) and makes the `kind = "auto"` choice
+    let resolved = scene.resolve()?;
     let f = scene.frequency_hz();
     let omega = scene.excitation.omega_rad_s();
     println!("{}: valid", args.scene.display());
@@ -54,10 +57,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             p.mass, p.gap, p.restitution
         ),
         Damper::Dem(d) => println!("damper: dem, {} grains, box {:?} m", d.count, d.r#box),
-        Damper::Auto(_) => println!(
-            "damper: {}",
-            crate::tradeoff::auto::describe(&crate::tradeoff::choose(&scene)?)
-        ),
+        Damper::Auto(_) => {
+            if let Some(c) = &resolved.auto {
+                println!("damper: {}", crate::tradeoff::auto::describe(c));
+            }
+        }
     }
     Ok(())
 }

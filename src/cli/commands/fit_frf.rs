@@ -152,11 +152,8 @@ fn optimum(fits: &[GroupFit], mass: Option<f64>) -> anyhow::Result<Optimum> {
         .iter()
         .map(|g| g.group_value.unwrap_or(f64::NAN))
         .collect();
-    let c: Vec<f64> = fits.iter().map(|g| g.fit.damping_ef_ns_per_m).collect();
-    let cs: Vec<f64> = fits
-        .iter()
-        .map(|g| g.fit.damping_ef_stderr_ns_per_m)
-        .collect();
+    let c: Vec<f64> = fits.iter().map(|g| g.fit.damping_ef_n_s_m).collect();
+    let cs: Vec<f64> = fits.iter().map(|g| g.fit.damping_ef_stderr_n_s_m).collect();
     let mut out = Optimum::default();
     match parabolic_peak(&x, &c, &cs) {
         Ok(p) => out.damping_max = Some(p),
@@ -207,8 +204,8 @@ fn print_csv(group: Option<&str>, fits: &[GroupFit]) {
             "{prefix}{:.10e},{:.4e},{:.10e},{:.4e},{:.6},{:.4e},{},{}",
             f.mass_ef_kg,
             f.mass_ef_stderr_kg,
-            f.damping_ef_ns_per_m,
-            f.damping_ef_stderr_ns_per_m,
+            f.damping_ef_n_s_m,
+            f.damping_ef_stderr_n_s_m,
             f.correlation,
             f.rms_residual_m,
             f.points,

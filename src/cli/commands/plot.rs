@@ -455,10 +455,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 x_label: axis_label(&xn),
                 mass_ef_kg: &m,
                 mass_ef_stderr_kg: &ms,
-                damping_ef_ns_per_m: &d,
-                damping_ef_stderr_ns_per_m: &ds,
+                damping_ef_n_s_m: &d,
+                damping_ef_stderr_n_s_m: &ds,
                 mass_kg: o.mass,
-                damping_ns_per_m: o.damping,
+                damping_n_s_m: o.damping,
             };
             draw(&fig, out, &opts)
         }
@@ -824,10 +824,12 @@ fn axis_label(col: &str) -> String {
 fn frf_reference(a: &PlotOptions) -> anyhow::Result<Option<FrfReference>> {
     match (a.mass, a.stiffness, a.damping, a.base_amplitude) {
         (Some(m), Some(k), Some(c), Some(u)) => Ok(Some(FrfReference {
-            mass_kg: m,
+            primary: crate::model::PrimarySystem {
+                mass_kg: m,
+                stiffness_n_m: k,
+                damping_n_s_m: c,
+            },
             particle_mass_kg: a.particle_mass,
-            stiffness_n_per_m: k,
-            damping_ns_per_m: c,
             base_amplitude_m: u,
         })),
         (None, None, None, None) => Ok(None),

@@ -2,10 +2,10 @@
 //! `DIR/series.csv`, `DIR/summary.json`, `DIR/strobe.csv` and the resolved `DIR/scene.toml`;
 //! with `run.replica` (DEM two-replica test) also `DIR/replica.csv`.
 
-use crate::model::{RunOptions, RunSummary};
+use crate::model::RunSummary;
 use crate::observe::{fmt_num, CsvRecorder, ProgressObserver, Tee};
 use crate::scene::{parse_assignment, Scene, SceneSource};
-use crate::sweep::run::run_with_analysis;
+use crate::sweep::run::run_resolved;
 use anyhow::Context;
 use std::path::{Path, PathBuf};
 
@@ -51,14 +51,12 @@ pub(crate) fn load_scene(path: &Path, set: &[String]) -> anyhow::Result<LoadedSc
 pub fn run(args: Args) -> anyhow::Result<()> {
     let (_, _, scene) = load_scene(&args.scene, &args.set)?;
     // `kind = "auto"`: say which model and settings were chosen, and why (stderr + summary).
-    let auto_choice = match &scene.damper {
-        crate::scene::Damper::Auto(_) => {
-            let why = crate::tradeoff::auto::describe(&crate::tradeoff::choose(&scene)?);
-            eprintln!("{why}");
-            Some(why)
-        }
-        _ => None,
-    };
+    let resolved = scene.resolve()?;
+    let auto_choice = resolved.auto.as_ref().map(|c| {
+        let why = crate::tradeoff::auto::describe(c);
+        eprintln!("{why}");
+        why
+    });
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
     let mut csv = CsvRecorder::create(&args.out.join("series.csv"))?;
@@ -66,10 +64,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let mut tee = Tee {
         observers: vec![&mut csv, &mut bar],
     };
-    let summary = run_with_analysis(
-        &scene,
+    let summary = run_resolved(
+        &resolved,
         &mut tee,
-        &RunOptions::full_series(&scene),
+        &crate::setup::full_series(&scene),
         !args.no_analysis,
     )?;
     write_outputs(&args.out, &scene, &summary, auto_choice)?;

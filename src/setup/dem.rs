@@ -1,0 +1,388 @@
+//! Resolving a scene with damper `dem` to the DEM's [`DemSetup`] — the grains drawn from
+//! their distribution with their masses, the contact model selected by the scene's enums,
+//! the box drive and the run settings — and running it (series columns and `summary.json`
+//! keys of the shared contract).
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+use crate::contact::{AttractionPolicy, ContactModel, NormalLaw, TangentialLaw, WallContact};
+use crate::dem::model::{DemModel, Grains, Packing};
+use crate::dem::replica::{run_replica, ReplicaOptions};
+use crate::dem::run::{run_dem, DemRunConfig, DtChoice};
+use crate::dem::stability::choose_dt;
+use crate::error::{SceneError, SimError};
+use crate::model::{BoxDrive, EnergyTotals, RunOptions, RunSummary, RunWindow};
+use crate::observe::{Observer, SnapshotWriter, StrobeCollector, Tee};
+use crate::scene::dem::{ContactKind, DemParams, PackingKind, SnapshotFormat};
+use crate::scene::{Damper, DtSpec, Scene};
+
+/// A resolved DEM scene: the damper, its drive, gravity, the run settings and outputs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DemSetup {
+    /// The resolved damper (grains, contact model, box, bed).
+    pub model: DemModel,
+    /// The box drive (primary + base motion, or a kinematic box).
+    pub drive: BoxDrive,
+    /// Gravitational acceleration g (m/s², along −z).
+    pub gravity_m_s2: f64,
+    /// Duration, steady-state and analysis windows (s).
+    pub window: RunWindow,
+    /// Fraction of the run treated as steady state (–).
+    pub steady_fraction: f64,
+    /// Last fraction of the run recorded in the stroboscopic section (–).
+    pub analysis_fraction: f64,
+    /// Output sampling interval of `series.csv` (s).
+    pub sample_interval_s: f64,
+    /// Time step: automatic or explicit (checked against the contact time here).
+    pub dt: DtChoice,
+    /// dt / t_s with an automatic step (–).
+    pub dt_fraction: f64,
+    /// Snapshot directory and format, when snapshots are written.
+    pub snapshots: Option<(PathBuf, SnapshotFormat)>,
+    /// Perturbation δ0 (m) of the two-replica test, when run.
+    pub replica_m: Option<f64>,
+}
+
+impl DemSetup {
+    /// The engine's run settings for the sampling of `opts`.
+    pub fn config(&self, opts: &RunOptions) -> DemRunConfig {
+        DemRunConfig {
+            duration_s: self.window.duration_s,
+            sample_interval_s: opts.sample_interval_s.unwrap_or(self.sample_interval_s),
+            steady_fraction: self.steady_fraction,
+            analysis_fraction: self.analysis_fraction,
+            dt: self.dt,
+            dt_fraction: self.dt_fraction,
+            samples: opts.sample_interval_s.is_some(),
+            sample_from_s: opts.sample_from_s,
+            gravity_m_s2: self.gravity_m_s2,
+        }
+    }
+}
+
+/// The DEM's setup of a validated scene with damper `dem`. The time step is checked against
+/// the contact time here, so that a refused `run.dt` is reported before any output.
+///
+/// # Errors
+/// [`SceneError`] naming the key: a damper other than `dem`, invalid grains or laws, a
+/// refused time step.
+pub fn dem_setup(scene: &Scene) -> Result<DemSetup, SceneError> {
+    let Damper::Dem(params) = &scene.damper else {
+        return Err(SceneError::invalid(
+            "damper.kind",
+            scene.damper.kind(),
+            "the DEM model runs only damper.kind = \"dem\"",
+        ));
+    };
+    let model = dem_model(params)?;
+    let drive = BoxDrive {
+        primary: scene.primary.as_ref().map(|p| p.system()),
+        amplitude_m: scene.excitation.amplitude,
+        frequency_hz: scene.excitation.frequency,
+    };
+    let dt = match scene.run.dt {
+        Some(DtSpec::Seconds(s)) => DtChoice::Seconds(s),
+        _ => DtChoice::Auto,
+    };
+    let explicit = match dt {
+        DtChoice::Seconds(s) => Some(s),
+        DtChoice::Auto => None,
+    };
+    choose_dt(&model, &drive, explicit, scene.run.dt_fraction).map_err(super::scene_error)?;
+    Ok(DemSetup {
+        model,
+        drive,
+        gravity_m_s2: scene.gravity,
+        window: super::window(scene),
+        steady_fraction: scene.run.steady_fraction,
+        analysis_fraction: scene.run.analysis_fraction,
+        sample_interval_s: scene.run.sample_interval,
+        dt,
+        dt_fraction: scene.run.dt_fraction,
+        snapshots: params.snapshot_interval.map(|_| {
+            (
+                PathBuf::from(
+                    params
+                        .snapshot_dir
+                        .clone()
+                        .unwrap_or_else(|| "snapshots".into()),
+                ),
+                params.snapshot_format,
+            )
+        }),
+        replica_m: scene.run.replica,
+    })
+}
+
+/// The resolved DEM damper of `params`: validated once, radii drawn from their distribution
+/// (seeded by `damper.seed`) with their masses, the contact model of `damper.contact`.
+///
+/// # Errors
+/// [`SceneError`] naming the key (see [`DemParams::validate`]).
+pub fn dem_model(params: &DemParams) -> Result<DemModel, SceneError> {
+    params.validate()?;
+    let dist = params.radius_distribution()?;
+    let radii = dist.sample_n(params.count, params.seed);
+    let grains = Grains::new(
+        radii,
+        params.density,
+        params.grain_material(),
+        (dist.r_min(), dist.r_max()),
+    );
+    let model = DemModel {
+        box_size_m: params.r#box,
+        grains,
+        contact: contact_model(params)?,
+        rotations: params.rotations,
+        orientations: params.orientations,
+        neighbor_skin_m: params.neighbor_skin,
+        packing: match params.packing {
+            PackingKind::Lattice => Packing::Lattice { seed: params.seed },
+            PackingKind::AdvancingFront => Packing::AdvancingFront,
+        },
+        settle_time_s: params.settle_time.unwrap_or(1.0),
+        snapshot_interval_s: params.snapshot_interval,
+    };
+    // the linear law's parameters (e, Y) and the contact time are checked once, here
+    crate::dem::stability::contact_time(&model, 1.0).map_err(super::scene_error)?;
+    Ok(model)
+}
+
+/// The contact model of `params` ([`DemParams::validate`] passed): grain–grain and
+/// grain–wall laws selected by `damper.contact`, wall values defaulting to the grains'.
+///
+/// # Errors
+/// `damper.restitution` / `damper.yield_strength` missing for `contact = "linear"`.
+pub fn contact_model(params: &DemParams) -> Result<ContactModel, SceneError> {
+    let normal = |wall: bool| -> Result<NormalLaw, SceneError> {
+        Ok(match params.contact {
+            ContactKind::HertzKk => NormalLaw::HertzKuwabaraKono {
+                gamma_n: if wall {
+                    params.wall_gamma_n.unwrap_or(params.gamma_n)
+                } else {
+                    params.gamma_n
+                },
+            },
+            ContactKind::Linear => {
+                let e = params.restitution.ok_or_else(|| SceneError::Missing {
+                    field: "damper.restitution".into(),
+                    hint: "contact = \"linear\" needs the coefficient of restitution e in (0, 1]"
+                        .into(),
+                })?;
+                NormalLaw::LinearSpringDashpot {
+                    restitution: if wall {
+                        params.wall_restitution.unwrap_or(e)
+                    } else {
+                        e
+                    },
+                    yield_strength: params.yield_strength.ok_or_else(|| SceneError::Missing {
+                        field: "damper.yield_strength".into(),
+                        hint: "contact = \"linear\" needs the grains' yield strength (Pa)".into(),
+                    })?,
+                }
+            }
+        })
+    };
+    let tangential = |wall: bool| -> TangentialLaw {
+        let mu = if wall {
+            params.wall_friction.unwrap_or(params.friction)
+        } else {
+            params.friction
+        };
+        if mu <= 0.0 {
+            return TangentialLaw::None;
+        }
+        match params.contact {
+            ContactKind::HertzKk => {
+                let gamma_s = if wall {
+                    params.wall_gamma_s.unwrap_or(params.gamma_s)
+                } else {
+                    params.gamma_s
+                };
+                if gamma_s > 0.0 {
+                    TangentialLaw::CoulombViscous {
+                        gamma_s,
+                        friction: mu,
+                    }
+                } else {
+                    TangentialLaw::None
+                }
+            }
+            ContactKind::Linear => TangentialLaw::LinearDashpotCoulomb { friction: mu },
+        }
+    };
+    Ok(ContactModel {
+        normal: normal(false)?,
+        tangential: tangential(false),
+        wall: WallContact {
+            material: params.wall_material(),
+            normal: normal(true)?,
+            tangential: tangential(true),
+        },
+        attraction: if params.attractive_normal_force {
+            AttractionPolicy::Allow
+        } else {
+            AttractionPolicy::Clamp
+        },
+    })
+}
+
+/// Runs the DEM for `params` on `drive` with the engine settings `cfg` (the scene-level
+/// entry of tests, benchmarks and the trade-off study): resolves the damper
+/// ([`dem_model`]) and names refused quantities by their scene keys.
+///
+/// # Errors
+/// As [`dem_model`] and [`run_dem`], keyed.
+pub fn run_params(
+    params: &DemParams,
+    drive: BoxDrive,
+    cfg: &DemRunConfig,
+    obs: &mut dyn Observer,
+) -> Result<crate::dem::DemSummary, SimError> {
+    let model = dem_model(params)?;
+    run_dem(&model, drive, cfg, obs).map_err(super::keyed)
+}
+
+/// Runs a DEM scene: samples go to `obs` (model part [`crate::observe::ModelSample::Dem`]),
+/// snapshots to a [`SnapshotWriter`], the stroboscopic points to the summary; the summary follows `summary.json`'s keys; the DEM's own figures
+/// (`energy_collision_j_per_cycle`, `energy_friction_j_per_cycle`, `steps`, `wall_time_s`,
+/// `particle_steps_per_s`, `dt_s`, `contact_time_s`, `volume_fraction`, …) are in `extra`.
+/// Without `[primary]` the box moves kinematically with the base. With `run.replica` the
+/// two-replica test ([`super::replica`]) runs alongside and its report is in `replica`.
+///
+/// # Errors
+/// The errors of [`run_dem`] (engine quantities, mapped to keys by [`super::simulate`]);
+/// output errors of the observer.
+pub fn simulate(
+    setup: &DemSetup,
+    obs: &mut dyn Observer,
+    opts: &RunOptions,
+) -> Result<RunSummary, SimError> {
+    let (drive, cfg) = (setup.drive, setup.config(opts));
+    let mut snapshots = setup.snapshots.as_ref().map(|(dir, format)| {
+        SnapshotWriter::new(
+            dir.clone(),
+            matches!(format, SnapshotFormat::Csv | SnapshotFormat::Both),
+            matches!(format, SnapshotFormat::Vtk | SnapshotFormat::Both),
+        )
+    });
+    let mut strobe = StrobeCollector::default();
+    let mut observers: Vec<&mut dyn Observer> = vec![obs, &mut strobe];
+    if let Some(w) = snapshots.as_mut() {
+        observers.push(w);
+    }
+    let mut fwd = Tee { observers };
+    // `run.replica`: replica B perturbed at the start of the analysis window
+    let (s, replica) = match setup.replica_m {
+        Some(delta_m) => {
+            let opts = ReplicaOptions::at_analysis_start(&cfg, delta_m);
+            let (s, r) = run_replica(&setup.model, drive, &cfg, &opts, &mut fwd)?;
+            (s, Some(r))
+        }
+        None => (run_dem(&setup.model, drive, &cfg, &mut fwd)?, None),
+    };
+    drop(fwd);
+    let cycles = (cfg.duration_s - s.steady_start_s) * drive.frequency_hz;
+    let l = s.ledger;
+    let mut extra = BTreeMap::new();
+    let opt = |v: Option<f64>| v.unwrap_or(f64::NAN);
+    for (k, v) in [
+        (
+            "energy_collision_j_per_cycle",
+            opt(s.energy_collision_j_per_cycle),
+        ),
+        (
+            "energy_friction_j_per_cycle",
+            opt(s.energy_friction_j_per_cycle),
+        ),
+        (
+            "bed_floor_impacts_per_cycle",
+            s.bed_impacts.floor as f64 / s.cycles_steady,
+        ),
+        (
+            "bed_ceiling_impacts_per_cycle",
+            s.bed_impacts.ceiling as f64 / s.cycles_steady,
+        ),
+        ("steps", s.steps as f64),
+        ("wall_time_s", s.wall_time_s),
+        ("particle_steps_per_s", s.particle_steps_per_s),
+        ("particle_steps_per_cpu_s", opt(s.particle_steps_per_cpu_s)),
+        ("dt_s", s.dt_s),
+        ("contact_time_s", s.contact_time_s),
+        ("settle_time_s", s.settle_time_s),
+        ("settle_steps", s.settle_steps as f64),
+        ("neighbor_builds", s.neighbor_builds as f64),
+        ("grains", s.grains as f64),
+        ("grain_mass_kg", s.grain_mass_kg),
+        ("bed_height_m", s.bed_height_m),
+        ("volume_fraction", s.volume_fraction),
+    ] {
+        extra.insert(k.to_string(), v);
+    }
+    Ok(RunSummary {
+        model: "dem".into(),
+        frequency_hz: drive.frequency_hz,
+        duration_s: cfg.duration_s,
+        steady_start_s: s.steady_start_s,
+        cycles_steady: cycles,
+        amplitude_m: s.amplitude_m,
+        box_z_max_m: s.box_z_max_m,
+        box_z_min_m: s.box_z_min_m,
+        reference_amplitude_m: drive.reference_amplitude_m(),
+        energy_input_j_per_cycle: opt(s.energy_base_work_j_per_cycle),
+        energy_viscous_j_per_cycle: opt(s.energy_viscous_j_per_cycle),
+        energy_impact_j_per_cycle: opt(s.energy_collision_j_per_cycle)
+            + opt(s.energy_friction_j_per_cycle),
+        // collective bed–floor and bed–ceiling impacts (dem::bed_impacts)
+        impacts_per_cycle: if s.cycles_steady > 0.0 {
+            s.bed_impacts.total() as f64 / s.cycles_steady
+        } else {
+            f64::NAN
+        },
+        energy_balance_relative_error: Some(s.energy_balance_relative_error),
+        energy_totals: EnergyTotals {
+            base_work_j: l.base_work_j,
+            viscous_j: l.viscous_j,
+            impact_j: l.collision_j + l.friction_j,
+            initial_mechanical_j: s.energy_start_j,
+            final_mechanical_j: s.energy_end_j,
+        },
+        impacts_total: s.bed_impacts.total(),
+        events_total: 0,
+        extra,
+        strobe: strobe.points,
+        analysis: None,
+        analysis_error: None,
+        replica,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dem::stability::DEFAULT_DT_FRACTION;
+
+    #[test]
+    fn explicit_dt_above_limit_is_rejected_with_the_limit() {
+        let p = dem_model(&DemParams::thesis_b()).unwrap();
+        let d = BoxDrive {
+            primary: None,
+            amplitude_m: 4.5e-3,
+            frequency_hz: 15.0,
+        };
+        let (dt, ts) = choose_dt(&p, &d, None, DEFAULT_DT_FRACTION).unwrap();
+        assert!((dt - ts / 50.0).abs() < 1e-20);
+        // steel, R = 3 mm, v ≈ 1.55 m/s (free fall over 0.1225 m): t_s ≈ 1.5e-5 s
+        assert!(ts > 5e-6 && ts < 5e-5, "{ts}");
+        let e = choose_dt(&p, &d, Some(1e-4), DEFAULT_DT_FRACTION).unwrap_err();
+        // the engine speaks of the time step; the resolve step names the key
+        assert!(
+            e.to_string().contains("time step") && e.to_string().contains("t_s/20"),
+            "{e}"
+        );
+        let e = super::super::scene_error(e).to_string();
+        assert!(e.contains("run.dt") && e.contains("t_s/20"), "{e}");
+        assert!(choose_dt(&p, &d, Some(ts / 30.0), DEFAULT_DT_FRACTION).is_ok());
+    }
+}
