@@ -6,8 +6,8 @@
 //!
 //! ## Architecture (dependencies point one way)
 //! ```text
-//! cli → sweep / plot / io → setup (scene → resolved objects) → dem / impact → observe / contact / neighbor / integrate → model → units / error
-//! scene (the TOML form) is read by setup, sweep, tradeoff, study and cli; dem, impact and model never import it
+//! (binary: cli) → sweep / plot / io → setup (scene → resolved objects) → dem / impact → observe / contact / neighbor / integrate → model → units / error
+//! scene (the TOML form) is read by setup, sweep, tradeoff, study and the CLI; dem, impact and model never import it
 //! analysis → (nothing of the simulators);  systems = reference dynamical systems for tests, benches and examples
 //! ```
 //! - [`scene`]: TOML scene files → validated [`scene::Scene`].
@@ -23,11 +23,13 @@
 //! - [`plot`]: headless PNG figures (SPEC §7).
 //! - [`tradeoff`]: speed against accuracy of the models and settings; `kind = "auto"`.
 //! - [`io`]: series and CSV input/output, atomic writes.
-//! - [`cli`]: the `pdamp` command line (thin layer over the library).
+//!
+//! The `pdamp` command line is not part of the library: it lives in the binary (`src/main.rs`,
+//! `src/cli/`, cargo feature `cli`, on by default). `cargo build --lib --no-default-features`
+//! builds the library without clap, anyhow or indicatif.
 #![warn(missing_docs)]
 
 pub mod analysis;
-pub mod cli;
 pub mod contact;
 pub mod dem;
 pub mod error;

@@ -1,14 +1,13 @@
-//! Observers: the simulators emit samples to an [`Observer`]; CSV recorders, progress bars and
-//! in-memory collectors are observers attached by the caller (no prints, no globals).
+//! Observers: the simulators emit samples to an [`Observer`]; CSV recorders, snapshot writers and
+//! in-memory collectors are observers attached by the caller (no prints, no globals); the
+//! progress bar of the `pdamp` binary is one too (it lives in the CLI, not in the library).
 
 pub mod collector;
 pub mod csv_recorder;
-pub mod progress;
 pub mod snapshot;
 
 pub use collector::{SteadyCollector, StrobeCollector};
 pub use csv_recorder::CsvRecorder;
-pub use progress::ProgressObserver;
 pub use snapshot::SnapshotWriter;
 
 use crate::error::SimError;

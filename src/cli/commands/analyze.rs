@@ -5,8 +5,8 @@ use std::io::Write;
 
 use anyhow::Context;
 
-use crate::analysis::analyze::{analyze_series, AnalysisReport, AnalyzeOptions};
 use crate::cli::commands::mutual::SeriesInput;
+use pdamp::analysis::analyze::{analyze_series, AnalysisReport, AnalyzeOptions};
 
 /// Long help of `pdamp analyze`: what it writes and how to read it.
 const LONG_HELP: &str =

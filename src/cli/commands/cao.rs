@@ -5,8 +5,8 @@ use std::io::Write;
 
 use anyhow::Context;
 
-use crate::analysis::cao::{cao, CaoOptions};
 use crate::cli::commands::mutual::SeriesInput;
+use pdamp::analysis::cao::{cao, CaoOptions};
 
 /// Arguments of `pdamp cao`.
 ///

@@ -1,7 +1,7 @@
 //! `pdamp check-scene SCENE [--set key=value …]`: validate a scene without running it and print
 //! its derived quantities.
 
-use crate::scene::Damper;
+use pdamp::scene::Damper;
 use std::path::PathBuf;
 
 /// Arguments of `pdamp check-scene`.
@@ -59,7 +59,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         Damper::Dem(d) => println!("damper: dem, {} grains, box {:?} m", d.count, d.r#box),
         Damper::Auto(_) => {
             if let Some(c) = &resolved.auto {
-                println!("damper: {}", crate::tradeoff::auto::describe(c));
+                println!("damper: {}", pdamp::tradeoff::auto::describe(c));
             }
         }
     }

@@ -5,11 +5,11 @@ use std::io::Write;
 
 use anyhow::Context;
 
-use crate::analysis::correlation_dimension::{
-    correlation_sum, estimate_d2, D2Options, PlateauOptions,
-};
 use crate::cli::commands::fnn::parse_max_dim;
 use crate::cli::commands::mutual::SeriesInput;
+use pdamp::analysis::correlation_dimension::{
+    correlation_sum, estimate_d2, D2Options, PlateauOptions,
+};
 
 /// Arguments of `pdamp d2`.
 ///

@@ -4,8 +4,8 @@ use std::io::Write;
 
 use anyhow::Context;
 
-use crate::analysis::DelayEmbedding;
 use crate::cli::commands::mutual::SeriesInput;
+use pdamp::analysis::DelayEmbedding;
 
 /// Arguments of `pdamp embed`.
 ///

@@ -5,9 +5,9 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Context};
 
-use crate::analysis::frf_fit::{fit_frf, FrfFit, FrfFitOptions, FrfResidual};
-use crate::analysis::optimum::{level_crossings, parabolic_peak, Located};
-use crate::plot::table::Table;
+use pdamp::analysis::frf_fit::{fit_frf, FrfFit, FrfFitOptions, FrfResidual};
+use pdamp::analysis::optimum::{level_crossings, parabolic_peak, Located};
+use pdamp::plot::table::Table;
 
 /// Arguments of `pdamp fit-frf`.
 ///

@@ -4,9 +4,9 @@ use std::io::Write;
 
 use anyhow::{bail, Context};
 
-use crate::analysis::false_nearest_neighbors::suggested_dimension;
-use crate::analysis::{false_nearest_neighbors, FnnOptions};
 use crate::cli::commands::mutual::SeriesInput;
+use pdamp::analysis::false_nearest_neighbors::suggested_dimension;
+use pdamp::analysis::{false_nearest_neighbors, FnnOptions};
 
 /// Arguments of `pdamp fnn`.
 ///

@@ -4,10 +4,10 @@ use std::io::Write;
 
 use anyhow::Context;
 
-use crate::analysis::kantz::{
+use crate::cli::commands::mutual::SeriesInput;
+use pdamp::analysis::kantz::{
     estimate_from_curves, fit_scaling_region, kantz, KantzDefinition, KantzOptions, ScalingOptions,
 };
-use crate::cli::commands::mutual::SeriesInput;
 
 /// Average inside the logarithm of S(Δn).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]

@@ -4,9 +4,9 @@ use std::io::Write;
 
 use anyhow::Context;
 
-use crate::analysis::kantz::{fit_scaling_region, ScalingOptions};
-use crate::analysis::rosenstein::{rosenstein, RosensteinOptions};
 use crate::cli::commands::mutual::SeriesInput;
+use pdamp::analysis::kantz::{fit_scaling_region, ScalingOptions};
+use pdamp::analysis::rosenstein::{rosenstein, RosensteinOptions};
 
 /// Arguments of `pdamp lyap-r`.
 ///

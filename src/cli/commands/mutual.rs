@@ -2,10 +2,10 @@
 
 use std::io::Write;
 
-use crate::analysis::mutual_information::small_sample_bias;
-use crate::analysis::{mutual_information, MutualInformationOptions};
-use crate::io::{read_series, Column, SeriesReadOptions};
 use anyhow::Context;
+use pdamp::analysis::mutual_information::small_sample_bias;
+use pdamp::analysis::{mutual_information, MutualInformationOptions};
+use pdamp::io::{read_series, Column, SeriesReadOptions};
 
 /// Series input shared by the analysis subcommands (TISEAN's file, `-c`, `-l`, `-x`).
 #[derive(Debug, Clone, clap::Args)]

@@ -4,11 +4,11 @@ use std::io::Write;
 
 use anyhow::Context;
 
-use crate::analysis::noise_reduction::{
-    nonlinear_noise_reduction, Correction, NoiseReductionOptions,
-};
 use crate::cli::commands::mutual::SeriesInput;
 use crate::cli::commands::surrogates::reject_time_column;
+use pdamp::analysis::noise_reduction::{
+    nonlinear_noise_reduction, Correction, NoiseReductionOptions,
+};
 
 /// Arguments of `pdamp nrlazy`.
 ///
@@ -96,7 +96,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         text.push_str(&format!("{v:.10e}\n"));
     }
     match &args.output {
-        Some(path) => crate::io::atomic_write(std::path::Path::new(path), text.as_bytes())?,
+        Some(path) => pdamp::io::atomic_write(std::path::Path::new(path), text.as_bytes())?,
         None => {
             let mut out = std::io::stdout().lock();
             out.write_all(text.as_bytes())?;

@@ -5,33 +5,33 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, bail, Context};
 
-use crate::analysis::false_nearest_neighbors::{false_nearest_neighbors, FnnOptions};
-use crate::analysis::kantz::{estimate_from_curves, kantz, KantzOptions, ScalingOptions};
-use crate::analysis::mutual_information::{mutual_information, MutualInformationOptions};
-use crate::io::{read_series as read_series_file, Column, SeriesReadOptions};
+use pdamp::analysis::false_nearest_neighbors::{false_nearest_neighbors, FnnOptions};
+use pdamp::analysis::kantz::{estimate_from_curves, kantz, KantzOptions, ScalingOptions};
+use pdamp::analysis::mutual_information::{mutual_information, MutualInformationOptions};
+use pdamp::io::{read_series as read_series_file, Column, SeriesReadOptions};
 
-use crate::analysis::correlation_dimension::{
+use pdamp::analysis::correlation_dimension::{
     estimate_d2, local_slopes, CorrelationCurve, CorrelationSums, PlateauOptions,
 };
-use crate::analysis::recurrence::{recurrence_grid, RecurrenceOptions};
-use crate::plot::bed_motion::BedMotionFigure;
-use crate::plot::bifurcation::BifurcationFigure;
-use crate::plot::correlation_dimension::D2Figure;
-use crate::plot::effective::EffectiveFigure;
-use crate::plot::energy::{energy_figure, energy_label};
-use crate::plot::fnn::FnnFigure;
-use crate::plot::frf::{FrfFigure, FrfReference};
-use crate::plot::kantz::KantzFigure;
-use crate::plot::mutual::MutualFigure;
-use crate::plot::poincare::PoincareFigure;
-use crate::plot::reconstruction::ReconstructionFigure;
-use crate::plot::recurrence::RecurrenceFigure;
-use crate::plot::regime_frf::{Exponents, RegimeFrfFigure};
-use crate::plot::regime_map::RegimeMapFigure;
-use crate::plot::resonance::{resonance_amplitudes, resonance_figure};
-use crate::plot::spectrum::SpectrumFigure;
-use crate::plot::table::Table;
-use crate::plot::{render, Figure, FigureOptions, Series};
+use pdamp::analysis::recurrence::{recurrence_grid, RecurrenceOptions};
+use pdamp::plot::bed_motion::BedMotionFigure;
+use pdamp::plot::bifurcation::BifurcationFigure;
+use pdamp::plot::correlation_dimension::D2Figure;
+use pdamp::plot::effective::EffectiveFigure;
+use pdamp::plot::energy::{energy_figure, energy_label};
+use pdamp::plot::fnn::FnnFigure;
+use pdamp::plot::frf::{FrfFigure, FrfReference};
+use pdamp::plot::kantz::KantzFigure;
+use pdamp::plot::mutual::MutualFigure;
+use pdamp::plot::poincare::PoincareFigure;
+use pdamp::plot::reconstruction::ReconstructionFigure;
+use pdamp::plot::recurrence::RecurrenceFigure;
+use pdamp::plot::regime_frf::{Exponents, RegimeFrfFigure};
+use pdamp::plot::regime_map::RegimeMapFigure;
+use pdamp::plot::resonance::{resonance_amplitudes, resonance_figure};
+use pdamp::plot::spectrum::SpectrumFigure;
+use pdamp::plot::table::Table;
+use pdamp::plot::{render, Figure, FigureOptions, Series};
 
 /// Figure kinds (SPEC §7) and the input each one reads.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -709,7 +709,7 @@ fn estimator(args: &Args, opts: &FigureOptions) -> anyhow::Result<()> {
                 threshold: 0.01,
                 ratio: fo.ratio,
             };
-            match crate::analysis::false_nearest_neighbors::suggested_dimension(&points, 0.01) {
+            match pdamp::analysis::false_nearest_neighbors::suggested_dimension(&points, 0.01) {
                 Some(m) => {
                     eprintln!("suggested embedding dimension: m = {m} (≤ 1 % false neighbours)")
                 }
@@ -824,7 +824,7 @@ fn axis_label(col: &str) -> String {
 fn frf_reference(a: &PlotOptions) -> anyhow::Result<Option<FrfReference>> {
     match (a.mass, a.stiffness, a.damping, a.base_amplitude) {
         (Some(m), Some(k), Some(c), Some(u)) => Ok(Some(FrfReference {
-            primary: crate::model::PrimarySystem {
+            primary: pdamp::model::PrimarySystem {
                 mass_kg: m,
                 stiffness_n_m: k,
                 damping_n_s_m: c,

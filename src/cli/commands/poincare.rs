@@ -4,12 +4,12 @@ use std::io::Write;
 
 use anyhow::Context;
 
-use crate::analysis::poincare::{
+use crate::cli::commands::mutual::SeriesInput;
+use pdamp::analysis::poincare::{
     classify_section, period_in_samples, stroboscopic_section, ClusterOptions, Interpolation,
     SecondCoordinate, SectionShape, StrobeOptions,
 };
-use crate::cli::commands::mutual::SeriesInput;
-use crate::io::{read_series, Column, SeriesReadOptions};
+use pdamp::io::{read_series, Column, SeriesReadOptions};
 
 /// Long help of `pdamp poincare`: what it writes and how to read it.
 const LONG_HELP: &str =
@@ -127,7 +127,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
     }
     out.flush()?;
-    let (lo, hi) = crate::analysis::min_max(&x);
+    let (lo, hi) = pdamp::analysis::min_max(&x);
     let summary = classify_section(
         &sec.points,
         hi - lo,

@@ -1,8 +1,8 @@
 //! `pdamp reproduce [--smoke|--quick|--full] [--out figures]`: the whole figure set of SPEC §7
 //! for scene B, headless, with `OUT/README.md` saying how each figure was made.
 
-use crate::study::{reproduce, Mode, ReproduceOptions};
 use anyhow::Context;
+use pdamp::study::{reproduce, Mode, ReproduceOptions};
 use std::path::PathBuf;
 
 /// Arguments of `pdamp reproduce`.

@@ -4,8 +4,8 @@ use std::io::Write;
 
 use anyhow::{bail, Context};
 
-use crate::analysis::recurrence::{rqa, RecurrenceOptions, RecurrenceThreshold, DEFAULT_MAX_LEN};
 use crate::cli::commands::mutual::SeriesInput;
+use pdamp::analysis::recurrence::{rqa, RecurrenceOptions, RecurrenceThreshold, DEFAULT_MAX_LEN};
 
 /// Arguments of `pdamp rqa`.
 ///

@@ -2,11 +2,12 @@
 //! `DIR/series.csv`, `DIR/summary.json`, `DIR/strobe.csv` and the resolved `DIR/scene.toml`;
 //! with `run.replica` (DEM two-replica test) also `DIR/replica.csv`.
 
-use crate::model::RunSummary;
-use crate::observe::{fmt_num, CsvRecorder, ProgressObserver, Tee};
-use crate::scene::{parse_assignment, Scene, SceneSource};
-use crate::sweep::run::run_resolved;
+use crate::cli::progress::ProgressObserver;
 use anyhow::Context;
+use pdamp::model::RunSummary;
+use pdamp::observe::{fmt_num, CsvRecorder, Tee};
+use pdamp::scene::{parse_assignment, Scene, SceneSource};
+use pdamp::sweep::run::run_resolved;
 use std::path::{Path, PathBuf};
 
 /// Arguments of `pdamp simulate`.
@@ -53,7 +54,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     // `kind = "auto"`: say which model and settings were chosen, and why (stderr + summary).
     let resolved = scene.resolve()?;
     let auto_choice = resolved.auto.as_ref().map(|c| {
-        let why = crate::tradeoff::auto::describe(c);
+        let why = pdamp::tradeoff::auto::describe(c);
         eprintln!("{why}");
         why
     });
@@ -67,7 +68,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let summary = run_resolved(
         &resolved,
         &mut tee,
-        &crate::setup::full_series(&scene),
+        &pdamp::setup::full_series(&scene),
         !args.no_analysis,
     )?;
     write_outputs(&args.out, &scene, &summary, auto_choice)?;
@@ -92,14 +93,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     );
     if let Some(r) = &summary.replica {
         let verdict = match &r.verdict {
-            crate::dem::ReplicaVerdict::StaysInNoiseBand => "stays in the noise band".into(),
-            crate::dem::ReplicaVerdict::SeparatesToAttractor {
+            pdamp::dem::ReplicaVerdict::StaysInNoiseBand => "stays in the noise band".into(),
+            pdamp::dem::ReplicaVerdict::SeparatesToAttractor {
                 growth_per_s,
                 stderr_per_s,
             } => format!(
                 "separates to the attractor's size, growth {growth_per_s:.3} ± {stderr_per_s:.3} 1/s"
             ),
-            crate::dem::ReplicaVerdict::Inconclusive { why } => format!("inconclusive: {why}"),
+            pdamp::dem::ReplicaVerdict::Inconclusive { why } => format!("inconclusive: {why}"),
         };
         println!(
             "replica (δ0 = {:e} m, {} strobes): {verdict}; saturated separation {:.3e} m, noise band {:.3e} m, attractor size {:.3e} m",
@@ -121,7 +122,7 @@ fn write_outputs(
         obj.insert("auto_choice".into(), serde_json::Value::String(why));
     }
     let json = serde_json::to_string_pretty(&value)?;
-    crate::sweep::runner::atomic_write(&out.join("summary.json"), json.as_bytes())?;
+    pdamp::sweep::runner::atomic_write(&out.join("summary.json"), json.as_bytes())?;
     let mut strobe = String::from("cycle,time_s,grain_z_m,box_z_m,grain_v_m_s,box_v_m_s\n");
     for p in &summary.strobe {
         strobe.push_str(&format!(
@@ -134,7 +135,7 @@ fn write_outputs(
             fmt_num(p.box_v_m_s)
         ));
     }
-    crate::sweep::runner::atomic_write(&out.join("strobe.csv"), strobe.as_bytes())?;
+    pdamp::sweep::runner::atomic_write(&out.join("strobe.csv"), strobe.as_bytes())?;
     if let Some(r) = &summary.replica {
         let mut csv = String::from("cycle,time_s,grain_z_a_m,grain_z_b_m,separation_m\n");
         for row in &r.rows {
@@ -147,8 +148,8 @@ fn write_outputs(
                 fmt_num(row.separation_m)
             ));
         }
-        crate::sweep::runner::atomic_write(&out.join("replica.csv"), csv.as_bytes())?;
+        pdamp::sweep::runner::atomic_write(&out.join("replica.csv"), csv.as_bytes())?;
     }
-    crate::sweep::runner::atomic_write(&out.join("scene.toml"), scene.to_toml()?.as_bytes())?;
+    pdamp::sweep::runner::atomic_write(&out.join("scene.toml"), scene.to_toml()?.as_bytes())?;
     Ok(())
 }

@@ -4,11 +4,11 @@ use std::io::Write;
 
 use anyhow::Context;
 
-use crate::analysis::spectrum::{
+use crate::cli::commands::mutual::SeriesInput;
+use pdamp::analysis::spectrum::{
     line_power_fraction, power_spectrum, spectral_lines, LineOptions, Normalization,
     SpectrumOptions, Window,
 };
-use crate::cli::commands::mutual::SeriesInput;
 
 /// Long help of `pdamp spectrum`: what it writes and how to read it.
 const LONG_HELP: &str = "Output (CSV on stdout, header row): the one-sided spectrum, columns

@@ -6,15 +6,15 @@ use std::io::Write;
 use anyhow::Context;
 use serde::Serialize;
 
-use crate::analysis::prediction_error::{prediction_error, PredictionErrorOptions};
-use crate::analysis::surrogate_test::{
-    surrogate_test, SurrogateTestOptions, SurrogateTestResult, Tail,
-};
-use crate::analysis::surrogates::{SurrogateMethod, SurrogateOptions};
-use crate::analysis::time_reversal::time_reversal_asymmetry;
 use crate::cli::commands::mutual::SeriesInput;
 use crate::cli::commands::surrogates::{reject_time_column, select_segment};
-use crate::error::AnalysisError;
+use pdamp::analysis::prediction_error::{prediction_error, PredictionErrorOptions};
+use pdamp::analysis::surrogate_test::{
+    surrogate_test, SurrogateTestOptions, SurrogateTestResult, Tail,
+};
+use pdamp::analysis::surrogates::{SurrogateMethod, SurrogateOptions};
+use pdamp::analysis::time_reversal::time_reversal_asymmetry;
+use pdamp::error::AnalysisError;
 
 /// The discriminating statistic.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize)]

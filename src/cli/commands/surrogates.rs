@@ -5,10 +5,10 @@ use std::io::Write;
 
 use anyhow::{bail, Context};
 
-use crate::analysis::surrogates::{
+use crate::cli::commands::mutual::SeriesInput;
+use pdamp::analysis::surrogates::{
     end_to_end_segment, surrogates, SurrogateMethod, SurrogateOptions,
 };
-use crate::cli::commands::mutual::SeriesInput;
 
 /// Arguments of `pdamp surrogates`.
 ///
@@ -81,8 +81,8 @@ pub(crate) fn reject_time_column(x: &[f64], input: &SeriesInput) -> anyhow::Resu
              column; select the signal column with -c (e.g. -c 2)",
             input.file,
             match &input.column {
-                crate::io::Column::Index(i) => i.to_string(),
-                crate::io::Column::Name(n) => format!("`{n}`"),
+                pdamp::io::Column::Index(i) => i.to_string(),
+                pdamp::io::Column::Name(n) => format!("`{n}`"),
             },
             x[0],
             x[x.len() - 1]
@@ -153,7 +153,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         text.push('\n');
     }
     match &args.output {
-        Some(path) => crate::io::atomic_write(std::path::Path::new(path), text.as_bytes())?,
+        Some(path) => pdamp::io::atomic_write(std::path::Path::new(path), text.as_bytes())?,
         None => {
             let mut out = std::io::stdout().lock();
             out.write_all(text.as_bytes())?;

@@ -1,9 +1,9 @@
 //! `pdamp sweep SCENE --vary KEY=START:STOP:STEP [--vary …] --out DIR`: parallel, resumable
 //! parameter sweep writing `DIR/sweep.csv`, `DIR/strobe.csv` and `DIR/points/<i>.json`.
 
-use crate::sweep::{run_sweep, SweepSpec, Vary};
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
+use pdamp::sweep::{run_sweep, SweepSpec, Vary};
 use std::path::PathBuf;
 
 /// Arguments of `pdamp sweep`.
@@ -42,8 +42,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         analyze: !args.no_analysis,
     };
     let n: usize = spec.varies.iter().map(|v| v.values.len()).product();
-    let bar =
-        ProgressBar::with_draw_target(Some(n as u64), crate::observe::progress::draw_target());
+    let bar = ProgressBar::with_draw_target(Some(n as u64), crate::cli::progress::draw_target());
     bar.set_style(
         ProgressStyle::with_template(
             "sweep [{elapsed_precise}] {wide_bar} {pos}/{len} points (eta {eta})",

@@ -7,13 +7,13 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 
-use crate::plot::pareto::{ParetoFigure, ParetoPoint};
-use crate::plot::{render, FigureOptions};
-use crate::scene::Damper;
-use crate::tradeoff::measure::Rig;
-use crate::tradeoff::study::{run_study, Study, StudyOptions};
-use crate::tradeoff::table::{runs_csv, settings_csv};
-use crate::tradeoff::LadderOptions;
+use pdamp::plot::pareto::{ParetoFigure, ParetoPoint};
+use pdamp::plot::{render, FigureOptions};
+use pdamp::scene::Damper;
+use pdamp::tradeoff::measure::Rig;
+use pdamp::tradeoff::study::{run_study, Study, StudyOptions};
+use pdamp::tradeoff::table::{runs_csv, settings_csv};
+use pdamp::tradeoff::LadderOptions;
 
 /// Arguments of `pdamp tradeoff`.
 #[derive(Debug, clap::Args)]
@@ -91,7 +91,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         "errors: largest over the frequencies of |x - x_ref| / x_ref; M_ef, C_ef fitted with (2.1.21) to the 3 points".into(),
     ];
     let write = |name: &str, text: String| -> anyhow::Result<()> {
-        crate::sweep::runner::atomic_write(&args.out.join(name), text.as_bytes())?;
+        pdamp::sweep::runner::atomic_write(&args.out.join(name), text.as_bytes())?;
         Ok(())
     };
     write("tradeoff.csv", runs_csv(&study))?;
@@ -122,7 +122,7 @@ fn pct(e: Option<f64>) -> String {
 
 /// The Pareto plots: Z, dissipation, C_ef and Lyapunov-exponent errors against wall time.
 fn plot_all(study: &Study, out: &Path) -> anyhow::Result<()> {
-    type Get = fn(&crate::tradeoff::study::SettingRow) -> Option<f64>;
+    type Get = fn(&pdamp::tradeoff::study::SettingRow) -> Option<f64>;
     let figs: [(&str, &str, Get); 4] = [
         (
             "tradeoff_amplitude.png",
@@ -148,14 +148,14 @@ fn plot_all(study: &Study, out: &Path) -> anyhow::Result<()> {
     let ref_wall = study
         .settings
         .iter()
-        .find(|s| s.axis == crate::tradeoff::Axis::Reference)
+        .find(|s| s.axis == pdamp::tradeoff::Axis::Reference)
         .map(|s| s.wall_time_s);
     for (file, label, get) in figs {
-        let rows: Vec<(&crate::tradeoff::study::SettingRow, f64)> = study
+        let rows: Vec<(&pdamp::tradeoff::study::SettingRow, f64)> = study
             .settings
             .iter()
             .filter(|s| {
-                s.axis != crate::tradeoff::Axis::Reference
+                s.axis != pdamp::tradeoff::Axis::Reference
                     && s.wall_time_s > 0.0
                     && s.wall_time_s.is_finite()
             })
@@ -164,7 +164,7 @@ fn plot_all(study: &Study, out: &Path) -> anyhow::Result<()> {
         if rows.is_empty() {
             continue;
         }
-        let front = crate::tradeoff::pareto::pareto_front(
+        let front = pdamp::tradeoff::pareto::pareto_front(
             &rows
                 .iter()
                 .map(|(s, e)| (s.wall_time_s, *e))

@@ -1,8 +1,8 @@
 //! Progress bar observer (indicatif), hidden when stderr is not a terminal (CI, pipes).
 
-use super::{Observer, Sample};
-use crate::error::SimError;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use pdamp::error::SimError;
+use pdamp::observe::{Observer, Sample};
 use std::io::IsTerminal;
 
 /// Shows simulated time against the run's duration.
