@@ -1,6 +1,8 @@
 //! Input/output of series and tables: TISEAN-style plain text / CSV series ([`series`]) and
-//! atomic file writes ([`atomic_write`]).
+//! atomic file writes ([`atomic_write`], synced; the one copy every writer uses).
 
+pub mod atomic;
 pub mod series;
 
-pub use series::{atomic_write, read_columns, read_series, Column, SeriesReadOptions};
+pub use atomic::atomic_write;
+pub use series::{read_columns, read_series, Column, SeriesReadOptions};

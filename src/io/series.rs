@@ -1,12 +1,11 @@
-//! Reading one- or many-column series files as TISEAN users expect, and atomic writes.
+//! Reading one- or many-column series files as TISEAN users expect.
 //!
 //! Accepted format: one sample per line; fields separated by commas, semicolons, tabs or
 //! spaces; blank lines and lines starting with `#` are skipped; an optional header row (the
 //! first non-comment line, if any field is not a number) names the columns. Columns are
 //! selected by 1-based number as TISEAN's `-c`, or by header name. `-` reads standard input.
 
-use std::io::{BufRead, BufReader, Write};
-use std::path::Path;
+use std::io::{BufRead, BufReader};
 
 use crate::error::DataError;
 
@@ -238,40 +237,6 @@ pub fn parse_str(
     parse_lines(text.as_bytes(), name, opts)
 }
 
-/// Writes `bytes` to `path` atomically: to a temporary file in the same directory, flushed
-/// and synced, then renamed over `path`. Readers see the old or the new file, never a part.
-///
-/// # Errors
-/// [`DataError::Io`] naming the path.
-pub fn atomic_write(path: &Path, bytes: &[u8]) -> Result<(), DataError> {
-    let io_err = |source| DataError::Io {
-        path: path.display().to_string(),
-        source,
-    };
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let file_name = path
-        .file_name()
-        .ok_or_else(|| io_err(std::io::Error::other("not a file path")))?;
-    let tmp = dir.join(format!(
-        ".{}.tmp{}",
-        file_name.to_string_lossy(),
-        std::process::id()
-    ));
-    let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result.map_err(io_err)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -312,16 +277,5 @@ mod tests {
         let e = parse_str("1,2\n2,x\n", "d", &opts(&["2"])).unwrap_err();
         assert!(e.to_string().contains("`x` is not a number"), "{e}");
         assert!("0".parse::<Column>().is_err());
-    }
-
-    #[test]
-    fn atomic_write_replaces_file() {
-        let dir = std::env::temp_dir().join(format!("pdamp-io-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let p = dir.join("out.csv");
-        atomic_write(&p, b"a").unwrap();
-        atomic_write(&p, b"bc").unwrap();
-        assert_eq!(std::fs::read(&p).unwrap(), b"bc");
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -269,9 +269,15 @@ impl Ctx<'_> {
     /// [`StudyError::Output`] naming the file.
     pub fn write_text(&self, file: &str, text: &str) -> Result<(), StudyError> {
         let path = self.path(file);
-        crate::sweep::runner::atomic_write(&path, text.as_bytes()).map_err(|e| StudyError::Output {
+        crate::io::atomic_write(&path, text.as_bytes()).map_err(|e| StudyError::Output {
             path: path.display().to_string(),
-            message: e.to_string(),
+            // the message the sweep's writer gave before the one `io::atomic_write`
+            message: match e {
+                crate::error::DataError::Io { source, .. } => {
+                    format!("output: {}: {source}", path.display())
+                }
+                other => other.to_string(),
+            },
         })
     }
 }

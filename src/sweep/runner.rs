@@ -88,18 +88,12 @@ fn out_err(path: &Path, e: impl std::fmt::Display) -> SimError {
     SimError::Output(format!("{}: {e}", path.display()))
 }
 
-/// Write `data` to `path` atomically (temporary file in the same directory, then rename).
-///
-/// # Errors
-/// [`SimError::Output`] naming the path.
-pub fn atomic_write(path: &Path, data: &[u8]) -> Result<(), SimError> {
-    let tmp = path.with_extension(format!(
-        "{}.tmp{}",
-        path.extension().and_then(|e| e.to_str()).unwrap_or(""),
-        std::process::id()
-    ));
-    std::fs::write(&tmp, data).map_err(|e| out_err(&tmp, e))?;
-    std::fs::rename(&tmp, path).map_err(|e| out_err(path, e))
+/// [`crate::io::atomic_write`] with the sweep's error type ([`SimError::Output`] naming the path).
+fn atomic_write(path: &Path, data: &[u8]) -> Result<(), SimError> {
+    crate::io::atomic_write(path, data).map_err(|e| match e {
+        crate::error::DataError::Io { source, .. } => out_err(path, source),
+        other => SimError::Output(other.to_string()),
+    })
 }
 
 fn value_str(v: &toml::Value) -> String {

@@ -122,7 +122,7 @@ fn write_outputs(
         obj.insert("auto_choice".into(), serde_json::Value::String(why));
     }
     let json = serde_json::to_string_pretty(&value)?;
-    pdamp::sweep::runner::atomic_write(&out.join("summary.json"), json.as_bytes())?;
+    pdamp::io::atomic_write(&out.join("summary.json"), json.as_bytes())?;
     let mut strobe = String::from("cycle,time_s,grain_z_m,box_z_m,grain_v_m_s,box_v_m_s\n");
     for p in &summary.strobe {
         strobe.push_str(&format!(
@@ -135,7 +135,7 @@ fn write_outputs(
             fmt_num(p.box_v_m_s)
         ));
     }
-    pdamp::sweep::runner::atomic_write(&out.join("strobe.csv"), strobe.as_bytes())?;
+    pdamp::io::atomic_write(&out.join("strobe.csv"), strobe.as_bytes())?;
     if let Some(r) = &summary.replica {
         let mut csv = String::from("cycle,time_s,grain_z_a_m,grain_z_b_m,separation_m\n");
         for row in &r.rows {
@@ -148,8 +148,8 @@ fn write_outputs(
                 fmt_num(row.separation_m)
             ));
         }
-        pdamp::sweep::runner::atomic_write(&out.join("replica.csv"), csv.as_bytes())?;
+        pdamp::io::atomic_write(&out.join("replica.csv"), csv.as_bytes())?;
     }
-    pdamp::sweep::runner::atomic_write(&out.join("scene.toml"), scene.to_toml()?.as_bytes())?;
+    pdamp::io::atomic_write(&out.join("scene.toml"), scene.to_toml()?.as_bytes())?;
     Ok(())
 }

@@ -91,7 +91,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         "errors: largest over the frequencies of |x - x_ref| / x_ref; M_ef, C_ef fitted with (2.1.21) to the 3 points".into(),
     ];
     let write = |name: &str, text: String| -> anyhow::Result<()> {
-        pdamp::sweep::runner::atomic_write(&args.out.join(name), text.as_bytes())?;
+        pdamp::io::atomic_write(&args.out.join(name), text.as_bytes())?;
         Ok(())
     };
     write("tradeoff.csv", runs_csv(&study))?;
