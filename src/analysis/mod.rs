@@ -3,13 +3,15 @@
 //! Lyapunov exponent (4.1.7), spectra, Poincaré sections and the regime classifier; surrogate
 //! data (IAAFT, FT, shuffle) with a rank test of discriminating statistics (time-reversal
 //! asymmetry, nonlinear prediction error); the correlation dimension (Grassberger–Procaccia),
-//! Cao's embedding dimension, Rosenstein's maximal exponent and recurrence quantification.
+//! Cao's embedding dimension, Rosenstein's maximal exponent, recurrence quantification and the
+//! autocorrelation's first zero.
 //!
 //! One file per estimator. This module holds the helpers they share: series validation
 //! ([`validate_series`]), rescaling to [0, 1] as TISEAN does ([`rescale_unit`]) and the Theiler
 //! window test ([`outside_theiler_window`]).
 
 pub mod analyze;
+pub mod autocorrelation;
 pub mod box_grid;
 pub mod cao;
 pub mod correlation_dimension;
@@ -35,6 +37,7 @@ pub mod surrogates;
 pub mod time_reversal;
 pub mod zero_one_test;
 
+pub use autocorrelation::{autocorrelation, first_zero_lag};
 pub use cao::{cao, CaoOptions, CaoResult};
 pub use correlation_dimension::{
     correlation_dimension, correlation_sum, estimate_d2, CorrelationSums, D2Estimate, D2Options,

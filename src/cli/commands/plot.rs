@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, bail, Context};
 
+use pdamp::analysis::autocorrelation::first_zero_lag;
 use pdamp::analysis::false_nearest_neighbors::{false_nearest_neighbors, FnnOptions};
 use pdamp::analysis::kantz::{estimate_from_curves, kantz, KantzOptions, ScalingOptions};
 use pdamp::analysis::mutual_information::{mutual_information, MutualInformationOptions};
@@ -390,7 +391,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             };
             let lag = match o.lag {
                 Some(l) => l,
-                None => acf_zero_lag(&s).with_context(|| {
+                None => first_zero_lag(&s).with_context(|| {
                     format!("{}: give --lag (samples)", args.inputs[0].display())
                 })?,
             };
@@ -888,36 +889,17 @@ fn read_series(
         .flat_map(|h| h.split_whitespace())
         .all(|h| h.parse::<f64>().is_ok());
     if numeric_header {
-        // plain file: no header row; re-read all lines as whitespace/comma separated numbers
+        // plain file: no header row; re-read it with the series reader of every analysis verb
         let idx: usize = column
             .unwrap_or("1")
             .parse()
             .context("--column must be a 1-based index for a plain numeric file")?;
-        let text = std::fs::read_to_string(path)?;
-        let mut v = Vec::new();
-        for (ln, line) in text.lines().enumerate() {
-            let line = line.trim();
-            if line.is_empty() || line.starts_with('#') {
-                continue;
-            }
-            let cell = line
-                .split(|c: char| c == ',' || c.is_whitespace())
-                .filter(|s| !s.is_empty())
-                .nth(idx.saturating_sub(1))
-                .with_context(|| format!("{}:{}: no column {idx}", path.display(), ln + 1))?;
-            let x: f64 = cell
-                .parse()
-                .ok()
-                .filter(|x: &f64| x.is_finite())
-                .with_context(|| {
-                    format!(
-                        "{}:{}: `{cell}` is not a finite number",
-                        path.display(),
-                        ln + 1
-                    )
-                })?;
-            v.push(x);
-        }
+        // column 0 reads the first column, as before this reader moved to `io::series`
+        let read = SeriesReadOptions {
+            columns: vec![Column::Index(idx.max(1))],
+            ..SeriesReadOptions::default()
+        };
+        let v = read_series_file(&path.to_string_lossy(), &read)?;
         return Ok((v, format!("column {idx}")));
     }
     let name = column.map(str::to_string).unwrap_or_else(|| {
@@ -928,24 +910,4 @@ fn read_series(
         }
     });
     Ok((table.f64_column(&name)?, name))
-}
-
-/// First lag where the autocorrelation of `s` drops to ≤ 0 (a simple default delay; the
-/// mutual-information minimum of `pdamp mutual` is the better choice).
-fn acf_zero_lag(s: &[f64]) -> anyhow::Result<usize> {
-    let n = s.len();
-    let mean = s.iter().sum::<f64>() / n as f64;
-    let var: f64 = s.iter().map(|x| (x - mean).powi(2)).sum();
-    if var <= 0.0 {
-        bail!("series is constant: no delay reconstruction");
-    }
-    for lag in 1..n / 2 {
-        let c: f64 = (0..n - lag)
-            .map(|i| (s[i] - mean) * (s[i + lag] - mean))
-            .sum();
-        if c <= 0.0 {
-            return Ok(lag);
-        }
-    }
-    bail!("autocorrelation never reaches 0 within half the series")
 }
