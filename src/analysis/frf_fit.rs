@@ -443,6 +443,102 @@ fn summarise(
     })
 }
 
+/// One group's fit from [`fit_frf_groups`]: the value of the group key (`None` when all rows
+/// form one group) and the (2.1.21) fit of its points.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct FrfGroupFit {
+    /// Value of the group key shared by the group's rows (units of the key), or `None`.
+    pub group_value: Option<f64>,
+    /// The fit of the group's points, sorted by frequency.
+    #[serde(flatten)]
+    pub fit: FrfFit,
+}
+
+/// A group whose points [`fit_frf`] could not fit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrfGroupError {
+    /// Value of the group key (`None` for the single group of all rows).
+    pub group_value: Option<f64>,
+    /// Why the fit failed.
+    pub error: AnalysisError,
+}
+
+/// Fits (2.1.21) to each group of rows sharing a value of `group` (e.g. the container gap of a
+/// sweep over gap × frequency): one [`FrfGroupFit`] per distinct value, in increasing order,
+/// each fitted to its rows sorted by frequency (a stable sort: rows already in frequency order
+/// keep it). Without `group`, one fit of all rows with `group_value: None`.
+///
+/// # Units
+/// `frequency_hz` in Hz, `amplitude_m` in m, `group` in the key's units; K and U in `opts`.
+///
+/// # Errors
+/// [`FrfGroupError`] with the first group (in increasing order) whose fit failed; the error
+/// is that of [`fit_frf`].
+///
+/// # Panics
+/// If `group` or `amplitude_m` is not as long as `frequency_hz`.
+///
+/// ```
+/// use pdamp::analysis::frf_fit::{fit_frf_groups, FrfFitOptions};
+/// use pdamp::model::PrimarySystem;
+/// let (k, u) = (21500.0, 4.5e-3);
+/// let (mut f, mut z, mut g) = (vec![], vec![], vec![]);
+/// for (gap, m) in [(0.01, 2.5), (0.02, 2.7)] {
+///     let p = PrimarySystem { mass_kg: m, stiffness_n_m: k, damping_n_s_m: 7.6 };
+///     for i in 1..=60 {
+///         f.push(0.5 * i as f64);
+///         z.push(p.steady_amplitude_at_hz(u, 0.5 * i as f64));
+///         g.push(gap);
+///     }
+/// }
+/// let fits = fit_frf_groups(&f, &z, Some(&g), &FrfFitOptions::new(k, u)).unwrap();
+/// assert_eq!(fits.len(), 2);
+/// assert_eq!(fits[1].group_value, Some(0.02));
+/// assert!((fits[1].fit.mass_ef_kg / 2.7 - 1.0).abs() < 1e-6);
+/// ```
+pub fn fit_frf_groups(
+    frequency_hz: &[f64],
+    amplitude_m: &[f64],
+    group: Option<&[f64]>,
+    opts: &FrfFitOptions,
+) -> Result<Vec<FrfGroupFit>, FrfGroupError> {
+    assert_eq!(
+        frequency_hz.len(),
+        amplitude_m.len(),
+        "one amplitude per frequency"
+    );
+    let groups: Vec<(Option<f64>, Vec<usize>)> = match group {
+        Some(v) => {
+            assert_eq!(v.len(), frequency_hz.len(), "one group value per row");
+            let mut idx: Vec<usize> = (0..v.len()).collect();
+            idx.sort_by(|&a, &b| v[a].total_cmp(&v[b]));
+            let mut out: Vec<(Option<f64>, Vec<usize>)> = Vec::new();
+            for i in idx {
+                match out.last_mut() {
+                    Some((Some(gv), rows)) if *gv == v[i] => rows.push(i),
+                    _ => out.push((Some(v[i]), vec![i])),
+                }
+            }
+            out
+        }
+        None => vec![(None, (0..frequency_hz.len()).collect())],
+    };
+    groups
+        .into_iter()
+        .map(|(group_value, rows)| {
+            let mut pts: Vec<(f64, f64)> = rows
+                .iter()
+                .map(|&i| (frequency_hz[i], amplitude_m[i]))
+                .collect();
+            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let (fs, zs): (Vec<f64>, Vec<f64>) = pts.into_iter().unzip();
+            fit_frf(&fs, &zs, opts)
+                .map(|fit| FrfGroupFit { group_value, fit })
+                .map_err(|error| FrfGroupError { group_value, error })
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -8,7 +8,7 @@
 
 use std::path::PathBuf;
 
-use crate::analysis::frf_fit::{fit_frf, FrfFitOptions};
+use crate::analysis::frf_fit::{fit_frf_groups, FrfFitOptions, FrfGroupFit};
 use crate::analysis::mutual_information::{mutual_information, MutualInformationOptions};
 use crate::analysis::spectrum::{power_spectrum, SpectrumOptions};
 use crate::error::StudyError;
@@ -321,23 +321,22 @@ fn impact_gap_grid(ctx: &Ctx, s: &Settings, e: f64) -> Result<SweepResult, Study
 pub fn fit_groups(step: &str, t: &Table, key: &str) -> Result<Vec<EffectiveRow>, StudyError> {
     let f = col(step, t, "frequency_hz")?;
     let z = col(step, t, "amplitude_m")?;
+    let g = col(step, t, key)?;
     let opts = FrfFitOptions::new(SCENE_B.primary.stiffness_n_m, SCENE_B.base_amplitude_m);
-    group_by(step, t, key)?
+    let fits = fit_frf_groups(&f, &z, Some(&g), &opts).map_err(|e| {
+        let x = e.group_value.unwrap_or(f64::NAN);
+        StudyError::step(step, format!("fit at {key} = {x}: {}", e.error))
+    })?;
+    Ok(fits
         .into_iter()
-        .map(|(x, idx)| {
-            let fi: Vec<f64> = idx.iter().map(|&i| f[i]).collect();
-            let zi: Vec<f64> = idx.iter().map(|&i| z[i]).collect();
-            let fit = fit_frf(&fi, &zi, &opts)
-                .map_err(|e| StudyError::step(step, format!("fit at {key} = {x}: {e}")))?;
-            Ok(EffectiveRow {
-                x_m: x,
-                mass_ef_kg: fit.mass_ef_kg,
-                mass_ef_stderr_kg: fit.mass_ef_stderr_kg,
-                damping_ef_n_s_m: fit.damping_ef_n_s_m,
-                damping_ef_stderr_n_s_m: fit.damping_ef_stderr_n_s_m,
-            })
+        .map(|FrfGroupFit { group_value, fit }| EffectiveRow {
+            x_m: group_value.unwrap_or(f64::NAN),
+            mass_ef_kg: fit.mass_ef_kg,
+            mass_ef_stderr_kg: fit.mass_ef_stderr_kg,
+            damping_ef_n_s_m: fit.damping_ef_n_s_m,
+            damping_ef_stderr_n_s_m: fit.damping_ef_stderr_n_s_m,
         })
-        .collect()
+        .collect())
 }
 
 /// Draws an effective-mass figure from fits and writes its CSV.

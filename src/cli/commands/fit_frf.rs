@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Context};
 
-use pdamp::analysis::frf_fit::{fit_frf, FrfFit, FrfFitOptions, FrfResidual};
+use pdamp::analysis::frf_fit::{fit_frf_groups, FrfFitOptions, FrfGroupFit, FrfResidual};
 use pdamp::analysis::optimum::{level_crossings, parabolic_peak, Located};
 use pdamp::plot::table::Table;
 
@@ -52,14 +52,6 @@ pub enum ResidualArg {
     Absolute,
 }
 
-/// One group's fit, with the value of the group key.
-#[derive(Debug, serde::Serialize)]
-struct GroupFit {
-    group_value: Option<f64>,
-    #[serde(flatten)]
-    fit: FrfFit,
-}
-
 /// The optimum of the group key, as far as it can be located.
 #[derive(Debug, Default, serde::Serialize)]
 struct Optimum {
@@ -86,21 +78,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let f = table.f64_column("frequency_hz")?;
     let z = table.f64_column("amplitude_m")?;
     let group = args.group.clone().or_else(|| auto_group(&table));
-    let mut groups: Vec<(f64, Vec<usize>)> = Vec::new();
-    match &group {
-        Some(g) => {
-            let v = table.f64_column(g)?;
-            let mut idx: Vec<usize> = (0..v.len()).collect();
-            idx.sort_by(|&a, &b| v[a].total_cmp(&v[b]));
-            for i in idx {
-                match groups.last_mut() {
-                    Some((gv, rows)) if *gv == v[i] => rows.push(i),
-                    _ => groups.push((v[i], vec![i])),
-                }
-            }
-        }
-        None => groups.push((f64::NAN, (0..f.len()).collect())),
-    }
+    let group_values = group.as_ref().map(|g| table.f64_column(g)).transpose()?;
     let opts = FrfFitOptions {
         residual: match args.residual {
             ResidualArg::Log => FrfResidual::Log,
@@ -108,21 +86,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         },
         ..FrfFitOptions::new(args.stiffness, args.base_amplitude)
     };
-    let mut fits = Vec::new();
-    for (gv, rows) in &groups {
-        let mut pts: Vec<(f64, f64)> = rows.iter().map(|&i| (f[i], z[i])).collect();
-        pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let (fs, zs): (Vec<f64>, Vec<f64>) = pts.into_iter().unzip();
-        let where_ = match &group {
-            Some(g) => format!("{} (group {g} = {gv})", args.input.display()),
-            None => args.input.display().to_string(),
+    let fits = fit_frf_groups(&f, &z, group_values.as_deref(), &opts).map_err(|e| {
+        let where_ = match (&group, e.group_value) {
+            (Some(g), Some(gv)) => format!("{} (group {g} = {gv})", args.input.display()),
+            _ => args.input.display().to_string(),
         };
-        let fit = fit_frf(&fs, &zs, &opts).with_context(|| format!("fitting {where_}"))?;
-        fits.push(GroupFit {
-            group_value: group.as_ref().map(|_| *gv),
-            fit,
-        });
-    }
+        anyhow::Error::new(e.error).context(format!("fitting {where_}"))
+    })?;
     let optimum = (fits.len() >= 3).then(|| optimum(&fits, args.mass));
     if let Some(Err(e)) = &optimum {
         bail!("{e}");
@@ -147,7 +117,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn optimum(fits: &[GroupFit], mass: Option<f64>) -> anyhow::Result<Optimum> {
+fn optimum(fits: &[FrfGroupFit], mass: Option<f64>) -> anyhow::Result<Optimum> {
     let x: Vec<f64> = fits
         .iter()
         .map(|g| g.group_value.unwrap_or(f64::NAN))
@@ -188,7 +158,7 @@ fn describe(key: &str, o: &Optimum) -> String {
     s
 }
 
-fn print_csv(group: Option<&str>, fits: &[GroupFit]) {
+fn print_csv(group: Option<&str>, fits: &[FrfGroupFit]) {
     let mut header = String::new();
     if let Some(g) = group {
         header += g;
