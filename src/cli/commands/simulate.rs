@@ -1,11 +1,12 @@
 //! `pdamp simulate SCENE --out DIR [--set key=value …]`: run one scene, write
 //! `DIR/series.csv`, `DIR/summary.json`, `DIR/strobe.csv` and the resolved `DIR/scene.toml`;
-//! with `run.replica` (DEM two-replica test) also `DIR/replica.csv`.
+//! with `run.replica` (DEM two-replica test) also `DIR/replica.csv` (layout and writer:
+//! [`pdamp::io::run_dir`]).
 
 use crate::cli::progress::ProgressObserver;
 use anyhow::Context;
-use pdamp::model::RunSummary;
-use pdamp::observe::{fmt_num, CsvRecorder, Tee};
+use pdamp::io::RunDir;
+use pdamp::observe::Tee;
 use pdamp::scene::{parse_assignment, Scene, SceneSource};
 use pdamp::sweep::run::run_resolved;
 use std::path::{Path, PathBuf};
@@ -58,9 +59,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         eprintln!("{why}");
         why
     });
-    std::fs::create_dir_all(&args.out)
+    let dir = RunDir::create(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
-    let mut csv = CsvRecorder::create(&args.out.join("series.csv"))?;
+    let mut csv = dir.series_recorder()?;
     let mut bar = ProgressObserver::new(scene.duration_s(), "simulate");
     let mut tee = Tee {
         observers: vec![&mut csv, &mut bar],
@@ -71,7 +72,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         &pdamp::setup::full_series(&scene),
         !args.no_analysis,
     )?;
-    write_outputs(&args.out, &scene, &summary, auto_choice)?;
+    dir.write_outputs(&scene, &summary, auto_choice)?;
     println!(
         "{}: f = {} Hz, amplitude Z = {:.6e} m{}, impacts/cycle = {}, energy balance residual = {}",
         summary.model,
@@ -108,48 +109,5 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         );
     }
     println!("wrote {}", args.out.display());
-    Ok(())
-}
-
-fn write_outputs(
-    out: &Path,
-    scene: &Scene,
-    summary: &RunSummary,
-    auto_choice: Option<String>,
-) -> anyhow::Result<()> {
-    let mut value = serde_json::to_value(summary)?;
-    if let (Some(why), Some(obj)) = (auto_choice, value.as_object_mut()) {
-        obj.insert("auto_choice".into(), serde_json::Value::String(why));
-    }
-    let json = serde_json::to_string_pretty(&value)?;
-    pdamp::io::atomic_write(&out.join("summary.json"), json.as_bytes())?;
-    let mut strobe = String::from("cycle,time_s,grain_z_m,box_z_m,grain_v_m_s,box_v_m_s\n");
-    for p in &summary.strobe {
-        strobe.push_str(&format!(
-            "{},{},{},{},{},{}\n",
-            p.cycle,
-            fmt_num(p.time_s),
-            fmt_num(p.grain_z_m),
-            fmt_num(p.box_z_m),
-            fmt_num(p.grain_v_m_s),
-            fmt_num(p.box_v_m_s)
-        ));
-    }
-    pdamp::io::atomic_write(&out.join("strobe.csv"), strobe.as_bytes())?;
-    if let Some(r) = &summary.replica {
-        let mut csv = String::from("cycle,time_s,grain_z_a_m,grain_z_b_m,separation_m\n");
-        for row in &r.rows {
-            csv.push_str(&format!(
-                "{},{},{},{},{}\n",
-                row.cycle,
-                fmt_num(row.time_s),
-                fmt_num(row.grain_z_a_m),
-                fmt_num(row.grain_z_b_m),
-                fmt_num(row.separation_m)
-            ));
-        }
-        pdamp::io::atomic_write(&out.join("replica.csv"), csv.as_bytes())?;
-    }
-    pdamp::io::atomic_write(&out.join("scene.toml"), scene.to_toml()?.as_bytes())?;
     Ok(())
 }
