@@ -22,7 +22,9 @@
 //! - [`systems`]: logistic, Hénon, Lorenz, Rössler, bouncing ball — literature references.
 //! - [`plot`]: headless PNG figures (SPEC §7).
 //! - [`tradeoff`]: speed against accuracy of the models and settings; `kind = "auto"`.
-//! - [`io`]: series and CSV input/output, atomic writes.
+//! - [`io`]: series and CSV input/output, the run directory, atomic writes.
+//! - [`prelude`]: the common types in one `use pdamp::prelude::*;` (see
+//!   `examples/end_to_end.rs`: scene → simulate with an observer → analyse → figure).
 //!
 //! The `pdamp` command line is not part of the library: it lives in the binary (`src/main.rs`,
 //! `src/cli/`, cargo feature `cli`, on by default). `cargo build --lib --no-default-features`
@@ -41,6 +43,7 @@ pub mod neighbor;
 pub mod observe;
 pub mod packing;
 pub mod plot;
+pub mod prelude;
 pub mod scene;
 pub mod setup;
 pub mod study;
