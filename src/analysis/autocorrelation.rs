@@ -41,9 +41,9 @@ pub fn autocorrelation(s: &[f64], max_lag: usize) -> Result<Vec<f64>, AnalysisEr
 /// First lag k ≥ 1 (samples) with C(k) ≤ 0, searched for k < N/2.
 ///
 /// # Errors
-/// [`AnalysisError::NoResult`] if the series is constant ("series is constant: no delay
-/// reconstruction") or the autocovariance stays positive up to N/2, which includes series
-/// shorter than 4 samples ("autocorrelation never reaches 0 within half the series").
+/// [`AnalysisError::NoResult`] if the series is constant or empty ("series is constant: no
+/// delay reconstruction") or the autocovariance stays positive up to N/2 ("autocorrelation
+/// never reaches 0 within half the series").
 pub fn first_zero_lag(s: &[f64]) -> Result<usize, AnalysisError> {
     let n = s.len();
     let (mean, c0) = mean_and_c0(s);
@@ -79,14 +79,16 @@ mod tests {
 
     #[test]
     fn sine_crosses_zero_at_a_quarter_period() {
-        // 40 samples per period: ρ(k) ≈ cos(2πk/40) crosses 0 at k = 10
-        let s: Vec<f64> = (0..4000)
-            .map(|i| (2.0 * std::f64::consts::PI * i as f64 / 40.0).sin())
+        // 41 samples per period: ρ(k) ≈ cos(2πk/41) crosses 0 between k = 10 and 11
+        let s: Vec<f64> = (0..4100)
+            .map(|i| (2.0 * std::f64::consts::PI * i as f64 / 41.0).sin())
             .collect();
-        assert_eq!(first_zero_lag(&s).unwrap(), 10);
+        assert_eq!(first_zero_lag(&s).unwrap(), 11);
         let r = autocorrelation(&s, 20).unwrap();
         assert!((r[0] - 1.0).abs() < 1e-12);
-        assert!((r[20] + 1.0).abs() < 0.01, "{}", r[20]);
+        // ρ(20) ≈ (1 − 20/N) cos(2π·20/41) (the sums are not divided by N − k)
+        let expected = (1.0 - 20.0 / 4100.0) * (2.0 * std::f64::consts::PI * 20.0 / 41.0).cos();
+        assert!((r[20] - expected).abs() < 1e-3, "{} vs {expected}", r[20]);
     }
 
     #[test]
@@ -94,9 +96,9 @@ mod tests {
         let e = first_zero_lag(&[1.0; 10]).unwrap_err();
         assert_eq!(e.to_string(), "series is constant: no delay reconstruction");
         let e = first_zero_lag(&[]).unwrap_err();
-        assert!(e.to_string().contains("never reaches 0"), "{e}");
-        let ramp: Vec<f64> = (0..10).map(f64::from).collect();
-        let e = first_zero_lag(&ramp).unwrap_err();
+        assert_eq!(e.to_string(), "series is constant: no delay reconstruction");
+        // three samples: no lag below N/2 = 1 to search
+        let e = first_zero_lag(&[1.0, 2.0, 3.0]).unwrap_err();
         assert!(e.to_string().contains("never reaches 0"), "{e}");
         assert_eq!(autocorrelation(&[1.0; 4], 2), Err(AnalysisError::Constant));
     }
