@@ -1,6 +1,7 @@
 //! Autocorrelation of a scalar series and its first zero crossing, the simplest default delay
 //! for a reconstruction (the first minimum of the mutual information,
-//! [`crate::analysis::mutual_information`], is the better choice for nonlinear series).
+//! [`mutual_information`](mod@crate::analysis::mutual_information), is the better choice for
+//! nonlinear series).
 //!
 //! With the mean s̄ = (1/N) Σ sₙ, the (unnormalised) autocovariance at lag k (samples) is
 //!
