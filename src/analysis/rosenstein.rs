@@ -101,7 +101,7 @@ pub struct RosensteinResult {
 ///   one mean period.
 /// - S rises linearly only between the neighbours' initial alignment and saturation at the
 ///   attractor size: fit there ([`rosenstein_exponent`] uses
-///   [`fit_scaling_region`](crate::analysis::kantz::fit_scaling_region)). With few steps the
+///   [`crate::analysis::kantz::fit_scaling_region`]). With few steps the
 ///   linear part may be too short (< 6 points).
 /// - Noise adds a jump at small Δn and lowers the slope.
 ///

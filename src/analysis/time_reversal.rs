@@ -26,7 +26,7 @@ use crate::error::AnalysisError;
 /// Its sign depends on the system, so test it two-sided ([`crate::analysis::surrogate_test::Tail::TwoSided`]).
 /// Some chaotic systems are nearly time-reversible in a given observable (Lorenz x, by the
 /// symmetry of the equations): a small |Q| does not mean linear. Use it together with the
-/// nonlinear prediction error ([`crate::analysis::prediction_error`]).
+/// nonlinear prediction error ([`crate::analysis::prediction_error`](mod@crate::analysis::prediction_error)).
 ///
 /// # References
 /// J. Theiler, S. Eubank, A. Longtin, B. Galdrikian and J. D. Farmer, "Testing for

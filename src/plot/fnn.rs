@@ -13,7 +13,7 @@ use crate::error::PlotError;
 #[derive(Debug, Clone, PartialEq)]
 pub struct FnnFigure<'a> {
     /// One point per tested dimension (as returned by
-    /// [`crate::analysis::false_nearest_neighbors`]).
+    /// [`crate::analysis::false_nearest_neighbors`](mod@crate::analysis::false_nearest_neighbors)).
     pub points: &'a [FnnPoint],
     /// Fraction (0..1) at or below which a dimension is suggested, e.g. 0.01.
     pub threshold: f64,

@@ -249,7 +249,7 @@ pub fn run_params(
 /// (`energy_collision_j_per_cycle`, `energy_friction_j_per_cycle`, `steps`, `wall_time_s`,
 /// `particle_steps_per_s`, `dt_s`, `contact_time_s`, `volume_fraction`, …) are in `extra`.
 /// Without `[primary]` the box moves kinematically with the base. With `run.replica` the
-/// two-replica test ([`super::replica`]) runs alongside and its report is in `replica`.
+/// two-replica test ([`crate::dem::replica`]) runs alongside and its report is in `replica`.
 ///
 /// # Errors
 /// The errors of [`run_dem`] (engine quantities, mapped to keys by [`super::simulate`]);
