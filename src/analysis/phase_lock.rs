@@ -56,7 +56,7 @@ pub struct PhaseLock {
 ///
 /// # Errors
 /// [`AnalysisError::BadParameter`] for `p = 0`, a non-positive or non-finite `dt_s` or
-/// `forcing_hz`, or a non-finite sample; [`AnalysisError::TooShort`] when `x` spans fewer
+/// `forcing_hz`; [`AnalysisError::NonFinite`] for a non-finite sample; [`AnalysisError::TooShort`] when `x` spans fewer
 /// than two windows of p forcing periods or a window holds fewer than 16 samples.
 ///
 /// # Example
@@ -90,8 +90,8 @@ pub fn phase_lock(
             "must be > 0 Hz",
         ));
     }
-    if let Some(v) = x.iter().find(|v| !v.is_finite()) {
-        return Err(AnalysisError::bad("series", *v, "samples must be finite"));
+    if let Some(index) = x.iter().position(|v| !v.is_finite()) {
+        return Err(AnalysisError::NonFinite { index });
     }
     let per_window = p as f64 / (forcing_hz * dt_s);
     let windows = x.len() as f64 / per_window;
@@ -159,11 +159,7 @@ pub fn phase_lock(
         .enumerate()
         .map(|(i, v)| (v - waveform(phase(i))).powi(2))
         .sum();
-    let (lo, hi) = mean
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &m| {
-            (l.min(m), h.max(m))
-        });
+    let (lo, hi) = crate::analysis::min_max(&mean);
     Ok(PhaseLock {
         periods: p,
         locked_fraction: if total > 0.0 {
