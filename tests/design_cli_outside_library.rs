@@ -2,18 +2,10 @@
 //! no `cli` module, and no library file (everything under `src/` except `src/main.rs` and
 //! `src/cli/`) uses clap, anyhow or indicatif, the optional dependencies of the `cli` feature.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    for e in std::fs::read_dir(dir).unwrap() {
-        let p = e.unwrap().path();
-        if p.is_dir() {
-            rust_files(&p, out);
-        } else if p.extension().is_some_and(|x| x == "rs") {
-            out.push(p);
-        }
-    }
-}
+mod common;
+use common::rust_files;
 
 #[test]
 fn the_library_has_no_cli_and_no_cli_dependencies() {
