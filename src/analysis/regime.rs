@@ -452,10 +452,12 @@ pub const LOCKED_FRACTION_MIN: f64 = 0.9;
 ///    scatter) → periodic with period n; an invariant circle → quasi-periodic (with its rotation
 ///    number), unless an exponent is clearly positive.
 /// 4. An irregular section: with a model exponent that is not positive → undetermined (a long
-///    transient or a period above the maximum; the reason says so); without one, chaotic when the
-///    data exponent is positive and the scatter deterministic (determinism ratio < 0.5); else
-///    periodic-p with noise when the motion relative to the container is phase-locked
-///    (Λ_p ≥ [`LOCKED_FRACTION_MIN`], the shortest such p ≤ 4); else undetermined for a
+///    transient or a period above the maximum; the reason says so); without one, periodic-p
+///    with noise when the motion relative to the container is phase-locked (Λ_p ≥
+///    [`LOCKED_FRACTION_MIN`], the shortest such p ≤ 4) — whatever the data exponent, which
+///    then measures the divergence of the unlocked ≤ 10 % of the variance (in a granular bed:
+///    the grains' collisional chaos about a periodic collective motion); else chaotic when the
+///    data exponent is positive and the scatter deterministic (determinism ratio < 0.5); else undetermined for a
 ///    deterministic cloud without resolved divergence, stochastic for a noise-like one.
 ///
 /// # Units
@@ -557,19 +559,6 @@ pub fn classify_forced(e: &ForcedEvidence<'_>) -> Verdict {
                     fmt(&m)
                 ),
             ),
-            (None, Some((d, ExponentSign::Positive)))
-                if sec.determinism_ratio.is_none_or(|r| r < 0.5) =>
-            {
-                v(
-                    Regime::Chaotic,
-                    None,
-                    format!(
-                        "the section is a deterministic cloud (determinism ratio {:.2}) diverging at {}",
-                        sec.determinism_ratio.unwrap_or(f64::NAN),
-                        fmt(&d)
-                    ),
-                )
-            }
             (None, d)
                 if e
                     .phase_lock
@@ -588,9 +577,23 @@ pub fn classify_forced(e: &ForcedEvidence<'_>) -> Verdict {
                         100.0 * sec.size,
                         sec.determinism_ratio.unwrap_or(f64::NAN),
                         d.map_or(String::new(), |(d, _)| format!(
-                            ", data exponent {}, not a resolved deterministic divergence",
-                            fmt(&d)
+                            ", data exponent {}: the divergence of the unlocked {:.1} %, not of the motion",
+                            fmt(&d),
+                            100.0 * (1.0 - l.locked_fraction)
                         ))
+                    ),
+                )
+            }
+            (None, Some((d, ExponentSign::Positive)))
+                if sec.determinism_ratio.is_none_or(|r| r < 0.5) =>
+            {
+                v(
+                    Regime::Chaotic,
+                    None,
+                    format!(
+                        "the section is a deterministic cloud (determinism ratio {:.2}) diverging at {}",
+                        sec.determinism_ratio.unwrap_or(f64::NAN),
+                        fmt(&d)
                     ),
                 )
             }

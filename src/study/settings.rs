@@ -243,7 +243,7 @@ impl Settings {
                         Chapter4Settings {
                             doubling_freqs_hz: frequencies_hz.clone(),
                             frequencies_hz,
-                            periods: 100.0,
+                            periods: 200.0,
                             duration_s: None,
                             panel_freqs_hz: CH4_PANEL_HZ.to_vec(),
                         }
