@@ -11,6 +11,7 @@ pub mod model;
 pub mod replica;
 pub mod run;
 pub mod stability;
+mod steady;
 pub mod world;
 
 pub use bed_impacts::BedImpacts;

@@ -10,12 +10,13 @@ use crate::packing::{advancing_front_packing, fcc_lattice, volume_fraction};
 use crate::units::G;
 
 use crate::model::StrobePoint;
-use crate::observe::{DemSampleState, ModelSample, Observer, Sample, SampleKind};
+use crate::observe::{ModelSample, Observer, Sample, SampleKind};
 
 use super::bed_impacts::BedImpacts;
 use super::energy::{balance, EnergyLedger};
 use super::model::{DemModel, Packing};
-use super::stability::{check, choose_dt, DEFAULT_DT_FRACTION};
+use super::stability::{choose_dt, DEFAULT_DT_FRACTION};
+use super::steady::{strobe_state, EnergyWatch, SteadyWindow, StrobeClock};
 use super::world::{BoxDrive, DemWorld};
 
 /// Time step choice: automatic (a fraction of the Hertz contact time) or explicit.
@@ -307,37 +308,6 @@ fn thread_cpu_time_s() -> Option<f64> {
     Some((utime + stime) / 100.0)
 }
 
-fn sample_of(w: &DemWorld, e0: &super::energy::EnergyState) -> Sample {
-    let (zcm, lo, hi) = w.z_stats();
-    let (u, _) = w.base_now();
-    let st = w.energy_state();
-    let (res, _) = balance(&st, e0, &w.ledger);
-    let l: EnergyLedger = w.ledger;
-    Sample {
-        time_s: w.t,
-        base_u_m: u,
-        box_z_m: w.box_z,
-        box_v_m_s: w.box_v,
-        floor_z_m: w.box_z,
-        ceiling_z_m: w.box_z + w.box_size[2],
-        grain_z_m: zcm,
-        model: ModelSample::Dem(DemSampleState {
-            grain_zmin_m: lo,
-            grain_zmax_m: hi,
-            e_collision_j: l.collision_j,
-            e_friction_j: l.friction_j,
-            e_viscous_j: l.viscous_j,
-            e_base_work_j: l.base_work_j,
-            e_kinetic_j: st.kinetic_j + st.rotational_j,
-            e_potential_j: st.potential_j - e0.potential_j,
-            e_elastic_j: st.elastic_j,
-            e_primary_j: st.primary_j,
-            e_balance_residual_j: res,
-        }),
-        grain_force_n: w.grain_force_n,
-    }
-}
-
 /// Runs a DEM damper: bed, settling, then `cfg.duration_s` of drive. `obs` receives
 /// [`Observer::start`] with [`SampleKind::Dem`], the samples, the stroboscopic points of the
 /// analysis window, the particle snapshots and [`Observer::finish`].
@@ -368,11 +338,80 @@ pub(crate) fn run_dem_stepped(
     obs: &mut dyn Observer,
     stepped: &mut dyn FnMut(&DemWorld) -> Result<(), SimError>,
 ) -> Result<DemSummary, SimError> {
+    let (dt, ts) = time_step(model, &drive, cfg)?;
+    let (mut world, bed) = settled_bed(model, drive, cfg, dt)?;
+    world.start_drive();
+    let watch = EnergyWatch::new(&world, bed.mass_kg, G, world.radius[0]);
+    let builds0 = world.neighbor_builds();
+    let n_steps = (cfg.duration_s / dt).ceil() as u64;
+    let window = |fraction: f64| ((1.0 - fraction) * n_steps as f64).floor() as u64;
+    let mut steady = SteadyWindow::new(
+        window(cfg.steady_fraction),
+        bed.mass_kg,
+        cfg.gravity_m_s2,
+        drive.frequency_hz,
+    );
+    let clock = StrobeClock {
+        from_step: window(cfg.analysis_fraction.max(cfg.steady_fraction)),
+        frequency_hz: drive.frequency_hz,
+    };
+    let timing = drive_steps(
+        &mut world,
+        n_steps,
+        Cadence::new(model, cfg, dt, drive.frequency_hz),
+        (&watch, &mut steady, clock),
+        obs,
+        stepped,
+    )?;
+    let st = world.energy_state();
+    let (_, rel) = balance(&st, &watch.start, &world.ledger);
+    let per_cycle = |f| steady.per_cycle(&world, drive.frequency_hz, f);
+    Ok(DemSummary {
+        amplitude_m: 0.5 * (steady.z_max_m - steady.z_min_m),
+        energy_balance_relative_error: rel,
+        energy_collision_j_per_cycle: per_cycle(|l| l.collision_j),
+        energy_friction_j_per_cycle: per_cycle(|l| l.friction_j),
+        energy_viscous_j_per_cycle: per_cycle(|l| l.viscous_j),
+        energy_base_work_j_per_cycle: per_cycle(|l| l.base_work_j),
+        steps: n_steps,
+        wall_time_s: timing.wall_s,
+        particle_steps_per_s: world.len() as f64 * n_steps as f64 / timing.wall_s,
+        particle_steps_per_cpu_s: timing
+            .cpu_s
+            .map(|c| world.len() as f64 * n_steps as f64 / c),
+        dt_s: dt,
+        contact_time_s: ts,
+        settle_time_s: bed.settle_time_s,
+        settle_steps: bed.settle_steps,
+        neighbor_builds: world.neighbor_builds() - builds0,
+        grains: world.len(),
+        grain_mass_kg: bed.mass_kg,
+        bed_height_m: bed.height_m,
+        volume_fraction: bed.volume_fraction,
+        frequency_hz: drive.frequency_hz,
+        steady_start_s: steady.from_step as f64 * dt,
+        box_z_max_m: steady.z_max_m,
+        box_z_min_m: steady.z_min_m,
+        ledger: world.ledger,
+        energy_start_j: watch.start.total_j(),
+        energy_end_j: st.total_j(),
+        bed_impacts: steady.impacts,
+        cycles_steady: steady.cycles(&world, drive.frequency_hz),
+    })
+}
+
+/// The driven run's time step and the Hertz contact time t_s (s), after checking the run's
+/// lengths and fractions.
+fn time_step(
+    model: &DemModel,
+    drive: &BoxDrive,
+    cfg: &DemRunConfig,
+) -> Result<(f64, f64), SimError> {
     let explicit = match cfg.dt {
         DtChoice::Auto => None,
         DtChoice::Seconds(s) => Some(s),
     };
-    let (mut dt, ts) = choose_dt(model, &drive, explicit, cfg.dt_fraction)?;
+    let (mut dt, ts) = choose_dt(model, drive, explicit, cfg.dt_fraction)?;
     if explicit.is_none() && cfg.sample_interval_s > dt && cfg.sample_interval_s.is_finite() {
         // automatic step: shrink it slightly so that samples fall on exact multiples of dt
         dt = cfg.sample_interval_s / (cfg.sample_interval_s / dt).ceil();
@@ -393,8 +432,26 @@ pub(crate) fn run_dem_stepped(
         )
         .into());
     }
-    // box held at its start position: u(0) for a kinematic box, the static equilibrium with
-    // the grains' weight for a primary
+    Ok((dt, ts))
+}
+
+/// The settled bed before the drive.
+struct SettledBed {
+    mass_kg: f64,
+    height_m: f64,
+    volume_fraction: f64,
+    settle_time_s: f64,
+    settle_steps: u64,
+}
+
+/// The initial bed, settled under gravity with the box held at its start position: u(0) for
+/// a kinematic box, the static equilibrium with the grains' weight for a primary.
+fn settled_bed(
+    model: &DemModel,
+    drive: BoxDrive,
+    cfg: &DemRunConfig,
+    dt: f64,
+) -> Result<(DemWorld, SettledBed), SimError> {
     let mut world = initial_world(model, drive, dt, 0.0)?;
     world.gravity = cfg.gravity_m_s2;
     let m_p: f64 = world.mass.iter().sum();
@@ -403,152 +460,123 @@ pub(crate) fn run_dem_stepped(
         None => drive.base(0.0).0,
     };
     world.shift_box_to(z_hold);
-    let (settle_t, settle_steps) = settle(&mut world, model.settle_time_s);
+    let (settle_time_s, settle_steps) = settle(&mut world, model.settle_time_s);
     let (zcm, _, _) = world.z_stats();
-    let bed_height_m = 2.0 * (zcm - world.box_z);
-    let phi = volume_fraction(
+    let height_m = 2.0 * (zcm - world.box_z);
+    let volume_fraction = volume_fraction(
         &world.radius,
-        world.box_size[0] * world.box_size[1] * bed_height_m,
+        world.box_size[0] * world.box_size[1] * height_m,
     );
-    world.start_drive();
-    let e0 = world.energy_state();
-    let builds0 = world.neighbor_builds();
-
-    let n_steps = (cfg.duration_s / dt).ceil() as u64;
-    let per_sample = ((cfg.sample_interval_s / dt).round() as u64).max(1);
-    let per_snap = model
-        .snapshot_interval_s
-        .map(|s| ((s / dt).round() as u64).max(1));
-    let steady_from = ((1.0 - cfg.steady_fraction) * n_steps as f64).floor() as u64;
-    let steady_start_s = steady_from as f64 * dt;
-    let strobe_from =
-        ((1.0 - cfg.analysis_fraction.max(cfg.steady_fraction)) * n_steps as f64).floor() as u64;
-    let per_progress = ((1.0 / drive.frequency_hz.max(1e-3)) / dt).round().max(1.0) as u64;
-    let abs_floor = 1e-3 * m_p * G * world.radius[0];
-    let mut steady_ledger: Option<(f64, EnergyLedger)> = None;
-    let (mut zmin, mut zmax) = (f64::INFINITY, f64::NEG_INFINITY);
-    let mut bed_impacts = BedImpacts::new(m_p, cfg.gravity_m_s2, drive.frequency_hz);
-    let strobe_state = |w: &DemWorld| {
-        let (z, v) = w.z_cm_state();
-        [w.t, z, v, w.box_z, w.box_v]
+    let bed = SettledBed {
+        mass_kg: m_p,
+        height_m,
+        volume_fraction,
+        settle_time_s,
+        settle_steps,
     };
-    let sample_now = |w: &DemWorld| cfg.samples && w.t >= cfg.sample_from_s - 0.5 * dt;
-    obs.start(SampleKind::Dem)?;
-    if sample_now(&world) {
-        obs.sample(&sample_of(&world, &e0))?;
+    Ok((world, bed))
+}
+
+/// Every how many steps the driven run samples, snapshots and reports progress.
+#[derive(Debug, Clone, Copy)]
+struct Cadence {
+    samples: bool,
+    sample_from_s: f64,
+    per_sample: u64,
+    per_snapshot: Option<u64>,
+    per_progress: u64,
+    duration_s: f64,
+}
+
+impl Cadence {
+    fn new(model: &DemModel, cfg: &DemRunConfig, dt: f64, frequency_hz: f64) -> Self {
+        Cadence {
+            samples: cfg.samples,
+            sample_from_s: cfg.sample_from_s,
+            per_sample: ((cfg.sample_interval_s / dt).round() as u64).max(1),
+            per_snapshot: model
+                .snapshot_interval_s
+                .map(|s| ((s / dt).round() as u64).max(1)),
+            per_progress: ((1.0 / frequency_hz.max(1e-3)) / dt).round().max(1.0) as u64,
+            duration_s: cfg.duration_s,
+        }
     }
-    if per_snap.is_some() {
+
+    /// Whether the state `w` is inside the sampled part of the run.
+    fn sampled(&self, w: &DemWorld) -> bool {
+        self.samples && w.t >= self.sample_from_s - 0.5 * w.dt
+    }
+}
+
+/// Wall and CPU seconds of the driven steps, without the observers' time.
+struct Timing {
+    wall_s: f64,
+    cpu_s: Option<f64>,
+}
+
+/// Steps the driving world `n_steps` times: the strobe points of the analysis window, the
+/// samples (each energy-checked), snapshots and progress go to `obs`; the steady window
+/// takes every state; `stepped` sees every state too.
+fn drive_steps(
+    world: &mut DemWorld,
+    n_steps: u64,
+    every: Cadence,
+    (watch, steady, clock): (&EnergyWatch, &mut SteadyWindow, StrobeClock),
+    obs: &mut dyn Observer,
+    stepped: &mut dyn FnMut(&DemWorld) -> Result<(), SimError>,
+) -> Result<Timing, SimError> {
+    obs.start(SampleKind::Dem)?;
+    if every.sampled(world) {
+        obs.sample(&watch.sample(world))?;
+    }
+    if every.per_snapshot.is_some() {
         obs.snapshot(&world.grain_state())?;
     }
-    let clock = Instant::now();
+    let wall0 = Instant::now();
     let cpu0 = thread_cpu_time_s();
     let mut aside = 0.0;
     for k in 1..=n_steps {
-        // a stroboscopic time nT inside (t, t + dt]: keep the state before the step and
-        // interpolate (the state, not a resampled series) once the step has landed
-        let strobe_before = (k >= strobe_from && drive.frequency_hz > 0.0)
-            .then(|| {
-                let next = ((world.t + dt) * drive.frequency_hz).floor();
-                let now = (world.t * drive.frequency_hz).floor();
-                (next > now).then(|| (next, strobe_state(&world)))
-            })
-            .flatten();
+        let strobe_before = clock.before_step(k, world);
         world.step();
         let c0 = Instant::now();
-        stepped(&world)?;
+        stepped(world)?;
         aside += c0.elapsed().as_secs_f64();
-        if k >= steady_from {
-            if steady_ledger.is_none() {
-                steady_ledger = Some((world.t, world.ledger));
-            }
-            zmin = zmin.min(world.box_z);
-            zmax = zmax.max(world.box_z);
-            let (_, v_cm) = world.z_cm_state();
-            bed_impacts.observe(v_cm - world.box_v, world.grain_force_n);
-        }
+        steady.observe(k, world);
         if let Some((cycle, before)) = strobe_before {
-            let t_s = cycle / drive.frequency_hz;
             let c0 = Instant::now();
             obs.strobe(&interpolate_strobe(
                 cycle as u64,
-                t_s,
+                cycle / clock.frequency_hz,
                 before,
-                strobe_state(&world),
+                strobe_state(world),
             ))?;
             aside += c0.elapsed().as_secs_f64();
         }
-        let do_sample = k % per_sample == 0 || k == n_steps;
-        let do_snap = per_snap.is_some_and(|ps| k % ps == 0);
-        if do_sample || do_snap || k % per_progress == 0 {
+        let do_sample = k % every.per_sample == 0 || k == n_steps;
+        let do_snap = every.per_snapshot.is_some_and(|ps| k % ps == 0);
+        let do_progress = k % every.per_progress == 0;
+        if do_sample || do_snap || do_progress {
             let c0 = Instant::now();
             if do_sample {
-                let s = sample_of(&world, &e0);
-                let residual = match s.model {
-                    ModelSample::Dem(d) => d.e_balance_residual_j,
-                    _ => 0.0,
-                };
-                let rel = residual.abs()
-                    / (world
-                        .ledger
-                        .base_work_j
-                        .abs()
-                        .max(world.ledger.dissipated_j())
-                        .max(abs_floor));
-                check(&world, residual - abs_floor, rel)?;
-                if sample_now(&world) {
+                let s = watch.checked_sample(world)?;
+                if every.sampled(world) {
                     obs.sample(&s)?;
                 }
             }
             if do_snap {
                 obs.snapshot(&world.grain_state())?;
             }
-            if k % per_progress == 0 {
-                obs.progress(world.t, cfg.duration_s);
+            if do_progress {
+                obs.progress(world.t, every.duration_s);
             }
             aside += c0.elapsed().as_secs_f64();
         }
     }
-    let wall = (clock.elapsed().as_secs_f64() - aside).max(1e-9);
-    let cpu = match (cpu0, thread_cpu_time_s()) {
+    let wall_s = (wall0.elapsed().as_secs_f64() - aside).max(1e-9);
+    let cpu_s = match (cpu0, thread_cpu_time_s()) {
         (Some(a), Some(b)) if b - a - aside > 0.05 => Some(b - a - aside),
         _ => None,
     };
-    let st = world.energy_state();
-    let (_, rel) = balance(&st, &e0, &world.ledger);
-    let per_cycle = |f: fn(&EnergyLedger) -> f64| -> Option<f64> {
-        let (t0, l0) = steady_ledger?;
-        let cycles = (world.t - t0) * drive.frequency_hz;
-        (cycles > 0.0).then(|| (f(&world.ledger) - f(&l0)) / cycles)
-    };
     obs.finish()?;
-    Ok(DemSummary {
-        amplitude_m: 0.5 * (zmax - zmin),
-        energy_balance_relative_error: rel,
-        energy_collision_j_per_cycle: per_cycle(|l| l.collision_j),
-        energy_friction_j_per_cycle: per_cycle(|l| l.friction_j),
-        energy_viscous_j_per_cycle: per_cycle(|l| l.viscous_j),
-        energy_base_work_j_per_cycle: per_cycle(|l| l.base_work_j),
-        steps: n_steps,
-        wall_time_s: wall,
-        particle_steps_per_s: world.len() as f64 * n_steps as f64 / wall,
-        particle_steps_per_cpu_s: cpu.map(|c| world.len() as f64 * n_steps as f64 / c),
-        dt_s: dt,
-        contact_time_s: ts,
-        settle_time_s: settle_t,
-        settle_steps,
-        neighbor_builds: world.neighbor_builds() - builds0,
-        grains: world.len(),
-        grain_mass_kg: m_p,
-        bed_height_m,
-        volume_fraction: phi,
-        frequency_hz: drive.frequency_hz,
-        steady_start_s,
-        box_z_max_m: zmax,
-        box_z_min_m: zmin,
-        ledger: world.ledger,
-        energy_start_j: e0.total_j(),
-        energy_end_j: st.total_j(),
-        bed_impacts,
-        cycles_steady: steady_ledger.map_or(0.0, |(t0, _)| (world.t - t0) * drive.frequency_hz),
-    })
+    Ok(Timing { wall_s, cpu_s })
 }

@@ -1,0 +1,185 @@
+//! What a driven DEM run measures while it steps, besides the samples it sends to its
+//! observer: the steady window's statistics, the stroboscopic clock and the energy watch.
+//!
+//! - [`SteadyWindow`]: over the last `steady_fraction` of the run, the box's extremes (the
+//!   amplitude Z = (z_max − z_min)/2, m), the energy ledger at the window's start (so that
+//!   dissipation and input are reported per forcing cycle, J/cycle) and the bed's collective
+//!   impacts ([`BedImpacts`]);
+//! - [`StrobeClock`]: whether a forcing phase t = nT (T = 1/f) falls inside the coming step,
+//!   and the state before it, so that the strobe point is interpolated between the two states
+//!   around nT ([`super::run::interpolate_strobe`]) — never read off a resampled series;
+//! - [`EnergyWatch`]: the sample of the current state with its energy ledger (SPEC §6: stored
+//!   energy E − E₀ − W_base + D = residual), and the stability check that stops a run whose
+//!   state turns non-finite, whose grains leave the box or whose energy grows without input.
+
+use crate::error::SimError;
+use crate::observe::{DemSampleState, ModelSample, Sample};
+
+use super::bed_impacts::BedImpacts;
+use super::energy::{balance, EnergyLedger, EnergyState};
+use super::stability::check;
+use super::world::DemWorld;
+
+/// The steady window's running statistics (from step `from_step` on).
+#[derive(Debug, Clone)]
+pub(crate) struct SteadyWindow {
+    /// First step of the window.
+    pub from_step: u64,
+    /// Time (s) and ledger when the window started.
+    start: Option<(f64, EnergyLedger)>,
+    /// Smallest and largest box position in the window (m).
+    pub z_min_m: f64,
+    pub z_max_m: f64,
+    /// Collective bed–floor and bed–ceiling impacts in the window.
+    pub impacts: BedImpacts,
+}
+
+impl SteadyWindow {
+    /// A window from step `from_step` for a bed of mass `m_p` (kg) under gravity `g` (m/s²)
+    /// forced at `frequency_hz` (Hz).
+    pub fn new(from_step: u64, m_p: f64, g: f64, frequency_hz: f64) -> Self {
+        SteadyWindow {
+            from_step,
+            start: None,
+            z_min_m: f64::INFINITY,
+            z_max_m: f64::NEG_INFINITY,
+            impacts: BedImpacts::new(m_p, g, frequency_hz),
+        }
+    }
+
+    /// Takes the state after step `k`.
+    pub fn observe(&mut self, k: u64, w: &DemWorld) {
+        if k < self.from_step {
+            return;
+        }
+        if self.start.is_none() {
+            self.start = Some((w.t, w.ledger));
+        }
+        self.z_min_m = self.z_min_m.min(w.box_z);
+        self.z_max_m = self.z_max_m.max(w.box_z);
+        let (_, v_cm) = w.z_cm_state();
+        self.impacts.observe(v_cm - w.box_v, w.grain_force_n);
+    }
+
+    /// Forcing cycles since the window started, at the state `w` (0 before).
+    pub fn cycles(&self, w: &DemWorld, frequency_hz: f64) -> f64 {
+        self.start.map_or(0.0, |(t0, _)| (w.t - t0) * frequency_hz)
+    }
+
+    /// The change of one ledger entry per forcing cycle over the window (J/cycle); `None`
+    /// when the window holds no cycle.
+    pub fn per_cycle(
+        &self,
+        w: &DemWorld,
+        frequency_hz: f64,
+        entry: fn(&EnergyLedger) -> f64,
+    ) -> Option<f64> {
+        let (_, l0) = self.start?;
+        let cycles = self.cycles(w, frequency_hz);
+        (cycles > 0.0).then(|| (entry(&w.ledger) - entry(&l0)) / cycles)
+    }
+}
+
+/// Stroboscopic clock: the forcing phases t = nT of the analysis window (from step
+/// `from_step` on).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct StrobeClock {
+    pub from_step: u64,
+    pub frequency_hz: f64,
+}
+
+/// The state a strobe point is interpolated from: [t, z_cm, ż_cm, z_box, ż_box] (s, m, m/s).
+pub(crate) type StrobeState = [f64; 5];
+
+/// The strobed state of `w`.
+pub(crate) fn strobe_state(w: &DemWorld) -> StrobeState {
+    let (z, v) = w.z_cm_state();
+    [w.t, z, v, w.box_z, w.box_v]
+}
+
+impl StrobeClock {
+    /// Before step `k` (from t to t + dt): the cycle n and the state now when nT lies in
+    /// (t, t + dt], else `None`.
+    pub fn before_step(&self, k: u64, w: &DemWorld) -> Option<(f64, StrobeState)> {
+        if k < self.from_step || self.frequency_hz <= 0.0 {
+            return None;
+        }
+        let next = ((w.t + w.dt) * self.frequency_hz).floor();
+        let now = (w.t * self.frequency_hz).floor();
+        (next > now).then(|| (next, strobe_state(w)))
+    }
+}
+
+/// The energy ledger at the start of the drive and the floor below which a residual is
+/// round-off (J).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct EnergyWatch {
+    /// Stored energy when the drive started.
+    pub start: EnergyState,
+    /// Absolute residual floor 10⁻³ m_p g r (J).
+    pub abs_floor_j: f64,
+}
+
+impl EnergyWatch {
+    /// The watch of a bed of mass `m_p` (kg) and grain radius `r` (m) at the state `w`.
+    pub fn new(w: &DemWorld, m_p: f64, g: f64, r: f64) -> Self {
+        EnergyWatch {
+            start: w.energy_state(),
+            abs_floor_j: 1e-3 * m_p * g * r,
+        }
+    }
+
+    /// The sample of the state `w`, with its energies (cumulative since the drive started).
+    pub fn sample(&self, w: &DemWorld) -> Sample {
+        let e0 = &self.start;
+        let (zcm, lo, hi) = w.z_stats();
+        let (u, _) = w.base_now();
+        let st = w.energy_state();
+        let (res, _) = balance(&st, e0, &w.ledger);
+        let l: EnergyLedger = w.ledger;
+        Sample {
+            time_s: w.t,
+            base_u_m: u,
+            box_z_m: w.box_z,
+            box_v_m_s: w.box_v,
+            floor_z_m: w.box_z,
+            ceiling_z_m: w.box_z + w.box_size[2],
+            grain_z_m: zcm,
+            model: ModelSample::Dem(DemSampleState {
+                grain_zmin_m: lo,
+                grain_zmax_m: hi,
+                e_collision_j: l.collision_j,
+                e_friction_j: l.friction_j,
+                e_viscous_j: l.viscous_j,
+                e_base_work_j: l.base_work_j,
+                e_kinetic_j: st.kinetic_j + st.rotational_j,
+                e_potential_j: st.potential_j - e0.potential_j,
+                e_elastic_j: st.elastic_j,
+                e_primary_j: st.primary_j,
+                e_balance_residual_j: res,
+            }),
+            grain_force_n: w.grain_force_n,
+        }
+    }
+
+    /// The sample of `w` after checking the state: the residual is measured against the
+    /// larger of the base work, the dissipation and the floor.
+    ///
+    /// # Errors
+    /// [`SimError::Unstable`] from [`check`].
+    pub fn checked_sample(&self, w: &DemWorld) -> Result<Sample, SimError> {
+        let s = self.sample(w);
+        let residual = match s.model {
+            ModelSample::Dem(d) => d.e_balance_residual_j,
+            _ => 0.0,
+        };
+        let scale = w
+            .ledger
+            .base_work_j
+            .abs()
+            .max(w.ledger.dissipated_j())
+            .max(self.abs_floor_j);
+        check(w, residual - self.abs_floor_j, residual.abs() / scale)?;
+        Ok(s)
+    }
+}
