@@ -1,8 +1,9 @@
 //! # pdamp — particle (granular) vibration dampers
 //!
 //! A toolkit that simulates particle dampers on a one-degree-of-freedom primary system and
-//! analyses the nonlinear dynamics of the grains. Physics and equation numbers follow
-//! `SPEC.md` (Sánchez 2012 thesis numbering, e.g. (2.1.21)).
+//! analyses the nonlinear dynamics of the grains. The physics and the estimators are written up
+//! in `docs/PHYSICS.md`; equation numbers such as (2.1.21) are the source thesis's (Sánchez
+//! 2012), and "SPEC §n" in a doc comment is the part of that document marked §n.
 //!
 //! ## Architecture (dependencies point one way)
 //! ```text
