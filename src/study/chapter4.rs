@@ -175,7 +175,7 @@ pub fn all(
     want: &dyn Fn(&str) -> bool,
 ) -> Result<Chapter4Output, StudyError> {
     let mut figures = Vec::new();
-    let reductions = s.reductions(&["dem", "dem_ch4"]);
+    let reductions = s.reductions(&["dem_material", "dem_ch4"]);
     let sweep = |factor: f64, freqs: &[f64]| {
         ctx.sweep(
             &sweep_dir(c, factor),

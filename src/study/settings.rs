@@ -271,7 +271,7 @@ impl Settings {
 
     /// Human-readable differences from the source's parameters (`Full`), for the settings
     /// named in `keys` (`freq`, `duration`, `gaps`, `grid`, `restitutions`, `regime`, `map`,
-    /// `series`, `dem`, `dem_lz`, `dem_n`, `dem_gamma`, `dem_bed`). Empty in `Full` mode.
+    /// `series`, `dem`, `dem_material` (softening and time step only), `dem_lz`, `dem_n`, `dem_gamma`, `dem_bed`). Empty in `Full` mode.
     pub fn reductions(&self, keys: &[&str]) -> Vec<String> {
         let full = Settings::for_mode(Mode::Full);
         let mut out = Vec::new();
@@ -341,7 +341,7 @@ impl Settings {
                         continue;
                     };
                     match k {
-                        "dem" => {
+                        "dem" | "dem_material" => {
                             diff(
                                 "grain Young's modulus",
                                 if d.soften == fd.soften {
@@ -359,6 +359,9 @@ impl Settings {
                                 format!("t_s × {}", d.dt_fraction),
                                 format!("t_s × {}", fd.dt_fraction),
                             );
+                            if *key == "dem_material" {
+                                continue;
+                            }
                             diff(
                                 "DEM drive per point",
                                 format!("{} s", d.duration_s),
