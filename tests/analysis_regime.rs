@@ -12,10 +12,10 @@ use pdamp::systems::henon::henon_x;
 use pdamp::systems::logistic::logistic_series;
 use pdamp::systems::lorenz::lorenz_x;
 use pdamp::systems::roessler::roessler_x;
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, Normal};
 use std::f64::consts::TAU;
+
+mod common;
+use common::{white_gaussian, with_noise};
 
 fn analyze(
     x: &[f64],
@@ -171,9 +171,7 @@ fn two_frequency_torus_is_quasi_periodic() {
 #[test]
 fn white_noise_is_not_chaotic() {
     // Negative control: Gaussian white noise is irregular (K ≈ 1) but not deterministic.
-    let mut rng = ChaCha8Rng::seed_from_u64(2024);
-    let normal = Normal::new(0.0, 1.0).unwrap();
-    let x: Vec<f64> = (0..10_000).map(|_| normal.sample(&mut rng)).collect();
+    let x = white_gaussian(10_000, 2024);
     let rep = analyze(&x, None, None);
     assert!(
         matches!(rep.regime, Regime::Stochastic | Regime::Undetermined),
@@ -204,9 +202,7 @@ fn zero_one_test_thresholds() {
 fn pathological_series_never_panic() {
     // Robustness contract of analyze_series (used by the simulators and sweeps): odd inputs
     // give a verdict or a clear error, never a panic and never a NaN in the report.
-    let mut rng = ChaCha8Rng::seed_from_u64(9);
-    let normal = Normal::new(0.0, 1.0).unwrap();
-    let noise: Vec<f64> = (0..3000).map(|_| normal.sample(&mut rng)).collect();
+    let noise = white_gaussian(3000, 9);
     let cases: Vec<(&str, Vec<f64>)> = vec![
         ("64 samples", noise[..64].to_vec()),
         ("ramp", (0..3000).map(|n| n as f64).collect()),
@@ -247,16 +243,6 @@ fn pathological_series_never_panic() {
             Err(e) => eprintln!("{name}: error {e}"),
         }
     }
-}
-
-fn with_noise(x: &[f64], level: f64, seed: u64) -> Vec<f64> {
-    // observational noise: Gaussian with σ = level × the series' standard deviation
-    let n = x.len() as f64;
-    let mean = x.iter().sum::<f64>() / n;
-    let sd = (x.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n).sqrt();
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let normal = Normal::new(0.0, level * sd).unwrap();
-    x.iter().map(|v| v + normal.sample(&mut rng)).collect()
 }
 
 #[test]
@@ -315,10 +301,9 @@ fn noisy_sine_is_periodic() {
     // A sine with σ = 0.2 Gaussian noise: one harmonic line with 92 % of the power, the rest
     // broadband; no positive exponent → periodic with the sine's period (37.3 samples, within
     // the Hann interpolation bias).
-    let mut rng = ChaCha8Rng::seed_from_u64(11);
-    let normal = Normal::new(0.0, 0.2).unwrap();
+    let e = white_gaussian(20_000, 11);
     let x: Vec<f64> = (0..20_000)
-        .map(|n| (TAU * n as f64 / 37.3).sin() + normal.sample(&mut rng))
+        .map(|n| (TAU * n as f64 / 37.3).sin() + 0.2 * e[n])
         .collect();
     let rep = analyze(&x, None, None);
     assert_eq!(rep.regime, Regime::Periodic, "{}", rep.reason);
@@ -331,15 +316,7 @@ fn ar1_noise_is_never_chaotic() {
     // Negative control: a linear Gaussian AR(1) process (φ = 0.95, strongly coloured) is
     // noise; IAAFT surrogates share its spectrum and amplitudes, so the prediction-error test
     // cannot reject (p > 0.05) and the verdict is stochastic, never chaotic.
-    let mut rng = ChaCha8Rng::seed_from_u64(5);
-    let normal = Normal::new(0.0, 1.0).unwrap();
-    let mut a = 0.0;
-    let x: Vec<f64> = (0..20_000)
-        .map(|_| {
-            a = 0.95 * a + normal.sample(&mut rng);
-            a
-        })
-        .collect();
+    let x = common::ar1(0.95, 20_000, 0, 5);
     let rep = analyze(&x, Some(1.0), None);
     assert_eq!(rep.regime, Regime::Stochastic, "{}", rep.reason);
     assert_eq!(rep.evidence.surrogate_rejects, Some(false));

@@ -9,6 +9,8 @@ use pdamp::tradeoff::measure::Rig;
 use pdamp::tradeoff::study::{run_study, Study, StudyOptions};
 use pdamp::tradeoff::{Axis, LadderOptions};
 
+mod common;
+
 fn small_bed() -> DemParams {
     // 24 steel spheres R = 3 mm in a 20 × 20 × 60 mm box
     let mut p = DemParams::thesis_b();
@@ -20,12 +22,8 @@ fn small_bed() -> DemParams {
 fn rig() -> Rig {
     // scene B's primary with the base amplitude of scene B
     Rig {
-        primary: pdamp::model::PrimarySystem {
-            mass_kg: 2.37,
-            stiffness_n_m: 21500.0,
-            damping_n_s_m: 7.6,
-        },
-        amplitude_m: 4.5e-3,
+        primary: common::scene_b_primary(),
+        amplitude_m: common::SCENE_B_AMPLITUDE_M,
         gravity: 9.8,
     }
 }
