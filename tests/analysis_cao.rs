@@ -5,17 +5,8 @@ use pdamp::analysis::cao::{cao, CaoOptions};
 use pdamp::error::AnalysisError;
 use pdamp::systems::{henon, lorenz};
 
-/// Deterministic uniform white noise (xorshift64).
-fn white_noise(n: usize, mut state: u64) -> Vec<f64> {
-    (0..n)
-        .map(|_| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        })
-        .collect()
-}
+mod common;
+use common::uniform_white as white_noise;
 
 #[test]
 fn lorenz_needs_three_dimensions() {

@@ -11,10 +11,9 @@
 
 use pdamp::analysis::analyze::{analyze_forced, AnalysisReport, AnalyzeOptions, ForcedRun};
 use pdamp::analysis::regime::Regime;
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, Normal};
 use std::f64::consts::TAU;
+
+mod common;
 
 /// Steps per forcing period (the strobe lands on a step).
 const STEPS: usize = 200;
@@ -31,8 +30,7 @@ fn forced(
     seed: u64,
 ) -> (Vec<f64>, Vec<Vec<f64>>, f64) {
     let h = TAU / omega / STEPS as f64;
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let normal = Normal::new(0.0, 1.0).unwrap();
+    let mut noise = common::Gaussian::new(seed);
     let (mut x, mut v, mut t) = (0.1, 0.0, 0.0);
     let mut series = Vec::new();
     let mut section = Vec::new();
@@ -52,7 +50,7 @@ fn forced(
             let (k4x, k4v) = f(x + h * k3x, v + h * k3v, t + h);
             x += h / 6.0 * (k1x + 2.0 * k2x + 2.0 * k3x + k4x);
             v += h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
-            v += kick * h.sqrt() * normal.sample(&mut rng);
+            v += kick * h.sqrt() * noise.sample();
             t += h;
         }
     }

@@ -4,23 +4,17 @@
 use pdamp::analysis::frf_fit::{fit_frf, FrfFitOptions, FrfResidual};
 use pdamp::analysis::optimum::{level_crossings, parabolic_peak};
 use pdamp::error::AnalysisError;
-use pdamp::model::PrimarySystem;
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, StandardNormal};
+
+mod common;
+use common::{sdof_amplitude, Gaussian};
 
 /// Scene B (SPEC §6): M = 2.37 kg, C = 7.6 N s/m, K = 21500 N/m, U = 4.5 mm.
-const B: (f64, f64, f64, f64) = (2.37, 7.6, 21500.0, 4.5e-3);
-
-/// Z(f) of (2.1.21) for M, C, K, U (the library's one implementation).
-fn sdof_amplitude(f: f64, m: f64, c: f64, k: f64, u: f64) -> f64 {
-    PrimarySystem {
-        mass_kg: m,
-        stiffness_n_m: k,
-        damping_n_s_m: c,
-    }
-    .steady_amplitude_at_hz(u, f)
-}
+const B: (f64, f64, f64, f64) = (
+    common::SCENE_B_MASS_KG,
+    common::SCENE_B_DAMPING_N_S_M,
+    common::SCENE_B_STIFFNESS_N_M,
+    common::SCENE_B_AMPLITUDE_M,
+);
 fn grid(lo: f64, hi: f64, step: f64) -> Vec<f64> {
     let n = ((hi - lo) / step).round() as usize;
     (0..=n).map(|i| lo + step * i as f64).collect()
@@ -28,10 +22,6 @@ fn grid(lo: f64, hi: f64, step: f64) -> Vec<f64> {
 
 fn exact(f: &[f64], m: f64, c: f64, k: f64, u: f64) -> Vec<f64> {
     f.iter().map(|&f| sdof_amplitude(f, m, c, k, u)).collect()
-}
-
-fn gauss(rng: &mut ChaCha8Rng) -> f64 {
-    StandardNormal.sample(rng)
 }
 
 #[test]
@@ -97,8 +87,8 @@ fn noisy_data_contains_truth_within_3_sigma() {
     let f = grid(5.0, 25.0, 0.25);
     let clean = exact(&f, m, c, k, u);
     for seed in 0..10 {
-        let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        let noise: Vec<f64> = clean.iter().map(|_| 0.02 * gauss(&mut rng)).collect();
+        let mut rng = Gaussian::new(seed);
+        let noise: Vec<f64> = clean.iter().map(|_| 0.02 * rng.sample()).collect();
         let z: Vec<f64> = clean.iter().zip(&noise).map(|(z, e)| z * e.exp()).collect();
         let fit = fit_frf(&f, &z, &FrfFitOptions::new(k, u)).unwrap();
         assert!(fit.mass_ef_stderr_kg > 0.0 && fit.damping_ef_stderr_n_s_m > 0.0);
@@ -129,13 +119,13 @@ fn standard_errors_match_monte_carlo_spread() {
     let (m, c, k, u) = B;
     let f = grid(8.0, 22.0, 0.5);
     let clean = exact(&f, m, c, k, u);
-    let mut rng = ChaCha8Rng::seed_from_u64(2012);
+    let mut rng = Gaussian::new(2012);
     let runs = 300;
     let (mut ms, mut cs, mut sm, mut sc) = (vec![], vec![], 0.0, 0.0);
     for _ in 0..runs {
         let z: Vec<f64> = clean
             .iter()
-            .map(|z| z * (0.03 * gauss(&mut rng)).exp())
+            .map(|z| z * (0.03 * rng.sample()).exp())
             .collect();
         let fit = fit_frf(&f, &z, &FrfFitOptions::new(k, u)).unwrap();
         ms.push(fit.mass_ef_kg);
@@ -163,10 +153,10 @@ fn absolute_residual_with_additive_noise_contains_truth() {
     // additive noise of 2 µm (≈ 0.5 % of U): the absolute residual is the matching estimator.
     let (m, c, k, u) = B;
     let f = grid(5.0, 25.0, 0.25);
-    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let mut rng = Gaussian::new(7);
     let z: Vec<f64> = exact(&f, m, c, k, u)
         .iter()
-        .map(|z| z + 2e-6 * gauss(&mut rng))
+        .map(|z| z + 2e-6 * rng.sample())
         .collect();
     let opts = FrfFitOptions {
         residual: FrfResidual::Absolute,
@@ -275,10 +265,10 @@ fn parabolic_peak_errors_match_monte_carlo() {
     let truth: Vec<f64> = x.iter().map(|x| 40.0 - 2e3 * (x - 0.137).powi(2)).collect();
     let s = 0.05;
     let reported = parabolic_peak(&x, &truth, &vec![s; x.len()]).unwrap();
-    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let mut rng = Gaussian::new(11);
     let (mut xs, mut ys) = (vec![], vec![]);
     for _ in 0..2000 {
-        let y: Vec<f64> = truth.iter().map(|y| y + s * gauss(&mut rng)).collect();
+        let y: Vec<f64> = truth.iter().map(|y| y + s * rng.sample()).collect();
         if let Ok(p) = parabolic_peak(&x, &y, &vec![s; x.len()]) {
             // keep only draws that pick the same top point (the propagated formula is local)
             if p.index.abs_diff(reported.index) <= 1 {
@@ -343,10 +333,10 @@ fn level_crossing_errors_match_monte_carlo() {
     let rep = level_crossings(&x, &truth, &[s; 4], level).unwrap();
     assert_eq!(rep.len(), 1);
     assert!((rep[0].x - 1.4).abs() < 1e-12);
-    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    let mut rng = Gaussian::new(3);
     let mut xs = vec![];
     for _ in 0..4000 {
-        let y: Vec<f64> = truth.iter().map(|y| y + s * gauss(&mut rng)).collect();
+        let y: Vec<f64> = truth.iter().map(|y| y + s * rng.sample()).collect();
         let c = level_crossings(&x, &y, &[s; 4], level).unwrap();
         assert_eq!(c.len(), 1);
         xs.push(c[0].x);

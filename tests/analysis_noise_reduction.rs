@@ -5,22 +5,10 @@
 use pdamp::analysis::noise_reduction::{
     nonlinear_noise_reduction, Correction, NoiseReductionOptions,
 };
-use pdamp::analysis::standard_deviation;
 use pdamp::systems::henon::henon_x;
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, StandardNormal};
 
-fn with_noise(x: &[f64], level: f64, seed: u64) -> Vec<f64> {
-    let sd = standard_deviation(x);
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    x.iter()
-        .map(|v| {
-            let e: f64 = StandardNormal.sample(&mut rng);
-            v + level * sd * e
-        })
-        .collect()
-}
+mod common;
+use common::with_noise;
 
 /// RMS deviation from the clean series, skipping `edge` samples at both ends (not the middle
 /// of any delay vector, so never corrected).

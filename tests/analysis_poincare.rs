@@ -8,10 +8,9 @@ use pdamp::analysis::poincare::{
     stroboscopic_section, ClusterOptions, Interpolation, SecondCoordinate, SectionShape,
     StrobeOptions,
 };
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, Normal};
 use std::f64::consts::TAU;
+
+mod common;
 
 fn spread(points: &[[f64; 2]], coord: usize) -> f64 {
     let (lo, hi) = points
@@ -154,9 +153,7 @@ fn quasi_periodic_section_is_a_closed_curve() {
 #[test]
 fn noise_and_henon_are_clouds() {
     // Negative controls. Gaussian noise: no order is preserved, the score is ~ 5/n per shift.
-    let mut rng = ChaCha8Rng::seed_from_u64(42);
-    let normal = Normal::new(0.0, 1.0).unwrap();
-    let x: Vec<f64> = (0..20_000).map(|_| normal.sample(&mut rng)).collect();
+    let x = common::white_gaussian(20_000, 42);
     let sec =
         stroboscopic_section(&x, SecondCoordinate::Delay(3.0), &StrobeOptions::new(17.3)).unwrap();
     let s = classify_section(&sec.points, 8.0, &ClusterOptions::default());

@@ -6,16 +6,8 @@ use pdamp::analysis::recurrence::{recurrence_grid, rqa, RecurrenceOptions, Recur
 use pdamp::error::AnalysisError;
 use pdamp::systems::logistic;
 
-fn white_noise(n: usize, mut state: u64) -> Vec<f64> {
-    (0..n)
-        .map(|_| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        })
-        .collect()
-}
+mod common;
+use common::uniform_white as white_noise;
 
 /// Full N × N matrix, lines counted the textbook way (every diagonal and every column of the
 /// whole matrix, the Theiler band set to 0).

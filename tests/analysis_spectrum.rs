@@ -6,21 +6,15 @@ use pdamp::analysis::spectrum::{
     line_power_fraction, power_spectrum, spectral_lines, LineOptions, Normalization,
     SpectrumOptions, Window,
 };
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, Normal};
 use std::f64::consts::TAU;
+
+mod common;
+use common::white_gaussian as noise;
 
 fn sine(n: usize, f: f64, amp: f64, phase: f64) -> Vec<f64> {
     (0..n)
         .map(|i| amp * (TAU * f * i as f64 + phase).sin())
         .collect()
-}
-
-fn noise(n: usize, seed: u64) -> Vec<f64> {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let normal = Normal::new(0.0, 1.0).unwrap();
-    (0..n).map(|_| normal.sample(&mut rng)).collect()
 }
 
 #[test]

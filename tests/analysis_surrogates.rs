@@ -14,35 +14,13 @@ use pdamp::analysis::surrogates::{
 use pdamp::analysis::time_reversal::time_reversal_asymmetry;
 use pdamp::error::AnalysisError;
 use pdamp::systems::{henon, lorenz, roessler};
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, StandardNormal};
+
+mod common;
+use common::with_noise;
 
 /// Gaussian AR(1) `x_n = φ x_{n−1} + ξ_n` (unit innovations) after 1000 transient steps.
 fn ar1(phi: f64, n: usize, seed: u64) -> Vec<f64> {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut x = 0.0;
-    let mut out = Vec::with_capacity(n);
-    for k in 0..n + 1000 {
-        let e: f64 = StandardNormal.sample(&mut rng);
-        x = phi * x + e;
-        if k >= 1000 {
-            out.push(x);
-        }
-    }
-    out
-}
-
-/// `x` plus Gaussian noise of standard deviation `level × sd(x)`.
-fn with_noise(x: &[f64], level: f64, seed: u64) -> Vec<f64> {
-    let sd = pdamp::analysis::standard_deviation(x);
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    x.iter()
-        .map(|v| {
-            let e: f64 = StandardNormal.sample(&mut rng);
-            v + level * sd * e
-        })
-        .collect()
+    common::ar1(phi, n, 1000, seed)
 }
 
 fn sorted(v: &[f64]) -> Vec<f64> {

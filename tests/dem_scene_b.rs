@@ -9,19 +9,13 @@
 //! (volume fraction 0.55–0.64, between random loose and random close packing; the thesis's
 //! bed at rest is ≈ 0.039 m high).
 
-use pdamp::dem::{BoxDrive, DemRunConfig, DemSample, PrimarySystem};
+use pdamp::dem::{BoxDrive, DemRunConfig, DemSample};
 use pdamp::scene::dem::{DemParams, PackingKind};
 
+mod common;
+
 fn drive() -> BoxDrive {
-    BoxDrive {
-        primary: Some(PrimarySystem {
-            mass_kg: 2.37,
-            stiffness_n_m: 21500.0,
-            damping_n_s_m: 7.6,
-        }),
-        amplitude_m: 4.5e-3,
-        frequency_hz: 15.0,
-    }
+    common::scene_b_drive(15.0)
 }
 
 fn check_run(p: &DemParams, duration: f64) -> pdamp::dem::DemSummary {
@@ -81,7 +75,7 @@ fn scene_b_kinematic_box_ledger_balances() {
     p.count = 100;
     let d = BoxDrive {
         primary: None,
-        amplitude_m: 4.5e-3,
+        amplitude_m: common::SCENE_B_AMPLITUDE_M,
         frequency_hz: 15.0,
     };
     let cfg = DemRunConfig {
@@ -94,7 +88,7 @@ fn scene_b_kinematic_box_ledger_balances() {
     let s = pdamp::setup::dem::run_params(&p, d, &cfg, &mut samples).expect("stable run");
     // box amplitude is the base amplitude exactly (kinematic)
     assert!(
-        (s.amplitude_m / 4.5e-3 - 1.0).abs() < 1e-3,
+        (s.amplitude_m / common::SCENE_B_AMPLITUDE_M - 1.0).abs() < 1e-3,
         "{}",
         s.amplitude_m
     );

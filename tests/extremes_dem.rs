@@ -7,21 +7,12 @@
 
 use pdamp::dem::run::initial_world;
 use pdamp::dem::stability::choose_dt;
-use pdamp::dem::{BoxDrive, DemRunConfig, DemSample, DemSummary, DtChoice, PrimarySystem};
+use pdamp::dem::{BoxDrive, DemRunConfig, DemSample, DemSummary, DtChoice};
 use pdamp::error::SimError;
 use pdamp::scene::dem::{ContactKind, DemParams};
 
-fn drive(f: f64) -> BoxDrive {
-    BoxDrive {
-        primary: Some(PrimarySystem {
-            mass_kg: 2.37,
-            stiffness_n_m: 21500.0,
-            damping_n_s_m: 7.6,
-        }),
-        amplitude_m: 4.5e-3,
-        frequency_hz: f,
-    }
-}
+mod common;
+use common::scene_b_drive as drive;
 
 fn bed(count: usize, box_m: [f64; 3]) -> DemParams {
     let mut p = DemParams::thesis_b_softened(1e4);

@@ -6,11 +6,14 @@ use pdamp::model::{RunOptions, RunSummary};
 use pdamp::observe::NullObserver;
 use pdamp::scene::{Damper, ImpactParams, Scene};
 
+mod common;
+use common::{SCENE_B_GAP_M, SCENE_B_PARTICLE_MASS_KG};
+
 fn impact_scene(f: f64, gap: f64, e: f64) -> Scene {
     let mut s = Scene::thesis_b_impact();
     s.excitation.frequency = f;
     s.damper = Damper::Impact(ImpactParams {
-        mass: 0.227,
+        mass: SCENE_B_PARTICLE_MASS_KG,
         gap,
         restitution: e,
         initial_height: 0.0,
@@ -29,13 +32,13 @@ fn run(s: &Scene) -> RunSummary {
 fn balance_closes_across_regimes() {
     let cases = [
         // (f Hz, gap m, e): scene B near resonance, both walls, one wall, elastic, plastic
-        (15.0, 0.0835, 0.0),
-        (15.0, 0.0835, 0.8),
+        (15.0, SCENE_B_GAP_M, 0.0),
+        (15.0, SCENE_B_GAP_M, 0.8),
         (12.0, 0.01, 0.5),
         (18.0, 0.002, 0.9),
         (15.0, f64::INFINITY, 0.5),
         (20.0, 0.03, 1.0),
-        (25.0, 0.0835, 0.3),
+        (25.0, SCENE_B_GAP_M, 0.3),
     ];
     for (f, gap, e) in cases {
         let s = run(&impact_scene(f, gap, e));
@@ -61,7 +64,7 @@ fn balance_closes_across_regimes() {
 fn negative_control_ledger_detects_a_missing_term() {
     // Dropping the impact losses from the balance must leave a large residual when impacts
     // dissipate: shows the 1e-6 check above can fail.
-    let s = run(&impact_scene(15.0, 0.0835, 0.0));
+    let s = run(&impact_scene(15.0, SCENE_B_GAP_M, 0.0));
     let t = s.energy_totals;
     let resid = t.base_work_j - (t.final_mechanical_j - t.initial_mechanical_j) - t.viscous_j;
     assert!(resid.abs() / t.base_work_j.abs() > 0.1);

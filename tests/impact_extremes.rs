@@ -7,11 +7,14 @@ use pdamp::model::{RunOptions, RunSummary};
 use pdamp::observe::{ModelSample, NullObserver, Observer, Sample};
 use pdamp::scene::{Damper, ImpactParams, Primary, Scene};
 
+mod common;
+use common::{SCENE_B_GAP_M, SCENE_B_PARTICLE_MASS_KG};
+
 fn impact_scene(f: f64, gap: f64, e: f64) -> Scene {
     let mut s = Scene::thesis_b_impact();
     s.excitation.frequency = f;
     s.damper = Damper::Impact(ImpactParams {
-        mass: 0.227,
+        mass: SCENE_B_PARTICLE_MASS_KG,
         gap,
         restitution: e,
         initial_height: 0.0,
@@ -28,13 +31,7 @@ fn run(s: &Scene) -> RunSummary {
 
 /// Amplitude of scene B's primary carrying the particle as rigid added mass (2.1.21, M + m_p).
 fn loaded_reference(s: &Scene) -> f64 {
-    let p = s.primary.as_ref().unwrap();
-    pdamp::model::PrimarySystem {
-        mass_kg: p.mass + 0.227,
-        stiffness_n_m: p.stiffness,
-        damping_n_s_m: p.damping_n_s_m(),
-    }
-    .steady_amplitude_m(s.excitation.amplitude, s.excitation.omega_rad_s())
+    common::scene_reference_amplitude(s, SCENE_B_PARTICLE_MASS_KG)
 }
 
 #[test]
@@ -72,7 +69,7 @@ fn vanishing_gap_is_added_mass() {
 fn low_frequency_sticking_particle_is_added_mass() {
     // 0.5 Hz: box acceleration ≈ UΩ² ≈ 0.04 m/s² ≪ g, the particle never leaves the floor in
     // the steady state: the response is (2.1.21) with M + m_p.
-    let mut s = impact_scene(0.5, 0.0835, 0.5);
+    let mut s = impact_scene(0.5, SCENE_B_GAP_M, 0.5);
     s.run.periods = Some(40.0);
     let r = run(&s);
     let want = loaded_reference(&s);
@@ -94,7 +91,7 @@ fn high_frequency_runs_and_balances() {
     // 100 Hz (6.6 f0): far above resonance the box acceleration tends to K U / M ≈ 37 m/s² > g,
     // so the particle keeps hopping; the run must stay event-resolved and balanced, and the
     // primary is isolated (Z well below U).
-    let mut s = impact_scene(100.0, 0.0835, 0.5);
+    let mut s = impact_scene(100.0, SCENE_B_GAP_M, 0.5);
     s.run.periods = Some(4000.0);
     let r = run(&s);
     assert!(r.impacts_per_cycle > 0.0);
@@ -129,8 +126,8 @@ fn infinite_gap_and_zero_gravity() {
 #[test]
 fn restitution_limits() {
     // e = 0: every impact is plastic; e = 1: no impact loss at all (5.3.1)
-    let r0 = run(&impact_scene(15.0, 0.0835, 0.0));
-    let r1 = run(&impact_scene(15.0, 0.0835, 1.0));
+    let r0 = run(&impact_scene(15.0, SCENE_B_GAP_M, 0.0));
+    let r1 = run(&impact_scene(15.0, SCENE_B_GAP_M, 1.0));
     assert!(r0.energy_impact_j_per_cycle > 0.1);
     assert_eq!(r1.energy_totals.impact_j, 0.0);
     assert!(r0.energy_balance_relative_error.unwrap() < 1e-6);
@@ -148,7 +145,7 @@ fn vanishing_damping_at_resonance() {
     s.primary = Some(Primary {
         damping: None,
         damping_ratio: Some(xi),
-        ..Primary::new(2.37, 21500.0, 0.0)
+        ..Primary::new(common::SCENE_B_MASS_KG, common::SCENE_B_STIFFNESS_N_M, 0.0)
     });
     let f0 = s.primary.as_ref().unwrap().natural_frequency_hz();
     s.excitation.frequency = f0;
@@ -165,7 +162,7 @@ fn vanishing_damping_at_resonance() {
     );
     assert!(r.energy_balance_relative_error.unwrap() < 1e-9);
     // with the particle the resonance is limited, and the run stays well-behaved
-    let mut s2 = impact_scene(f0, 0.0835, 0.3);
+    let mut s2 = impact_scene(f0, SCENE_B_GAP_M, 0.3);
     s2.primary = s.primary.clone();
     let r2 = run(&s2);
     assert!(r2.amplitude_m.is_finite() && r2.amplitude_m < 0.1);

@@ -4,6 +4,7 @@
 //! normal, discrete and empirical size distributions; radii scaled by λ scale the volume
 //! fraction by λ³ (paper's eq. 6).
 
+use pdamp::error::Quantity;
 use pdamp::packing::{advancing_front_packing, volume_fraction, RadiusDistribution};
 
 fn check(box_m: [f64; 3], radii: &[f64]) -> f64 {
@@ -105,10 +106,13 @@ fn size_distributions_pack_and_respect_their_range() {
 
 #[test]
 fn too_many_grains_is_an_error_naming_count() {
-    let e = advancing_front_packing([0.02, 0.02, 0.02], &vec![0.003; 200])
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("damper.count"), "{e}");
+    // the packing speaks physics (the number of grains); the resolve step names the key
+    let e = advancing_front_packing([0.02, 0.02, 0.02], &vec![0.003; 200]).unwrap_err();
+    assert_eq!(e.quantity, Quantity::GrainCount, "{e}");
+    assert!(!e.to_string().contains("damper."), "{e}");
+    let keyed = pdamp::setup::scene_error(e).to_string();
+    assert!(keyed.starts_with("damper.count = 200"), "{keyed}");
+    assert!(keyed.contains("damper.box"), "{keyed}");
 }
 
 #[test]

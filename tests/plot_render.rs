@@ -4,7 +4,6 @@
 use std::path::Path;
 
 use pdamp::error::PlotError;
-use pdamp::model::PrimarySystem;
 use pdamp::plot::bed_motion::BedMotionFigure;
 use pdamp::plot::bifurcation::BifurcationFigure;
 use pdamp::plot::common::{fmt_axis_tick, fmt_tick};
@@ -18,6 +17,9 @@ use pdamp::plot::regime_map::RegimeMapFigure;
 use pdamp::plot::resonance::{resonance_amplitudes, resonance_figure};
 use pdamp::plot::spectrum::SpectrumFigure;
 use pdamp::plot::{render, render_rgb, Figure, FigureOptions, Series};
+
+mod common;
+use common::sdof_amplitude;
 
 const W: u32 = 720;
 const H: u32 = 540;
@@ -92,16 +94,6 @@ fn frf_data() -> (Vec<f64>, Vec<f64>, Vec<f64>) {
     (f, z, z1)
 }
 
-/// Z(f) of (2.1.21) for M, C, K, U (the library's one implementation).
-fn sdof_amplitude(f: f64, m: f64, c: f64, k: f64, u: f64) -> f64 {
-    PrimarySystem {
-        mass_kg: m,
-        stiffness_n_m: k,
-        damping_n_s_m: c,
-    }
-    .steady_amplitude_at_hz(u, f)
-}
-
 #[test]
 fn frf_with_reference_curves() {
     let (f, z, z1) = frf_data();
@@ -119,13 +111,9 @@ fn frf_with_reference_curves() {
             },
         ],
         reference: Some(FrfReference {
-            primary: PrimarySystem {
-                mass_kg: 2.37,
-                stiffness_n_m: 21500.0,
-                damping_n_s_m: 7.6,
-            },
-            particle_mass_kg: Some(0.227),
-            base_amplitude_m: 4.5e-3,
+            primary: common::scene_b_primary(),
+            particle_mass_kg: Some(common::SCENE_B_PARTICLE_MASS_KG),
+            base_amplitude_m: common::SCENE_B_AMPLITUDE_M,
         }),
     };
     check_renders(&fig, "frf", BLUE, 200);

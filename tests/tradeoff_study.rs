@@ -9,6 +9,8 @@ use pdamp::tradeoff::measure::Rig;
 use pdamp::tradeoff::study::{run_study, Study, StudyOptions};
 use pdamp::tradeoff::{Axis, LadderOptions};
 
+mod common;
+
 fn small_bed() -> DemParams {
     // 24 steel spheres R = 3 mm in a 20 × 20 × 60 mm box
     let mut p = DemParams::thesis_b();
@@ -20,12 +22,8 @@ fn small_bed() -> DemParams {
 fn rig() -> Rig {
     // scene B's primary with the base amplitude of scene B
     Rig {
-        primary: pdamp::model::PrimarySystem {
-            mass_kg: 2.37,
-            stiffness_n_m: 21500.0,
-            damping_n_s_m: 7.6,
-        },
-        amplitude_m: 4.5e-3,
+        primary: common::scene_b_primary(),
+        amplitude_m: common::SCENE_B_AMPLITUDE_M,
         gravity: 9.8,
     }
 }
@@ -96,8 +94,58 @@ fn small_study_is_consistent_and_thread_independent() {
                 .is_some_and(|e| e.is_finite() && e >= 0.0),
             "{r:?}"
         );
-        assert!(r.wall_time_s >= 0.0);
     }
+    // the cost side of the trade-off: a DEM run's cost is its number of steps, which is the
+    // driven duration over dt (to one step), and dt follows the rung's setting (a rung that
+    // ignored its setting, or a step counter that counted something else, fails here; wall
+    // times are measured, not asserted)
+    let ref_run = a.runs.iter().find(|r| r.axis == Axis::Reference).unwrap();
+    let ref_dt = ref_run.dt_s.unwrap();
+    for r in a.runs.iter().filter(|r| r.status == "ok") {
+        let Some(dt) = r.dt_s else { continue }; // the one-particle model counts events
+        let duration = if r.axis == Axis::RunLength {
+            r.value
+        } else {
+            0.25
+        };
+        let steps = duration / dt;
+        assert!(
+            (r.steps as f64 - steps).abs() <= 1.0 + 1e-9 * steps,
+            "{}: {} steps for {duration} s / {dt:e} s",
+            r.setting,
+            r.steps
+        );
+        assert!(
+            r.wall_time_s > 0.0 && r.total_wall_time_s >= r.wall_time_s,
+            "{r:?}"
+        );
+    }
+    // dt = t_s/20 against the reference's t_s/50: 2.5 × longer steps; the E/1000 rung is 10 ×
+    // stiffer than the reference's E/10000 and t_s ∝ E^{-2/5} (Hertz), so its steps are
+    // 10^{2/5} = 2.512 × shorter. The run rounds dt down to a whole number of steps per output
+    // sample (7 at t_s/20, 18 at the reference, 44 at E/1000 here), which moves these ratios
+    // by up to 1/7 ≈ 14 %: hence 15 %. The step counts follow the same ratios.
+    let by = |label: &str| a.runs.iter().find(|r| r.setting == label).unwrap();
+    let dt20 = by("dt = t_s/20");
+    let stiff = by("E / 1000");
+    for (run, want) in [(dt20, 2.5), (stiff, 10f64.powf(-0.4))] {
+        let ratio = run.dt_s.unwrap() / ref_dt;
+        assert!(
+            (ratio / want - 1.0).abs() < 0.15,
+            "{}: dt ratio {ratio}",
+            run.setting
+        );
+        let cost = ref_run.steps as f64 / run.steps as f64;
+        assert!(
+            (cost / ratio - 1.0).abs() < 1e-3,
+            "{}: {cost} vs {ratio}",
+            run.setting
+        );
+    }
+    // and the accuracy side: coarser dt and a different stiffness both move the amplitude
+    // away from the reference (an error metric stuck at 0 fails)
+    assert!(dt20.amplitude_rel_error.unwrap() > 0.0, "{dt20:?}");
+    assert!(stiff.amplitude_rel_error.unwrap() > 0.0, "{stiff:?}");
     // the one-particle note gives m_p = 24 × 8030 × 4/3 π (3 mm)³ = 0.02180 kg
     assert!(
         a.notes.iter().any(|n| n.contains("m_p = 0.0218")),

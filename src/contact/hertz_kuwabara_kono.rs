@@ -43,7 +43,21 @@ pub fn hertz_stiffness(e_star: f64, r_star: f64) -> f64 {
 #[inline(always)]
 pub fn hertz_normal_force(k_n: f64, overlap_m: f64, v_n_m_s: f64, gamma_n: f64) -> f64 {
     let s = overlap_m.sqrt();
-    s * (k_n * overlap_m + gamma_n * v_n_m_s)
+    k_n * overlap_m * s + gamma_n * v_n_m_s * s
+}
+
+/// Elastic part of [`hertz_normal_force`], k_n ζ^{3/2} (N): the conservative force whose
+/// potential is [`hertz_elastic_energy`]. The DEM's collision ledger books
+/// (F_n − k_n ζ^{3/2}) ζ' as dissipated power.
+///
+/// # Formula
+/// F_el = k_n ζ^{3/2}  (2.2.8, elastic term)
+///
+/// # Units
+/// `k_n` N m^-3/2, `overlap_m` ζ in m → N.
+#[inline(always)]
+pub fn hertz_elastic_force(k_n: f64, overlap_m: f64) -> f64 {
+    k_n * overlap_m * overlap_m.sqrt()
 }
 
 /// Elastic energy stored in a Hertz contact, (2/5) k_n ζ^{5/2} = (8/15) E* √R* ζ^{5/2} (J).

@@ -18,6 +18,19 @@ pub fn linear_normal_force(k_n: f64, overlap_m: f64, v_n_m_s: f64, c_n: f64) -> 
     k_n * overlap_m + c_n * v_n_m_s
 }
 
+/// Elastic part of [`linear_normal_force`], k_n ζ (N): the conservative spring force. The
+/// DEM's collision ledger books (F_n − k_n ζ) ζ' as dissipated power.
+///
+/// # Formula
+/// F_el = k_n ζ (seed paper, Fig. 1 spring)
+///
+/// # Units
+/// `k_n` N/m, `overlap_m` m → N.
+#[inline(always)]
+pub fn linear_elastic_force(k_n: f64, overlap_m: f64) -> f64 {
+    k_n * overlap_m
+}
+
 /// Yield coefficient c_e(ν) = p₀/Y at first yield of a Hertz contact (–).
 ///
 /// # Formula

@@ -13,8 +13,10 @@ pub mod material;
 pub mod restitution;
 
 pub use coulomb_viscous::coulomb_viscous_force;
-pub use hertz_kuwabara_kono::{hertz_elastic_energy, hertz_normal_force, hertz_stiffness};
-pub use linear_spring_dashpot::{linear_normal_force, LinearContactParams};
+pub use hertz_kuwabara_kono::{
+    hertz_elastic_energy, hertz_elastic_force, hertz_normal_force, hertz_stiffness,
+};
+pub use linear_spring_dashpot::{linear_elastic_force, linear_normal_force, LinearContactParams};
 pub use material::{Material, PairProperties};
 
 use serde::{Deserialize, Serialize};

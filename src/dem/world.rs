@@ -5,6 +5,9 @@ use nalgebra::UnitQuaternion;
 use crate::contact::linear_spring_dashpot::LinearContactParams;
 use crate::contact::material::{Material, PairProperties};
 use crate::contact::{coulomb_viscous_force, hertz_stiffness};
+use crate::contact::{
+    hertz_elastic_force, hertz_normal_force, linear_elastic_force, linear_normal_force,
+};
 use crate::contact::{AttractionPolicy, NormalLaw, TangentialLaw};
 use crate::error::{ModelError, Quantity};
 use crate::integrate::{advance_orientation, half_kick, half_kick_predict, kick_drift};
@@ -15,7 +18,8 @@ use crate::units::G;
 use super::energy::{EnergyLedger, EnergyState};
 use super::model::DemModel;
 
-/// Normal-law kernel used by the monomorphised contact loops.
+/// Normal-law kernel used by the monomorphised contact loops: the public kernels of
+/// [`crate::contact`] (tests/contact_properties.rs checks their properties).
 trait NormalKernel {
     /// Returns (raw total force, elastic force, factor of the tangential damping) (N, N, –).
     fn eval(k: f64, c: f64, overlap: f64, v_n: f64) -> (f64, f64, f64);
@@ -25,9 +29,11 @@ struct HertzKernel;
 impl NormalKernel for HertzKernel {
     #[inline(always)]
     fn eval(k: f64, c: f64, z: f64, v_n: f64) -> (f64, f64, f64) {
-        let s = z.sqrt();
-        let fel = k * z * s;
-        (fel + c * v_n * s, fel, s)
+        (
+            hertz_normal_force(k, z, v_n, c),
+            hertz_elastic_force(k, z),
+            z.sqrt(),
+        )
     }
 }
 
@@ -35,8 +41,11 @@ struct LinearKernel;
 impl NormalKernel for LinearKernel {
     #[inline(always)]
     fn eval(k: f64, c: f64, z: f64, v_n: f64) -> (f64, f64, f64) {
-        let fel = k * z;
-        (fel + c * v_n, fel, 1.0)
+        (
+            linear_normal_force(k, z, v_n, c),
+            linear_elastic_force(k, z),
+            1.0,
+        )
     }
 }
 
@@ -695,7 +704,11 @@ fn pair_loop<K: NormalKernel, const TANG: bool, const ROT: bool, const CLAMP: bo
         let vrn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2];
         let v_n = -vrn;
         let (raw, fel, ts) = K::eval(c[0], c[1], z, v_n);
-        let f = if CLAMP { raw.max(0.0) } else { raw };
+        let f = if CLAMP {
+            AttractionPolicy::Clamp.apply(raw)
+        } else {
+            raw
+        };
         p_coll += (f - fel) * v_n;
         let mut fv = [f * n[0], f * n[1], f * n[2]];
         if TANG {
@@ -784,7 +797,11 @@ fn wall_loop<K: NormalKernel, const TANG: bool, const ROT: bool, const CLAMP: bo
             let vrn = vr[axis] * s;
             let v_n = -vrn;
             let (raw, fel, ts) = K::eval(c[0], c[1], z, v_n);
-            let f = if CLAMP { raw.max(0.0) } else { raw };
+            let f = if CLAMP {
+                AttractionPolicy::Clamp.apply(raw)
+            } else {
+                raw
+            };
             p_coll += (f - fel) * v_n;
             let mut fv = [f * n[0], f * n[1], f * n[2]];
             if TANG {

@@ -23,7 +23,7 @@
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
-use crate::error::SceneError;
+use crate::error::{ModelError, Quantity};
 
 /// Volume fraction Σ (4/3)π r³ / V (–). Scaling every radius by λ multiplies it by λ³
 /// (the paper's eq. 6 for porous media).
@@ -220,7 +220,8 @@ impl Ord for FrontItem {
 /// x·n_w = r from a wall, solved exactly (intersection of envelopes).
 ///
 /// # Errors
-/// `damper.count` when the box cannot hold all spheres (the front empties first).
+/// [`ModelError`] on [`Quantity::GrainCount`] when the box cannot hold all spheres (the
+/// front empties first; the resolve step, [`crate::setup`], names the scene keys).
 ///
 /// # Example
 /// ```
@@ -231,7 +232,7 @@ impl Ord for FrontItem {
 pub fn advancing_front_packing(
     box_m: [f64; 3],
     radii: &[f64],
-) -> Result<Vec<[f64; 3]>, SceneError> {
+) -> Result<Vec<[f64; 3]>, ModelError> {
     let n = radii.len();
     if n == 0 {
         return Ok(Vec::new());
@@ -313,10 +314,13 @@ pub fn advancing_front_packing(
     }
     while next < n {
         let Some(FrontItem(_, piv)) = front.peek().map(|f| FrontItem(f.0, f.1)) else {
-            return Err(SceneError::invalid(
-                "damper.count",
+            return Err(ModelError::new(
+                Quantity::GrainCount,
                 n,
-                format!("the advancing front placed only {next} grains in the box; lower count or enlarge damper.box"),
+                format!(
+                    "the advancing front placed only {next} grains in the box; fewer grains or a \
+                     larger box"
+                ),
             ));
         };
         let r = radii[next];

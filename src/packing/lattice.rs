@@ -1,6 +1,6 @@
 //! Face-centred cubic lattice above the floor, for the "drop and settle" initial bed.
 
-use crate::error::SceneError;
+use crate::error::{ModelError, Quantity};
 use rand::{RngExt, SeedableRng};
 
 /// Centres (m) of `n` sites of an FCC lattice in the box (box frame: floor at z = 0), filled
@@ -9,14 +9,15 @@ use rand::{RngExt, SeedableRng};
 /// dropped bed does not stay crystalline.
 ///
 /// # Errors
-/// `damper.count` when fewer than `n` sites fit below the ceiling.
+/// [`ModelError`] on [`Quantity::GrainCount`] when fewer than `n` sites fit below the
+/// ceiling (the resolve step, [`crate::setup`], names the scene keys).
 pub fn fcc_lattice(
     box_m: [f64; 3],
     n: usize,
     r_max: f64,
     gap: f64,
     seed: u64,
-) -> Result<Vec<[f64; 3]>, SceneError> {
+) -> Result<Vec<[f64; 3]>, ModelError> {
     let spacing = 2.0 * r_max * (1.0 + gap);
     let a = spacing * std::f64::consts::SQRT_2; // conventional cubic cell side
     let lo = r_max * (1.0 + gap);
@@ -46,12 +47,12 @@ pub fn fcc_lattice(
         }
     }
     if sites.len() < n {
-        return Err(SceneError::invalid(
-            "damper.count",
+        return Err(ModelError::new(
+            Quantity::GrainCount,
             n,
             format!(
-                "only {} lattice sites fit in the box for R_max = {r_max:.3e} m; lower count, enlarge \
-                 damper.box[2] (Lz) or use packing = \"advancing-front\"",
+                "only {} lattice sites fit in the box for R_max = {r_max:.3e} m; fewer grains, a \
+                 taller box or the advancing-front packing",
                 sites.len()
             ),
         ));
@@ -92,9 +93,8 @@ mod tests {
                 assert!(d >= 0.006, "{d}");
             }
         }
-        assert!(fcc_lattice(b, 5000, 0.003, 0.1, 1)
-            .unwrap_err()
-            .to_string()
-            .contains("damper.count"));
+        let e = fcc_lattice(b, 5000, 0.003, 0.1, 1).unwrap_err();
+        assert_eq!(e.quantity, Quantity::GrainCount);
+        assert!(e.hint.contains("lattice sites"), "{e}");
     }
 }

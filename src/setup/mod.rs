@@ -190,6 +190,10 @@ fn scene_fix(q: Quantity) -> Option<&'static str> {
         Quantity::SteadyFraction => {
             Some("in the scene: raise run.duration (or run.periods) or run.steady_fraction")
         }
+        Quantity::GrainCount => Some(
+            "in the scene: lower damper.count, enlarge damper.box or use \
+             damper.packing = \"advancing-front\"",
+        ),
         _ => None,
     }
 }
