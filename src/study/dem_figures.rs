@@ -8,10 +8,15 @@ use crate::observe::NullObserver;
 use crate::plot::energy::{energy_figure, energy_label};
 use crate::plot::resonance::resonance_figure;
 use crate::plot::Series;
+use crate::scene::keys::{
+    DAMPER_BOX, DAMPER_COUNT, DAMPER_GAMMA_N, DAMPER_GAMMA_S, DAMPER_RADIUS, DAMPER_YOUNGS_MODULUS,
+    EXCITATION_FREQUENCY, RUN_DT_FRACTION, RUN_DURATION,
+};
+use crate::sweep::SweepPoints;
 
 use super::check::EffectiveRow;
 use super::pipeline::{
-    col, record_run, scene_with, simulate_command, Ctx, FigureRecord, SweepResult, DEM_B,
+    record_run, scene_with, simulate_command, Ctx, FigureRecord, SweepResult, DEM_B,
 };
 use super::reproduce::{draw_bed_motion, draw_effective, fit_groups};
 use super::settings::{DemSettings, Settings};
@@ -54,9 +59,9 @@ pub struct DemOutput {
 /// The simulator's message (e.g. [`SimError::Unavailable`]).
 pub fn available() -> Result<(), String> {
     let set = [
-        ("damper.count", "4".to_string()),
-        ("run.duration", "0.01".to_string()),
-        ("damper.youngs_modulus", "2.03e8".to_string()),
+        (DAMPER_COUNT, "4".to_string()),
+        (RUN_DURATION, "0.01".to_string()),
+        (DAMPER_YOUNGS_MODULUS, "2.03e8".to_string()),
     ];
     let scene = scene_with("dem check", DEM_B, &set).map_err(|e| e.to_string())?;
     match crate::sweep::run_scene(&scene, &mut NullObserver, &RunOptions::summary_only()) {
@@ -70,11 +75,11 @@ pub fn available() -> Result<(), String> {
 fn base_set(d: &DemSettings, duration_s: f64) -> Vec<(&'static str, String)> {
     let g = crate::scene::dem::softening_damping_scale(d.soften);
     vec![
-        ("damper.youngs_modulus", (E_B / d.soften).to_string()),
-        ("damper.gamma_n", (GAMMA_N_B * g).to_string()),
-        ("damper.gamma_s", (GAMMA_S_B * g).to_string()),
-        ("run.dt_fraction", d.dt_fraction.to_string()),
-        ("run.duration", duration_s.to_string()),
+        (DAMPER_YOUNGS_MODULUS, (E_B / d.soften).to_string()),
+        (DAMPER_GAMMA_N, (GAMMA_N_B * g).to_string()),
+        (DAMPER_GAMMA_S, (GAMMA_S_B * g).to_string()),
+        (RUN_DT_FRACTION, d.dt_fraction.to_string()),
+        (RUN_DURATION, duration_s.to_string()),
     ]
 }
 
@@ -82,9 +87,9 @@ fn base_set(d: &DemSettings, duration_s: f64) -> Vec<(&'static str, String)> {
 fn count_set(n: usize, lz: f64) -> Vec<(&'static str, String)> {
     let r = R_B * (N_B as f64 / n as f64).cbrt();
     vec![
-        ("damper.count", n.to_string()),
-        ("damper.radius", format!("{r:.6}")),
-        ("damper.box", format!("[0.03675,0.03675,{lz}]")),
+        (DAMPER_COUNT, n.to_string()),
+        (DAMPER_RADIUS, format!("{r:.6}")),
+        (DAMPER_BOX, format!("[0.03675,0.03675,{lz}]")),
     ]
 }
 
@@ -103,7 +108,7 @@ pub fn all(ctx: &Ctx, s: &Settings, d: &DemSettings) -> Result<DemOutput, StudyE
         "dem_frf_n250",
         DEM_B,
         &set,
-        &[("excitation.frequency", d.freq.vary())],
+        &[(EXCITATION_FREQUENCY, d.freq.vary())],
         false,
     )?;
     figures.push(energy_vs_frequency(ctx, &frf, red(&["dem"]))?);
@@ -119,7 +124,7 @@ pub fn all(ctx: &Ctx, s: &Settings, d: &DemSettings) -> Result<DemOutput, StudyE
                 &format!("dem_lz_n{n}_lz{lz}"),
                 DEM_B,
                 &set,
-                &[("excitation.frequency", d.res_freq.vary())],
+                &[(EXCITATION_FREQUENCY, d.res_freq.vary())],
                 false,
             )?;
             v.push((lz, sw));
@@ -147,8 +152,8 @@ pub fn all(ctx: &Ctx, s: &Settings, d: &DemSettings) -> Result<DemOutput, StudyE
             DEM_B,
             &set,
             &[
-                ("damper.gamma_n", values.join(",")),
-                ("excitation.frequency", d.res_freq.vary()),
+                (DAMPER_GAMMA_N, values.join(",")),
+                (EXCITATION_FREQUENCY, d.res_freq.vary()),
             ],
             false,
         )?;
@@ -172,17 +177,14 @@ fn energy_vs_frequency(
     reductions: Vec<String>,
 ) -> Result<FigureRecord, StudyError> {
     let name = "energy_vs_frequency_dem";
-    let f = col(name, &sw.table, "frequency_hz")?;
-    let cols: Vec<String> = sw
-        .table
-        .columns_matching("energy_", "_j_per_cycle")
-        .into_iter()
-        .filter(|c| !c.contains("input") && !c.contains("impact") && !c.contains("balance"))
-        .collect();
-    let values = cols
-        .iter()
-        .map(|c| col(name, &sw.table, c))
-        .collect::<Result<Vec<_>, _>>()?;
+    let f = sw.points.map(|s| s.frequency_hz);
+    // the primary's viscous loss, then the grains' own (collision, friction …)
+    let mut cols = vec!["energy_viscous_j_per_cycle".to_string()];
+    cols.extend(grain_energy_keys(&sw.points));
+    let mut values = vec![sw.points.map(|s| s.energy_viscous_j_per_cycle)];
+    for c in &cols[1..] {
+        values.push(extra_values(name, &sw.points, c)?);
+    }
     let mut header = vec!["frequency_hz"];
     header.extend(cols.iter().map(|c| c.as_str()));
     let rows: Vec<Vec<f64>> = (0..f.len())
@@ -215,19 +217,38 @@ fn energy_vs_frequency(
     })
 }
 
-/// Grains' dissipation columns (collision, friction …) of a sweep table: every
-/// `energy_*_j_per_cycle` except input, viscous and impact.
-fn grain_dissipation(name: &str, sw: &SweepResult) -> Result<Vec<f64>, StudyError> {
-    let cols: Vec<String> = sw
-        .table
-        .columns_matching("energy_", "_j_per_cycle")
-        .into_iter()
-        .filter(|c| !c.contains("input") && !c.contains("viscous") && !c.contains("impact"))
+/// The DEM's own dissipation entries (collision, friction …) of the points' summaries: every
+/// model-specific `energy_*_j_per_cycle`, by name.
+fn grain_energy_keys(pts: &SweepPoints) -> Vec<String> {
+    let keys: std::collections::BTreeSet<&String> = pts
+        .iter()
+        .flat_map(|p| p.summary.extra.keys())
+        .filter(|k| k.starts_with("energy_") && k.ends_with("_j_per_cycle"))
         .collect();
-    let n = sw.table.rows.len();
-    let mut total = vec![0.0; n];
-    for c in &cols {
-        for (t, v) in total.iter_mut().zip(col(name, &sw.table, c)?) {
+    keys.into_iter().cloned().collect()
+}
+
+/// Model-specific summary entry `key` of every point, or a study error naming the point.
+fn extra_values(name: &str, pts: &SweepPoints, key: &str) -> Result<Vec<f64>, StudyError> {
+    pts.iter()
+        .map(|p| {
+            p.summary
+                .extra
+                .get(key)
+                .copied()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| {
+                    StudyError::step(name, format!("{}: point {}: no `{key}`", pts.dir, p.index))
+                })
+        })
+        .collect()
+}
+
+/// The grains' dissipation per cycle (collision + friction …) of every point.
+fn grain_dissipation(name: &str, sw: &SweepResult) -> Result<Vec<f64>, StudyError> {
+    let mut total = vec![0.0; sw.points.len()];
+    for c in grain_energy_keys(&sw.points) {
+        for (t, v) in total.iter_mut().zip(extra_values(name, &sw.points, &c)?) {
             *t += v;
         }
     }
@@ -245,7 +266,7 @@ fn zres_energy_vs_lz(
     for (n, v) in per_n {
         let (mut xs, mut zs, mut es) = (vec![], vec![], vec![]);
         for (lz, sw) in v {
-            let z = col(name, &sw.table, "amplitude_m")?;
+            let z = sw.points.map(|s| s.amplitude_m);
             let e = grain_dissipation(name, sw)?;
             let i = (0..z.len())
                 .max_by(|&a, &b| z[a].total_cmp(&z[b]))
@@ -348,7 +369,7 @@ fn effective_vs_lz(
         .ok_or_else(|| StudyError::step(name, "no DEM sweeps"))?;
     let mut rows = Vec::new();
     for (lz, sw) in v {
-        let fit = fit_groups(name, &single_group(&sw.table), "group")?;
+        let fit = fit_groups(name, &sw.points, None)?;
         if let Some(f) = fit.first() {
             rows.push(EffectiveRow { x_m: *lz, ..*f });
         }
@@ -372,16 +393,6 @@ fn effective_vs_lz(
     ))
 }
 
-/// The table with one extra constant column `group` (so that [`fit_groups`] fits all rows).
-fn single_group(t: &crate::plot::table::Table) -> crate::plot::table::Table {
-    let mut t = t.clone();
-    t.headers.push("group".into());
-    for r in &mut t.rows {
-        r.push("0".into());
-    }
-    t
-}
-
 fn zres_vs_gamma(
     ctx: &Ctx,
     d: &DemSettings,
@@ -393,11 +404,14 @@ fn zres_vs_gamma(
     let mut data = Vec::new();
     let mut rows = Vec::new();
     for (n, sw) in curves {
-        let gam: Vec<f64> = col(name, &sw.table, "damper.gamma_n")?
+        let gam: Vec<f64> = sw
+            .points
+            .values(DAMPER_GAMMA_N)
+            .map_err(|e| StudyError::step(name, e))?
             .into_iter()
             .map(|x| x / g)
             .collect();
-        let z = col(name, &sw.table, "amplitude_m")?;
+        let z = sw.points.map(|s| s.amplitude_m);
         let (xs, zs) = crate::plot::resonance::resonance_amplitudes(&gam, &z);
         for (x, z) in xs.iter().zip(&zs) {
             rows.push(vec![*n as f64, *x, *z]);
@@ -438,7 +452,7 @@ fn bed_motion(
     let f = 15.0;
     let mut set = base_set(d, d.bed_duration_s);
     set.extend(count_set(N_B, LZ_B));
-    set.push(("excitation.frequency", f.to_string()));
+    set.push((EXCITATION_FREQUENCY, f.to_string()));
     let scene = scene_with(name, DEM_B, &set)?;
     let from = (d.bed_duration_s - 4.0 / f).max(0.0);
     let r = record_run(name, &scene, 2e-4, from)?;

@@ -6,10 +6,9 @@ use std::path::{Path, PathBuf};
 use crate::error::{SimError, StudyError};
 use crate::model::RunOptions;
 use crate::observe::{fmt_num, ModelSample, Observer, Sample};
-use crate::plot::table::Table;
 use crate::plot::{render, Figure, FigureOptions};
 use crate::scene::{Scene, SceneSource};
-use crate::sweep::{run_sweep, SweepSpec, Vary};
+use crate::sweep::{run_sweep, SweepPoints, SweepSpec, Vary};
 
 /// A scene file bundled with the library (same text as under `data/scenes/`).
 #[derive(Debug, Clone, Copy)]
@@ -65,13 +64,12 @@ pub struct Ctx<'a> {
     pub progress: &'a (dyn Fn(&str) + Sync),
 }
 
-/// The result of a sweep: its table and the equivalent command.
+/// The result of a sweep: its typed points and the equivalent command.
 #[derive(Debug, Clone)]
 pub struct SweepResult {
-    /// `DIR/sweep.csv`.
-    pub table: Table,
-    /// `DIR/strobe.csv`, if it has rows.
-    pub strobe: Option<Table>,
+    /// The finished points (`DIR/points/<i>.json`), in point order, each with its summary
+    /// and stroboscopic samples.
+    pub points: SweepPoints,
     /// `pdamp sweep …` reproducing it.
     pub command: String,
 }
@@ -147,13 +145,8 @@ impl Ctx<'_> {
             report.skipped,
             started.elapsed().as_secs_f64()
         ));
-        let table = Table::read(&out.join("sweep.csv")).map_err(|e| step(&e))?;
-        let strobe = Table::read(&out.join("strobe.csv")).ok();
-        Ok(SweepResult {
-            table,
-            strobe,
-            command,
-        })
+        let points = SweepPoints::read(&out).map_err(|e| step(&e))?;
+        Ok(SweepResult { points, command })
     }
 
     /// Like [`Ctx::sweep`] with `outer` as the slowest key of the grid, but as one sweep per
@@ -161,7 +154,7 @@ impl Ctx<'_> {
     /// its `sweep.csv` after every point, so many small sweeps are cheaper than one large one.
     ///
     /// # Errors
-    /// As [`Ctx::sweep`]; also if the parts' columns differ.
+    /// As [`Ctx::sweep`]; also if `outer` has no values.
     pub fn sweep_split(
         &self,
         dir: &str,
@@ -179,41 +172,25 @@ impl Ctx<'_> {
             let sub = format!("{dir}/{key}={v}");
             parts.push((v, self.sweep(&sub, scene, &set_v, vary, analyze)?));
         }
-        let join =
-            |pick: &dyn Fn(&SweepResult) -> Option<&Table>| -> Result<Option<Table>, StudyError> {
-                let mut out: Option<Table> = None;
-                for (v, p) in &parts {
-                    let Some(t) = pick(p) else { continue };
-                    let mut headers = t.headers.clone();
-                    headers.insert(1, key.to_string());
-                    let rows = t.rows.iter().map(|r| {
-                        let mut r = r.clone();
-                        r.insert(1, v.to_string());
-                        r
-                    });
-                    match &mut out {
-                        None => {
-                            out = Some(Table {
-                                path: self.out.join("data").join(dir).display().to_string(),
-                                headers,
-                                rows: rows.collect(),
-                            })
-                        }
-                        Some(o) if o.headers == headers => o.rows.extend(rows),
-                        Some(_) => {
-                            return Err(StudyError::step(
-                                format!("sweep {dir}"),
-                                format!("the sweep at {key} = {v} has different columns"),
-                            ))
-                        }
-                    }
-                }
-                Ok(out)
-            };
-        let table = join(&|p| Some(&p.table))?.ok_or_else(|| {
-            StudyError::step(format!("sweep {dir}"), "no values of the outer key")
-        })?;
-        let strobe = join(&|p| p.strobe.as_ref())?;
+        if parts.is_empty() {
+            return Err(StudyError::step(
+                format!("sweep {dir}"),
+                "no values of the outer key",
+            ));
+        }
+        // the outer key joins each point's varied values as the slowest one
+        let mut points = SweepPoints {
+            dir: self.out.join("data").join(dir).display().to_string(),
+            points: Vec::new(),
+        };
+        for (v, p) in &parts {
+            points.points.extend(p.points.iter().map(|pt| {
+                let mut pt = pt.clone();
+                pt.values
+                    .insert(0, (key.to_string(), toml::Value::Float(*v)));
+                pt
+            }));
+        }
         let mut command = parts
             .first()
             .map(|(_, p)| p.command.clone())
@@ -226,11 +203,7 @@ impl Ctx<'_> {
                 .collect::<Vec<_>>()
                 .join(", ")
         );
-        Ok(SweepResult {
-            table,
-            strobe,
-            command,
-        })
+        Ok(SweepResult { points, command })
     }
 
     /// Renders `fig` to `OUT/<name>.png` and returns its size.
@@ -379,28 +352,4 @@ pub fn record_run_summary(
     let summary =
         crate::sweep::run_scene(scene, &mut rec, &opts).map_err(|e| StudyError::step(step, e))?;
     Ok((rec, summary))
-}
-
-/// Rows of a table grouped by the value of `key` (ascending), each group's row indices in
-/// file order.
-///
-/// # Errors
-/// [`StudyError::Step`] if the column is missing or not numeric.
-pub fn group_by(step: &str, t: &Table, key: &str) -> Result<Vec<(f64, Vec<usize>)>, StudyError> {
-    let v = t.f64_column(key).map_err(|e| StudyError::step(step, e))?;
-    let mut keys: Vec<f64> = v.clone();
-    keys.sort_by(f64::total_cmp);
-    keys.dedup();
-    Ok(keys
-        .into_iter()
-        .map(|k| (k, (0..v.len()).filter(|&i| v[i] == k).collect()))
-        .collect())
-}
-
-/// A numeric column, or a study error naming the step.
-///
-/// # Errors
-/// [`StudyError::Step`] if the column is missing or holds a non-number.
-pub fn col(step: &str, t: &Table, name: &str) -> Result<Vec<f64>, StudyError> {
-    t.f64_column(name).map_err(|e| StudyError::step(step, e))
 }

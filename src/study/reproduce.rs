@@ -25,14 +25,17 @@ use crate::plot::regime_frf::{Exponents, RegimeFrfFigure};
 use crate::plot::regime_map::RegimeMapFigure;
 use crate::plot::resonance::{resonance_amplitudes, resonance_figure};
 use crate::plot::spectrum::SpectrumFigure;
-use crate::plot::table::Table;
 use crate::plot::{FigureOptions, Series};
+use crate::scene::keys::{
+    DAMPER_GAP, DAMPER_RESTITUTION, EXCITATION_FREQUENCY, RUN_DURATION, RUN_PERIODS,
+};
+use crate::sweep::SweepPoints;
 
 use super::check::EffectiveRow;
 use super::dem_figures;
 use super::pipeline::{
-    col, group_by, record_run, record_run_summary, scene_with, simulate_command, Ctx, FigureRecord,
-    SweepResult, IMPACT_B,
+    record_run, record_run_summary, scene_with, simulate_command, Ctx, FigureRecord, SweepResult,
+    IMPACT_B,
 };
 use super::settings::{Mode, Settings, SCENE_B_GAP_M};
 
@@ -207,10 +210,10 @@ pub fn reproduce(
             "impact_regimes_e0.8",
             IMPACT_B,
             &[
-                ("damper.restitution", "0.8".into()),
-                ("run.duration", s.regime_duration_s.to_string()),
+                (DAMPER_RESTITUTION, "0.8".into()),
+                (RUN_DURATION, s.regime_duration_s.to_string()),
             ],
-            &[("excitation.frequency", s.regime_freq.vary())],
+            &[(EXCITATION_FREQUENCY, s.regime_freq.vary())],
             true,
         )?;
         if want("regime_frf") {
@@ -292,10 +295,10 @@ fn impact_frf_sweep(ctx: &Ctx, s: &Settings, e: f64) -> Result<SweepResult, Stud
         &format!("impact_frf_e{e}"),
         IMPACT_B,
         &[
-            ("damper.restitution", e.to_string()),
-            ("run.duration", s.duration_s.to_string()),
+            (DAMPER_RESTITUTION, e.to_string()),
+            (RUN_DURATION, s.duration_s.to_string()),
         ],
-        &[("excitation.frequency", s.freq.vary())],
+        &[(EXCITATION_FREQUENCY, s.freq.vary())],
         false,
     )
 }
@@ -305,27 +308,38 @@ fn impact_gap_grid(ctx: &Ctx, s: &Settings, e: f64) -> Result<SweepResult, Study
         &format!("impact_gap_grid_e{e}"),
         IMPACT_B,
         &[
-            ("damper.restitution", e.to_string()),
-            ("run.duration", s.duration_s.to_string()),
+            (DAMPER_RESTITUTION, e.to_string()),
+            (RUN_DURATION, s.duration_s.to_string()),
         ],
-        ("damper.gap", &s.gaps_m),
-        &[("excitation.frequency", s.grid_freq.vary())],
+        (DAMPER_GAP, &s.gaps_m),
+        &[(EXCITATION_FREQUENCY, s.grid_freq.vary())],
         false,
     )
 }
 
-/// Fits (2.1.21) to each group of rows of `t` (grouped by `key`), with K and U of scene B.
+/// Fits (2.1.21) to each group of points (grouped by varied key `key`; `None`: all points as
+/// one group), with K and U of scene B.
 ///
 /// # Errors
-/// [`StudyError::Step`] naming `step` if a column is missing or a fit fails.
-pub fn fit_groups(step: &str, t: &Table, key: &str) -> Result<Vec<EffectiveRow>, StudyError> {
-    let f = col(step, t, "frequency_hz")?;
-    let z = col(step, t, "amplitude_m")?;
-    let g = col(step, t, key)?;
+/// [`StudyError::Step`] naming `step` if a point lacks `key` or a fit fails.
+pub fn fit_groups(
+    step: &str,
+    pts: &SweepPoints,
+    key: Option<&str>,
+) -> Result<Vec<EffectiveRow>, StudyError> {
+    let f = pts.map(|s| s.frequency_hz);
+    let z = pts.map(|s| s.amplitude_m);
+    let g = key
+        .map(|k| pts.values(k))
+        .transpose()
+        .map_err(|e| StudyError::step(step, e))?;
     let opts = FrfFitOptions::new(SCENE_B.primary.stiffness_n_m, SCENE_B.base_amplitude_m);
-    let fits = fit_frf_groups(&f, &z, Some(&g), &opts).map_err(|e| {
+    let fits = fit_frf_groups(&f, &z, g.as_deref(), &opts).map_err(|e| {
         let x = e.group_value.unwrap_or(f64::NAN);
-        StudyError::step(step, format!("fit at {key} = {x}: {}", e.error))
+        StudyError::step(
+            step,
+            format!("fit at {} = {x}: {}", key.unwrap_or("group"), e.error),
+        )
     })?;
     Ok(fits
         .into_iter()
@@ -398,7 +412,7 @@ fn effective_figure(
     grid: &SweepResult,
 ) -> Result<(FigureRecord, Vec<EffectiveRow>), StudyError> {
     let name = "effective";
-    let rows = fit_groups(name, &grid.table, "damper.gap")?;
+    let rows = fit_groups(name, &grid.points, Some(DAMPER_GAP))?;
     let size = draw_effective(
         ctx,
         name,
@@ -429,20 +443,28 @@ fn effective_figure(
     ))
 }
 
-/// Z_res per group of `key` (the largest amplitude over frequency) and the row where it occurs.
-fn resonance_rows(step: &str, t: &Table, key: &str) -> Result<Vec<(f64, usize)>, StudyError> {
-    let z = col(step, t, "amplitude_m")?;
-    Ok(group_by(step, t, key)?
+/// Per group of varied key `key`, the point of largest amplitude (Z_res over frequency).
+fn resonance_points<'a>(
+    step: &str,
+    pts: &'a SweepPoints,
+    key: &str,
+) -> Result<Vec<(f64, &'a crate::sweep::SweepPoint)>, StudyError> {
+    Ok(pts
+        .group_by(key)
+        .map_err(|e| StudyError::step(step, e))?
         .into_iter()
-        .map(|(x, idx)| {
-            let best = idx
-                .iter()
-                .copied()
-                .max_by(|&a, &b| z[a].total_cmp(&z[b]))
-                .unwrap_or(0);
-            (x, best)
+        .filter_map(|(x, group)| {
+            let best = group
+                .into_iter()
+                .max_by(|a, b| a.summary.amplitude_m.total_cmp(&b.summary.amplitude_m))?;
+            Some((x, best))
         })
         .collect())
+}
+
+/// The values of varied key `key` of every point, or a study error naming `step`.
+fn key_values(step: &str, pts: &SweepPoints, key: &str) -> Result<Vec<f64>, StudyError> {
+    pts.values(key).map_err(|e| StudyError::step(step, e))
 }
 
 fn zres_vs_gap(
@@ -453,12 +475,12 @@ fn zres_vs_gap(
 ) -> Result<FigureRecord, StudyError> {
     let name = "zres_vs_gap";
     let (x0, z0) = resonance_amplitudes(
-        &col(name, &e0.table, "damper.gap")?,
-        &col(name, &e0.table, "amplitude_m")?,
+        &key_values(name, &e0.points, DAMPER_GAP)?,
+        &e0.points.map(|s| s.amplitude_m),
     );
     let (x8, z8) = resonance_amplitudes(
-        &col(name, &e8.table, "damper.gap")?,
-        &col(name, &e8.table, "amplitude_m")?,
+        &key_values(name, &e8.points, DAMPER_GAP)?,
+        &e8.points.map(|s| s.amplitude_m),
     );
     let rows: Vec<Vec<f64>> = (0..x0.len()).map(|i| vec![x0[i], z0[i], z8[i]]).collect();
     ctx.write_csv(name, &["gap_m", "zres_e0_m", "zres_e0.8_m"], &rows)?;
@@ -504,13 +526,15 @@ fn energy_vs_gap(
     e8: &SweepResult,
 ) -> Result<FigureRecord, StudyError> {
     let name = "energy_vs_gap";
-    let pick = |t: &Table| -> Result<(Vec<f64>, Vec<f64>), StudyError> {
-        let e = col(name, t, "energy_impact_j_per_cycle")?;
-        let rows = resonance_rows(name, t, "damper.gap")?;
-        Ok(rows.iter().map(|&(x, i)| (x, e[i])).unzip())
+    let pick = |pts: &SweepPoints| -> Result<(Vec<f64>, Vec<f64>), StudyError> {
+        let rows = resonance_points(name, pts, DAMPER_GAP)?;
+        Ok(rows
+            .iter()
+            .map(|&(x, p)| (x, p.summary.energy_impact_j_per_cycle))
+            .unzip())
     };
-    let (x0, y0) = pick(&e0.table)?;
-    let (_, y8) = pick(&e8.table)?;
+    let (x0, y0) = pick(&e0.points)?;
+    let (_, y8) = pick(&e8.points)?;
     ctx.write_csv(
         name,
         &[
@@ -551,16 +575,16 @@ fn zres_vs_restitution(ctx: &Ctx, s: &Settings) -> Result<FigureRecord, StudyErr
             &format!("impact_restitution_grid/gap{g}"),
             IMPACT_B,
             &[
-                ("run.duration", s.duration_s.to_string()),
-                ("damper.gap", g.to_string()),
+                (RUN_DURATION, s.duration_s.to_string()),
+                (DAMPER_GAP, g.to_string()),
             ],
-            ("damper.restitution", &s.restitutions),
-            &[("excitation.frequency", s.grid_freq.vary())],
+            (DAMPER_RESTITUTION, &s.restitutions),
+            &[(EXCITATION_FREQUENCY, s.grid_freq.vary())],
             false,
         )?;
         let (xs, zs) = resonance_amplitudes(
-            &col(name, &sw.table, "damper.restitution")?,
-            &col(name, &sw.table, "amplitude_m")?,
+            &key_values(name, &sw.points, DAMPER_RESTITUTION)?,
+            &sw.points.map(|s| s.amplitude_m),
         );
         for (x, zz) in xs.iter().zip(&zs) {
             rows.push(vec![g, *x, *zz]);
@@ -599,9 +623,9 @@ fn energy_vs_frequency(
     sw: &SweepResult,
 ) -> Result<FigureRecord, StudyError> {
     let name = "energy_vs_frequency";
-    let f = col(name, &sw.table, "frequency_hz")?;
-    let imp = col(name, &sw.table, "energy_impact_j_per_cycle")?;
-    let vis = col(name, &sw.table, "energy_viscous_j_per_cycle")?;
+    let f = sw.points.map(|s| s.frequency_hz);
+    let imp = sw.points.map(|s| s.energy_impact_j_per_cycle);
+    let vis = sw.points.map(|s| s.energy_viscous_j_per_cycle);
     ctx.write_csv(
         name,
         &[
@@ -694,8 +718,8 @@ fn bed_motion_impact(ctx: &Ctx, s: &Settings) -> Result<FigureRecord, StudyError
     let f = 15.0;
     let periods = 60.0;
     let set = [
-        ("excitation.frequency", f.to_string()),
-        ("run.periods", periods.to_string()),
+        (EXCITATION_FREQUENCY, f.to_string()),
+        (RUN_PERIODS, periods.to_string()),
     ];
     let scene = scene_with(name, IMPACT_B, &set)?;
     let r = record_run(name, &scene, 1e-4, (periods - 4.0) / f)?;
@@ -726,9 +750,9 @@ fn per_frequency(ctx: &Ctx, s: &Settings, f: f64) -> Result<Vec<FigureRecord>, S
     let step = format!("per-frequency {tag}");
     let periods = s.series_periods as f64;
     let set = [
-        ("damper.restitution", "0.8".to_string()),
-        ("excitation.frequency", f.to_string()),
-        ("run.periods", periods.to_string()),
+        (DAMPER_RESTITUTION, "0.8".to_string()),
+        (EXCITATION_FREQUENCY, f.to_string()),
+        (RUN_PERIODS, periods.to_string()),
     ];
     let scene = scene_with(&step, IMPACT_B, &set)?;
     let per_period = 64.0;
@@ -896,38 +920,47 @@ fn regime_columns(
     ctx: &Ctx,
     name: &str,
     sw: &SweepResult,
-    y_column: &str,
+    y: Vec<f64>,
     y_header: &str,
 ) -> Result<RegimeColumns, StudyError> {
-    let t = &sw.table;
-    let f = col(name, t, "frequency_hz")?;
-    let y = col(name, t, y_column)?;
-    let regime = t
-        .str_column("regime")
-        .map_err(|e| StudyError::step(name, e))?;
-    let opt = |c: &str| -> Result<Vec<Option<f64>>, StudyError> {
-        if t.has(c) {
-            t.opt_f64_column(c).map_err(|e| StudyError::step(name, e))
-        } else {
-            Ok(vec![None; f.len()])
-        }
+    let pts = &sw.points;
+    let f = pts.map(|s| s.frequency_hz);
+    // a value as sweep.csv keeps it: non-finite values are not estimates
+    let opt = |pick: fn(&crate::model::RunAnalysis) -> Option<f64>| -> Vec<Option<f64>> {
+        pts.iter()
+            .map(|p| {
+                p.summary
+                    .analysis
+                    .as_ref()
+                    .and_then(pick)
+                    .filter(|v| v.is_finite())
+            })
+            .collect()
     };
-    let period = opt("period")?
-        .into_iter()
-        .map(|p| {
-            p.filter(|p| *p >= 1.0 && p.fract() == 0.0)
-                .map(|p| p as u32)
-        })
-        .collect::<Vec<_>>();
     let c = RegimeColumns {
-        mle: opt("mle_per_s")?,
-        mle_se: opt("mle_stderr_per_s")?,
-        model: opt("model_mle_per_s")?,
-        model_se: opt("model_mle_stderr_per_s")?,
+        regime: pts
+            .iter()
+            .map(|p| {
+                p.summary
+                    .analysis
+                    .as_ref()
+                    .map_or("", |a| a.regime.as_str())
+                    .to_string()
+            })
+            .collect(),
+        period: opt(|a| a.period)
+            .into_iter()
+            .map(|p| {
+                p.filter(|p| *p >= 1.0 && p.fract() == 0.0)
+                    .map(|p| p as u32)
+            })
+            .collect(),
+        mle: opt(|a| a.data_mle_per_s),
+        mle_se: opt(|a| a.data_mle_stderr_per_s),
+        model: opt(|a| a.model_mle_per_s),
+        model_se: opt(|a| a.model_mle_stderr_per_s),
         f,
         y,
-        regime,
-        period,
     };
     let cell = |v: Option<f64>| v.map(|m| m.to_string()).unwrap_or_default();
     let mut text = format!(
@@ -953,7 +986,8 @@ fn regime_columns(
 
 fn regime_frf(ctx: &Ctx, s: &Settings, sw: &SweepResult) -> Result<FigureRecord, StudyError> {
     let name = "regime_frf";
-    let c = regime_columns(ctx, name, sw, "amplitude_m", "amplitude_m")?;
+    let amplitude = sw.points.map(|s| s.amplitude_m);
+    let c = regime_columns(ctx, name, sw, amplitude, "amplitude_m")?;
     let size = ctx.render(
         name,
         &RegimeFrfFigure {
@@ -991,12 +1025,17 @@ fn regime_frf(ctx: &Ctx, s: &Settings, sw: &SweepResult) -> Result<FigureRecord,
 
 fn bifurcation(ctx: &Ctx, s: &Settings, sw: &SweepResult) -> Result<FigureRecord, StudyError> {
     let name = "bifurcation";
-    let st = sw
-        .strobe
-        .as_ref()
-        .ok_or_else(|| StudyError::step(name, "the sweep wrote no strobe.csv rows"))?;
-    let f = col(name, st, "frequency_hz")?;
-    let z = col(name, st, "grain_z_m")?;
+    let (f, z): (Vec<f64>, Vec<f64>) = sw
+        .points
+        .iter()
+        .flat_map(|p| {
+            let f = p.summary.frequency_hz;
+            p.summary.strobe.iter().map(move |s| (f, s.grain_z_m))
+        })
+        .unzip();
+    if f.is_empty() {
+        return Err(StudyError::step(name, "the sweep wrote no strobe.csv rows"));
+    }
     ctx.write_csv(
         name,
         &["frequency_hz", "grain_z_m"],
@@ -1031,14 +1070,15 @@ fn regime_map(ctx: &Ctx, s: &Settings) -> Result<FigureRecord, StudyError> {
         "impact_regime_map_e0.8",
         IMPACT_B,
         &[
-            ("damper.restitution", "0.8".into()),
-            ("run.duration", s.regime_duration_s.to_string()),
+            (DAMPER_RESTITUTION, "0.8".into()),
+            (RUN_DURATION, s.regime_duration_s.to_string()),
         ],
-        ("damper.gap", &s.map_gaps_m),
-        &[("excitation.frequency", s.map_freq.vary())],
+        (DAMPER_GAP, &s.map_gaps_m),
+        &[(EXCITATION_FREQUENCY, s.map_freq.vary())],
         true,
     )?;
-    let c = regime_columns(ctx, name, &sw, "damper.gap", "gap_m")?;
+    let gap = key_values(name, &sw.points, DAMPER_GAP)?;
+    let c = regime_columns(ctx, name, &sw, gap, "gap_m")?;
     // chaotic cells are shaded by the model's exponent (the data's where the model has none)
     let shade: Vec<Option<f64>> = c.model.iter().zip(&c.mle).map(|(m, d)| m.or(*d)).collect();
     let size = ctx.render(
@@ -1079,14 +1119,14 @@ fn frf_figure(
     dem: Option<&SweepResult>,
 ) -> Result<FigureRecord, StudyError> {
     let name = "frf";
-    let f0 = col(name, &e0.table, "frequency_hz")?;
-    let z0 = col(name, &e0.table, "amplitude_m")?;
-    let f8 = col(name, &e8.table, "frequency_hz")?;
-    let z8 = col(name, &e8.table, "amplitude_m")?;
+    let f0 = e0.points.map(|s| s.frequency_hz);
+    let z0 = e0.points.map(|s| s.amplitude_m);
+    let f8 = e8.points.map(|s| s.frequency_hz);
+    let z8 = e8.points.map(|s| s.amplitude_m);
     let (fd, zd) = match dem {
         Some(d) => (
-            col(name, &d.table, "frequency_hz")?,
-            col(name, &d.table, "amplitude_m")?,
+            d.points.map(|s| s.frequency_hz),
+            d.points.map(|s| s.amplitude_m),
         ),
         None => (vec![], vec![]),
     };
