@@ -15,10 +15,10 @@ use crate::scene::keys::{
 use crate::sweep::SweepPoints;
 
 use super::check::EffectiveRow;
+use super::kit::{draw_bed_motion, draw_effective, fit_groups, lines};
 use super::pipeline::{
     record_run, scene_with, simulate_command, Ctx, FigureRecord, SweepResult, DEM_B,
 };
-use super::reproduce::{draw_bed_motion, draw_effective, fit_groups};
 use super::settings::{DemSettings, Settings};
 
 /// Scene B's Lz (m) for the FRF, energy, γ_n and bed-motion figures.
@@ -310,7 +310,7 @@ fn zres_energy_vs_lz(
         .collect();
     let esize = ctx.render(
         ename,
-        &super::reproduce::lines(
+        &lines(
             series,
             "container height Lz (m)",
             "energy dissipated by the grains per cycle at resonance (J)",
