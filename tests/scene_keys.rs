@@ -16,13 +16,14 @@ fn accepts(scene: &str, key: &str, value: &str) -> Result<(), String> {
 
 #[test]
 fn every_key_constant_is_accepted_by_the_scene_parser() {
-    let cases: [(&str, &str, &str); 13] = [
+    let cases: [(&str, &str, &str); 14] = [
         (IMPACT, EXCITATION_FREQUENCY, "12.5"),
         (IMPACT, EXCITATION_AMPLITUDE, "0.003"),
         (IMPACT, DAMPER_GAP, "0.05"),
         (IMPACT, DAMPER_RESTITUTION, "0.8"),
         (IMPACT, RUN_DURATION, "2.0"),
         (IMPACT, RUN_PERIODS, "100"),
+        (IMPACT, RUN_SAMPLE_INTERVAL, "0.001"),
         (DEM, DAMPER_COUNT, "20"),
         (DEM, DAMPER_RADIUS, "0.003"),
         (DEM, DAMPER_BOX, "[0.03675,0.03675,0.1225]"),

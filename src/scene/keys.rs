@@ -26,5 +26,7 @@ pub const DAMPER_YOUNGS_MODULUS: &str = "damper.youngs_modulus";
 pub const RUN_DURATION: &str = "run.duration";
 /// `run.periods`: simulated forcing periods; replaces `run.duration`.
 pub const RUN_PERIODS: &str = "run.periods";
+/// `run.sample_interval`: output sampling of `series.csv` (s).
+pub const RUN_SAMPLE_INTERVAL: &str = "run.sample_interval";
 /// `run.dt_fraction`: DEM time step as a fraction of the contact time.
 pub const RUN_DT_FRACTION: &str = "run.dt_fraction";

@@ -29,6 +29,7 @@ use crate::plot::spectrum::SpectrumFigure;
 use crate::plot::Series;
 use rayon::prelude::*;
 
+use super::command::Command;
 use super::dem_figures::{E_B as E_STEEL, GAMMA_N_B, GAMMA_S_B};
 use super::pipeline::{
     scene_with, simulate_command, BundledScene, Ctx, FigureRecord, Recorded, SweepResult,
@@ -251,12 +252,19 @@ struct Info<'a, 'b> {
 }
 
 impl Info<'_, '_> {
-    fn record(&self, name: &str, caption: String, plot: &str, size: (u32, u32)) -> FigureRecord {
+    /// The figure's record: the sweep's commands, then `plot`.
+    fn record(
+        &self,
+        name: &str,
+        caption: String,
+        plot: Vec<Command>,
+        size: (u32, u32),
+    ) -> FigureRecord {
         FigureRecord {
             name: name.into(),
             caption,
             spec_item: "chapter 4: regimes of the DEM bed along f at Lz = 0.1225 m".into(),
-            commands: vec![self.sweep.command.clone(), plot.into()],
+            commands: [self.sweep.commands.clone(), plot].concat(),
             reductions: self.reductions.to_vec(),
             size_px: size,
         }
@@ -316,7 +324,11 @@ fn regime_frf(info: &Info, pts: &[Point]) -> Result<FigureRecord, StudyError> {
              the data Lyapunov exponent of z_cm with its error bar, 1/s).",
             length_text(info.c, 1.0)
         ),
-        "pdamp plot regime-frf sweep.csv -o ch4_regime_frf.png",
+        vec![Command::plot(
+            "regime-frf",
+            &info.sweep.csv,
+            &info.ctx.path(&format!("{name}.png")),
+        )],
         size,
     ))
 }
@@ -360,7 +372,13 @@ fn bifurcation(info: &Info) -> Result<FigureRecord, StudyError> {
          t = kT over the analysis window (the exact section), versus f: one dot per period-1 \
          frequency, n dots for period n (their spread is the bed's granular noise)."
             .into(),
-        "pdamp plot bifurcation strobe.csv -o ch4_bifurcation.png",
+        vec![Command::plot(
+            "bifurcation",
+            &(info.sweep.csv.iter())
+                .map(|p| p.with_file_name("strobe.csv"))
+                .collect::<Vec<_>>(),
+            &info.ctx.path(&format!("{name}.png")),
+        )],
         size,
     ))
 }
@@ -416,7 +434,7 @@ fn impacts(info: &Info, pts: &[Point]) -> Result<FigureRecord, StudyError> {
          cycle over the steady window (the centre of mass stopped by a wall that carries more \
          than half the bed's weight; see dem::bed_impacts)."
             .into(),
-        "columns bed_floor_impacts_per_cycle, bed_ceiling_impacts_per_cycle of sweep.csv",
+        vec![],
         size,
     ))
 }
@@ -497,10 +515,10 @@ fn run_length(
             length_text(info.c, 2.0),
             pairs.len()
         ),
-        "compare the two sweep.csv files",
+        vec![],
         size,
     );
-    rec.commands.insert(1, long.command.clone());
+    rec.commands.extend(long.commands.iter().cloned());
     Ok(rec)
 }
 
@@ -510,7 +528,8 @@ struct PanelRun {
     summary: RunSummary,
     rec: Recorded,
     dt_s: f64,
-    command: String,
+    /// The run's `--set` (for its `pdamp simulate` command).
+    set: Vec<(&'static str, String)>,
 }
 
 impl PanelRun {
@@ -535,13 +554,12 @@ fn panel_run(d: &DemSettings, c: &Chapter4Settings, f: f64) -> Result<PanelRun, 
     let mut rec = Recorded::default();
     let summary = crate::sweep::run_with_analysis(&scene, &mut rec, &opts, true)
         .map_err(|e| StudyError::step(&step, e))?;
-    let command = simulate_command(DEM_CH4, &set, std::path::Path::new(&format!("DIR_f{f}")));
     Ok(PanelRun {
         f_hz: f,
         summary,
         rec,
         dt_s: dt,
-        command,
+        set,
     })
 }
 
@@ -640,10 +658,26 @@ fn panel(info: &Info, r: &PanelRun) -> Result<FigureRecord, StudyError> {
             sz.len(),
             r.verdict()
         ),
-        "pdamp plot bed-motion / poincare / spectrum on the run directory",
+        vec![],
         (opts.width, opts.height),
     );
-    rec.commands[0] = r.command.clone();
+    // the run itself, into a directory, and the CLI's figures of its bed and section
+    let dir = info.ctx.path(&format!("data/ch4_run_f{f}"));
+    rec.commands = vec![
+        simulate_command(DEM_CH4, &r.set, &dir),
+        Command::plot(
+            "bed-motion",
+            &[dir.join("series.csv")],
+            &dir.join("bed_motion.png"),
+        ),
+        Command::plot(
+            "poincare",
+            &[dir.join("strobe.csv")],
+            &dir.join("poincare.png"),
+        )
+        .opt("x", "grain_z_m")
+        .opt("y", "grain_v_m_s"),
+    ];
     Ok(rec)
 }
 
@@ -651,6 +685,7 @@ fn reconstruction(info: &Info, runs: &[PanelRun]) -> Result<FigureRecord, StudyE
     let name = "ch4_reconstruction";
     let mut series: Vec<(Vec<f64>, usize, f64, String)> = Vec::new();
     let mut text = "frequency_hz,lag_s,decimation\n".to_string();
+    let mut commands = Vec::new();
     for r in runs {
         // 64 samples per period: the lag from the first minimum of the mutual information
         let dec = ((1.0 / (r.f_hz * 64.0 * r.dt_s)).round() as usize).max(1);
@@ -666,6 +701,18 @@ fn reconstruction(info: &Info, runs: &[PanelRun]) -> Result<FigureRecord, StudyE
         let lag = mi.first_minimum.unwrap_or(16).max(1);
         let keep = z.len().min(20 * 64);
         let dt = r.dt_s * dec as f64;
+        // the run into a directory, and its reconstruction at the same lag in its samples
+        let dir = info.ctx.path(&format!("data/ch4_run_f{}", r.f_hz));
+        commands.push(simulate_command(DEM_CH4, &r.set, &dir));
+        commands.push(
+            Command::plot(
+                "reconstruction",
+                &[dir.join("series.csv")],
+                &dir.join("reconstruction.png"),
+            )
+            .opt("column", "grain_z_m")
+            .opt("lag", lag * dec),
+        );
         text += &format!("{},{},{dec}\n", r.f_hz, lag as f64 * dt);
         series.push((
             z[z.len() - keep..].to_vec(),
@@ -710,9 +757,9 @@ fn reconstruction(info: &Info, runs: &[PanelRun]) -> Result<FigureRecord, StudyE
                 .collect::<Vec<_>>()
                 .join(", ")
         ),
-        "pdamp plot reconstruction DIR/series.csv --column grain_z_m --lag L",
+        vec![],
         (opts.width, opts.height),
     );
-    rec.commands[0] = runs.first().map(|r| r.command.clone()).unwrap_or_default();
+    rec.commands = commands;
     Ok(rec)
 }

@@ -15,7 +15,8 @@ use crate::scene::keys::{
 use crate::sweep::SweepPoints;
 
 use super::check::EffectiveRow;
-use super::kit::{draw_bed_motion, draw_effective, fit_groups, lines};
+use super::command::Command;
+use super::kit::{draw_bed_motion, draw_effective, effective_commands, fit_groups, lines};
 use super::pipeline::{
     record_run, scene_with, simulate_command, Ctx, FigureRecord, SweepResult, DEM_B,
 };
@@ -208,10 +209,15 @@ fn energy_vs_frequency(
                   versus frequency."
             .into(),
         spec_item: "collision vs friction energy per cycle versus f".into(),
-        commands: vec![
-            sw.command.clone(),
-            "pdamp plot energy sweep.csv -o energy_vs_frequency_dem.png".into(),
-        ],
+        commands: [
+            sw.commands.clone(),
+            vec![Command::plot(
+                "energy",
+                &sw.csv,
+                &ctx.path(&format!("{name}.png")),
+            )],
+        ]
+        .concat(),
         reductions,
         size_px: size,
     })
@@ -318,19 +324,16 @@ fn zres_energy_vs_lz(
             "Grain dissipation per cycle at the resonance versus Lz",
         ),
     )?;
-    let commands: Vec<String> = per_n
+    // one sweep per (N, Lz)
+    let commands: Vec<Command> = per_n
         .iter()
-        .flat_map(|(_, v)| v.iter().map(|(_, s)| s.command.clone()))
-        .take(2)
-        .chain(std::iter::once(
-            "… one sweep per (N, Lz) as above; then pdamp plot resonance …/sweep.csv --x damper.box".into(),
-        ))
+        .flat_map(|(_, v)| v.iter().flat_map(|(_, s)| s.commands.iter().cloned()))
         .collect();
     ctx.write_text(
         "zres_vs_lz_dem.commands.txt",
-        &per_n
+        &commands
             .iter()
-            .flat_map(|(_, v)| v.iter().map(|(_, s)| s.command.clone() + "\n"))
+            .map(|c| format!("{c}\n"))
             .collect::<String>(),
     )?;
     let rec = FigureRecord {
@@ -383,9 +386,18 @@ fn effective_vs_lz(
                  FRF near resonance, versus container height Lz, with standard errors."
             ),
             spec_item: "effective damping C_ef/C and effective mass M_ef versus Lz".into(),
-            commands: vec![
-                "pdamp fit-frf data/dem_lz_n250_lz<Lz>/sweep.csv --stiffness 21500 --base-amplitude 4.5e-3 (one per Lz)".into(),
-            ],
+            commands: [
+                v.iter().flat_map(|(_, sw)| sw.commands.clone()).collect(),
+                effective_commands(
+                    ctx,
+                    name,
+                    &v.iter()
+                        .flat_map(|(_, sw)| sw.csv.clone())
+                        .collect::<Vec<_>>(),
+                    "lz_m",
+                ),
+            ]
+            .concat(),
             reductions: vec![],
             size_px: size,
         },
@@ -437,7 +449,10 @@ fn zres_vs_gamma(
                   given as its real-steel equivalent (the softened runs use γ_n × soften^-0.6)."
             .into(),
         spec_item: "Z_res versus γ_n, γ_s for several N".into(),
-        commands: curves.iter().map(|(_, s)| s.command.clone()).collect(),
+        commands: curves
+            .iter()
+            .flat_map(|(_, s)| s.commands.clone())
+            .collect(),
         reductions,
         size_px: size,
     })
@@ -468,7 +483,12 @@ fn bed_motion(
         spec_item: "bed motion (floor and ceiling, grain band, centre of mass, grain force)".into(),
         commands: vec![
             simulate_command(DEM_B, &set, &ctx.path("data/bed_motion_dem")),
-            "pdamp plot bed-motion DIR/series.csv -o bed_motion_dem.png".into(),
+            Command::plot(
+                "bed-motion",
+                &[ctx.path("data/bed_motion_dem/series.csv")],
+                &ctx.path(&format!("{name}.png")),
+            )
+            .opt("from-time", from),
         ],
         reductions,
         size_px: size,

@@ -2,6 +2,8 @@
 //! and the reference curves (2.1.21), and the energy split along f.
 
 use crate::error::StudyError;
+
+use super::command::Command;
 use crate::plot::energy::energy_figure;
 use crate::plot::frf::FrfFigure;
 use crate::plot::Series;
@@ -62,10 +64,15 @@ pub(super) fn energy_vs_frequency(
              into collision and friction: energy_vs_frequency_dem)."
         ),
         spec_item: "collision vs friction energy per cycle versus f".into(),
-        commands: vec![
-            sw.command.clone(),
-            "pdamp plot energy sweep.csv -o energy_vs_frequency.png".into(),
-        ],
+        commands: [
+            sw.commands.clone(),
+            vec![Command::plot(
+                "energy",
+                &sw.csv,
+                &ctx.path(&format!("{name}.png")),
+            )],
+        ]
+        .concat(),
         reductions: s.reductions(&["freq", "duration"]),
         size_px: size,
     })
@@ -120,6 +127,7 @@ pub(super) fn frf_figure(
             y: &zd,
         });
     }
+    let labels: Vec<&str> = series.iter().map(|sr| sr.label).collect();
     let size = ctx.render(
         name,
         &FrfFigure {
@@ -127,14 +135,25 @@ pub(super) fn frf_figure(
             reference: Some(SCENE_B.reference()),
         },
     )?;
-    let mut commands = vec![e0.command.clone(), e8.command.clone()];
+    let mut commands = [e0.commands.clone(), e8.commands.clone()].concat();
     let mut reductions = s.reductions(&["freq", "duration"]);
+    let mut csv = [e0.csv.clone(), e8.csv.clone()].concat();
     if let Some(d) = dem {
-        commands.push(d.command.clone());
+        commands.extend(d.commands.iter().cloned());
+        csv.extend(d.csv.iter().cloned());
         reductions.extend(s.reductions(&["dem"]));
     }
+    let mut plot = Command::plot("frf", &csv, &ctx.path(&format!("{name}.png")));
+    for l in labels {
+        plot = plot.opt("label", l);
+    }
+    let b = SCENE_B;
     commands.push(
-        "pdamp plot frf e0/sweep.csv e0.8/sweep.csv [dem/sweep.csv] --label ... --mass 2.37 --particle-mass 0.227 --stiffness 21500 --damping 7.6 --base-amplitude 4.5e-3 -o frf.png".into(),
+        plot.opt("mass", b.primary.mass_kg)
+            .opt("particle-mass", b.particle_mass_kg)
+            .opt("stiffness", b.primary.stiffness_n_m)
+            .opt("damping", b.primary.damping_n_s_m)
+            .opt("base-amplitude", b.base_amplitude_m),
     );
     Ok(FigureRecord {
         name: name.into(),

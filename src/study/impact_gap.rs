@@ -9,7 +9,7 @@ use crate::scene::keys::{DAMPER_GAP, DAMPER_RESTITUTION, EXCITATION_FREQUENCY, R
 use crate::sweep::{SweepPoint, SweepPoints};
 
 use super::check::EffectiveRow;
-use super::kit::{draw_effective, fit_groups, key_values};
+use super::kit::{draw_effective, effective_commands, fit_groups, key_values};
 use super::pipeline::{Ctx, FigureRecord, SweepResult, IMPACT_B};
 use super::settings::Settings;
 
@@ -49,14 +49,11 @@ pub(super) fn effective_figure(
                       gives M + m_p, a huge gap M; C_ef peaks in between."
                 .into(),
             spec_item: "effective damping C_ef/C and effective mass M_ef versus Lz".into(),
-            commands: vec![
-                grid.command.clone(),
-                format!(
-                    "pdamp fit-frf {}/sweep.csv --stiffness 21500 --base-amplitude 4.5e-3 --mass 2.37 > fits.csv",
-                    ctx.path("data/impact_gap_grid_e0").display()
-                ),
-                "pdamp plot effective fits.csv --mass 2.37 --damping 7.6 -o effective.png".into(),
-            ],
+            commands: [
+                grid.commands.clone(),
+                effective_commands(ctx, name, &grid.csv, "gap_m"),
+            ]
+            .concat(),
             reductions: s.reductions(&["duration", "gaps", "grid"]),
             size_px: size,
         },
@@ -125,11 +122,7 @@ pub(super) fn zres_vs_gap(
                   the DEM version is zres_vs_lz_dem)."
             .into(),
         spec_item: "Z_res versus Lz for several N".into(),
-        commands: vec![
-            e0.command.clone(),
-            e8.command.clone(),
-            "pdamp plot resonance e0/sweep.csv e0.8/sweep.csv --label \"e = 0\" --label \"e = 0.8\" --x damper.gap -o zres_vs_gap.png".into(),
-        ],
+        commands: [e0.commands.clone(), e8.commands.clone()].concat(),
         reductions: s.reductions(&["duration", "gaps", "grid"]),
         size_px: size,
     })
@@ -175,7 +168,7 @@ pub(super) fn energy_vs_gap(
                   resonance frequency (where Z is largest)."
             .into(),
         spec_item: "energy dissipated per cycle versus Lz".into(),
-        commands: vec![e0.command.clone(), e8.command.clone()],
+        commands: [e0.commands.clone(), e8.commands.clone()].concat(),
         reductions: s.reductions(&["duration", "gaps", "grid"]),
         size_px: size,
     })
@@ -206,7 +199,7 @@ pub(super) fn zres_vs_restitution(ctx: &Ctx, s: &Settings) -> Result<FigureRecor
             rows.push(vec![g, *x, *zz]);
         }
         curves.push((format!("gap = {g} m"), xs, zs));
-        commands.push(sw.command);
+        commands.extend(sw.commands);
     }
     ctx.write_csv(name, &["gap_m", "restitution", "zres_m"], &rows)?;
     let series = curves
@@ -224,10 +217,7 @@ pub(super) fn zres_vs_restitution(ctx: &Ctx, s: &Settings) -> Result<FigureRecor
                   version versus γ_n for several N is zres_vs_gamma_dem."
             .into(),
         spec_item: "Z_res versus γ_n, γ_s for several N".into(),
-        commands: {
-            commands.push("pdamp plot resonance gap1/sweep.csv gap2/sweep.csv … --label … --x damper.restitution -o zres_vs_restitution.png".into());
-            commands
-        },
+        commands,
         reductions: s.reductions(&["duration", "restitutions", "grid"]),
         size_px: size,
     })

@@ -7,6 +7,7 @@ use crate::plot::regime_frf::{Exponents, RegimeFrfFigure};
 use crate::plot::regime_map::RegimeMapFigure;
 use crate::scene::keys::{DAMPER_GAP, DAMPER_RESTITUTION, EXCITATION_FREQUENCY, RUN_DURATION};
 
+use super::command::Command;
 use super::kit::key_values;
 use super::pipeline::{Ctx, FigureRecord, SweepResult, IMPACT_B};
 use super::settings::Settings;
@@ -144,10 +145,15 @@ pub(super) fn regime_frf(
                   without an estimate have no marker."
             .into(),
         spec_item: "the FRF with regime bands and the Lyapunov exponent overlaid".into(),
-        commands: vec![
-            sw.command.clone(),
-            "pdamp plot regime-frf sweep.csv -o regime_frf.png".into(),
-        ],
+        commands: [
+            sw.commands.clone(),
+            vec![Command::plot(
+                "regime-frf",
+                &sw.csv,
+                &ctx.path(&format!("{name}.png")),
+            )],
+        ]
+        .concat(),
         reductions: s.reductions(&["regime"]),
         size_px: size,
     })
@@ -189,10 +195,15 @@ pub(super) fn bifurcation(
                   forcing period in the steady state, versus frequency."
             .into(),
         spec_item: "a bifurcation-style diagram (strobed z_cm versus f)".into(),
-        commands: vec![
-            sw.command.clone(),
-            "pdamp plot bifurcation strobe.csv -o bifurcation.png".into(),
-        ],
+        commands: [
+            sw.commands.clone(),
+            vec![Command::plot(
+                "bifurcation",
+                &strobe_csv(sw),
+                &ctx.path(&format!("{name}.png")),
+            )],
+        ]
+        .concat(),
         reductions: s.reductions(&["regime"]),
         size_px: size,
     })
@@ -236,11 +247,16 @@ pub(super) fn regime_map(ctx: &Ctx, s: &Settings) -> Result<FigureRecord, StudyE
                   the values are in regime_map.csv."
             .into(),
         spec_item: "regimes over frequency and container height (SPEC §4)".into(),
-        commands: vec![
-            sw.command.clone(),
-            "pdamp plot regime-map sweep.csv --x excitation.frequency --y damper.gap -o regime_map.png".into(),
-        ],
+        commands: sw.commands.clone(),
         reductions: s.reductions(&["map"]),
         size_px: size,
     })
+}
+
+/// The `strobe.csv` next to each `sweep.csv` of a sweep.
+fn strobe_csv(sw: &SweepResult) -> Vec<std::path::PathBuf> {
+    sw.csv
+        .iter()
+        .map(|p| p.with_file_name("strobe.csv"))
+        .collect()
 }

@@ -7,8 +7,11 @@ use crate::error::StudyError;
 use crate::plot::poincare::PoincareFigure;
 use crate::plot::reconstruction::ReconstructionFigure;
 use crate::plot::spectrum::SpectrumFigure;
-use crate::scene::keys::{DAMPER_RESTITUTION, EXCITATION_FREQUENCY, RUN_PERIODS};
+use crate::scene::keys::{
+    DAMPER_RESTITUTION, EXCITATION_FREQUENCY, RUN_PERIODS, RUN_SAMPLE_INTERVAL,
+};
 
+use super::command::Command;
 use super::kit::draw_bed_motion;
 use super::pipeline::{
     record_run, record_run_summary, scene_with, simulate_command, Ctx, FigureRecord, IMPACT_B,
@@ -24,8 +27,10 @@ pub(super) fn bed_motion_impact(ctx: &Ctx, s: &Settings) -> Result<FigureRecord,
         (RUN_PERIODS, periods.to_string()),
     ];
     let scene = scene_with(name, IMPACT_B, &set)?;
-    let r = record_run(name, &scene, 1e-4, (periods - 4.0) / f)?;
+    let from = (periods - 4.0) / f;
+    let r = record_run(name, &scene, 1e-4, from)?;
     let size = draw_bed_motion(ctx, name, &r)?;
+    let dir = ctx.path("data/bed_motion");
     Ok(FigureRecord {
         name: name.into(),
         caption: "Impact model (e = 0, gap 0.0835 m) at 15 Hz, last 4 periods of 60: floor and \
@@ -34,8 +39,13 @@ pub(super) fn bed_motion_impact(ctx: &Ctx, s: &Settings) -> Result<FigureRecord,
             .into(),
         spec_item: "bed motion (floor and ceiling, grain band, centre of mass, grain force)".into(),
         commands: vec![
-            simulate_command(IMPACT_B, &set, &ctx.path("data/bed_motion")),
-            "pdamp plot bed-motion DIR/series.csv --from-time 3.7333 -o bed_motion.png".into(),
+            simulate_command(IMPACT_B, &set, &dir),
+            Command::plot(
+                "bed-motion",
+                &[dir.join("series.csv")],
+                &ctx.path(&format!("{name}.png")),
+            )
+            .opt("from-time", from),
         ],
         reductions: if s.mode == Mode::Full {
             vec![]
@@ -66,7 +76,11 @@ pub(super) fn per_frequency(
     let from = 0.5 * periods / f;
     let (r, summary) = record_run_summary(&step, &scene, dt, from)?;
     let z = &r.grain_z_m;
-    let sim = simulate_command(IMPACT_B, &set, &ctx.path(&format!("data/series_{tag}")));
+    // the run again, into a directory, sampled as the figures' series (dt = T/64)
+    let dir = ctx.path(&format!("data/series_{tag}"));
+    let sim_set = [&set[..], &[(RUN_SAMPLE_INTERVAL, dt.to_string())]].concat();
+    let sim = simulate_command(IMPACT_B, &sim_set, &dir);
+    let series_csv = dir.join("series.csv");
     let reductions = s.reductions(&["series"]);
     let mut out = Vec::new();
 
@@ -105,9 +119,13 @@ pub(super) fn per_frequency(
         spec_item: "per frequency: stroboscopic Poincaré section".into(),
         commands: vec![
             sim.clone(),
-            format!(
-                "pdamp plot poincare DIR/strobe.csv --x grain_z_m --y grain_v_m_s -o {name}.png"
-            ),
+            Command::plot(
+                "poincare",
+                &[dir.join("strobe.csv")],
+                &ctx.path(&format!("{name}.png")),
+            )
+            .opt("x", "grain_z_m")
+            .opt("y", "grain_v_m_s"),
         ],
         reductions: reductions.clone(),
         size_px: size,
@@ -153,7 +171,17 @@ pub(super) fn per_frequency(
         spec_item: "per frequency: spectrum".into(),
         commands: vec![
             sim.clone(),
-            format!("pdamp spectrum DIR/series.csv --column grain_z_m > spectrum.csv && pdamp plot spectrum spectrum.csv --forcing-hz {f} -o {name}.png"),
+            Command::new(["spectrum"])
+                .path(&series_csv)
+                .opt("column", "grain_z_m")
+                .opt("dt", dt)
+                .to_file(&dir.join("spectrum.csv")),
+            Command::plot(
+                "spectrum",
+                &[dir.join("spectrum.csv")],
+                &ctx.path(&format!("{name}.png")),
+            )
+            .opt("forcing-hz", f),
         ],
         reductions: reductions.clone(),
         size_px: size,
@@ -198,7 +226,13 @@ pub(super) fn per_frequency(
         spec_item: "per frequency: 2-D projection of the delay reconstruction".into(),
         commands: vec![
             sim,
-            format!("pdamp plot reconstruction DIR/series.csv --column grain_z_m --lag {lag} -o {name}.png"),
+            Command::plot(
+                "reconstruction",
+                &[&series_csv],
+                &ctx.path(&format!("{name}.png")),
+            )
+            .opt("column", "grain_z_m")
+            .opt("lag", lag),
         ],
         reductions,
         size_px: size,

@@ -13,6 +13,7 @@ use crate::plot::Series;
 use crate::sweep::SweepPoints;
 
 use super::check::EffectiveRow;
+use super::command::Command;
 use super::pipeline::{Ctx, Recorded};
 
 /// Scene B's primary system and grains (SPEC §6): M, m_p, K, C, U.
@@ -82,6 +83,38 @@ pub fn fit_groups(
             damping_ef_stderr_n_s_m: fit.damping_ef_stderr_n_s_m,
         })
         .collect())
+}
+
+/// `pdamp fit-frf` of each sweep table (K and U of scene B; M for the ratios), then
+/// `pdamp plot effective` of the figure's own CSV (`OUT/<name>.csv`, one row per fit).
+pub fn effective_commands<P: AsRef<std::path::Path>>(
+    ctx: &Ctx,
+    name: &str,
+    csv: &[P],
+    x_column: &str,
+) -> Vec<Command> {
+    let b = SCENE_B;
+    let mut out: Vec<Command> = csv
+        .iter()
+        .map(|p| {
+            Command::new(["fit-frf"])
+                .path(p.as_ref())
+                .opt("stiffness", b.primary.stiffness_n_m)
+                .opt("base-amplitude", b.base_amplitude_m)
+                .opt("mass", b.primary.mass_kg)
+        })
+        .collect();
+    out.push(
+        Command::plot(
+            "effective",
+            &[ctx.path(&format!("{name}.csv"))],
+            &ctx.path(&format!("{name}.png")),
+        )
+        .opt("x", x_column)
+        .opt("mass", b.primary.mass_kg)
+        .opt("damping", b.primary.damping_n_s_m),
+    );
+    out
 }
 
 /// Draws an effective-mass figure from fits and writes its CSV.

@@ -4,11 +4,13 @@
 //! orchestrator (`reproduce.rs`) calls one file per figure family (`impact_frf`, `impact_gap`,
 //! `impact_series`, `impact_regimes`, `dem_figures`, `chapter4`), which share `pipeline`
 //! (sweeps and runs) and `kit` (scene B's values, fits, shared drawings); `readme` writes
-//! `OUT/README.md` from the [`ReproduceReport`]. Imports go one way: orchestrator → families →
+//! `OUT/README.md` from the [`ReproduceReport`], whose commands are
+//! [`command::Command`]s built from the sweeps and runs that were made. Imports go one way: orchestrator → families →
 //! kit → pipeline.
 
 pub mod chapter4;
 pub mod check;
+pub mod command;
 pub mod dem_figures;
 mod impact_frf;
 mod impact_gap;

@@ -3,6 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
+use super::command::Command;
 use crate::error::{SimError, StudyError};
 use crate::model::RunOptions;
 use crate::observe::{fmt_num, ModelSample, Observer, Sample};
@@ -46,8 +47,8 @@ pub struct FigureRecord {
     pub caption: String,
     /// The SPEC §7 item it reproduces.
     pub spec_item: String,
-    /// Equivalent `pdamp` commands (sweeps, fits, plots).
-    pub commands: Vec<String>,
+    /// Equivalent `pdamp` commands (sweeps, fits, plots), built from what ran.
+    pub commands: Vec<Command>,
     /// Reductions relative to the source's parameters (empty in `--full`).
     pub reductions: Vec<String>,
     /// Size of the PNG (pixels).
@@ -64,14 +65,17 @@ pub struct Ctx<'a> {
     pub progress: &'a (dyn Fn(&str) + Sync),
 }
 
-/// The result of a sweep: its typed points and the equivalent command.
+/// The result of a sweep: its typed points and the equivalent commands.
 #[derive(Debug, Clone)]
 pub struct SweepResult {
     /// The finished points (`DIR/points/<i>.json`), in point order, each with its summary
     /// and stroboscopic samples.
     pub points: SweepPoints,
-    /// `pdamp sweep …` reproducing it.
-    pub command: String,
+    /// `pdamp sweep …` reproducing it (one per part of a [`Ctx::sweep_split`]).
+    pub commands: Vec<Command>,
+    /// Its `sweep.csv` (one per part of a [`Ctx::sweep_split`], which have the outer key as a
+    /// `--set`, not as a column).
+    pub csv: Vec<PathBuf>,
 }
 
 impl Ctx<'_> {
@@ -106,17 +110,7 @@ impl Ctx<'_> {
             .map_err(|e| step(&e))?;
         let n: usize = varies.iter().map(|v| v.values.len()).product();
         let out = self.out.join("data").join(dir);
-        let mut command = format!("pdamp sweep {}", scene.path);
-        for (k, v) in set {
-            command += &format!(" --set {k}={v}");
-        }
-        for (k, v) in vary {
-            command += &format!(" --vary {k}={v}");
-        }
-        if !analyze {
-            command += " --no-analysis";
-        }
-        command += &format!(" --out {}", out.display());
+        let command = Command::sweep(scene.path, set, vary, analyze, &out);
         let spec = SweepSpec {
             base,
             set: set_parsed,
@@ -146,7 +140,11 @@ impl Ctx<'_> {
             started.elapsed().as_secs_f64()
         ));
         let points = SweepPoints::read(&out).map_err(|e| step(&e))?;
-        Ok(SweepResult { points, command })
+        Ok(SweepResult {
+            points,
+            commands: vec![command],
+            csv: vec![out.join("sweep.csv")],
+        })
     }
 
     /// Like [`Ctx::sweep`] with `outer` as the slowest key of the grid, but as one sweep per
@@ -191,19 +189,13 @@ impl Ctx<'_> {
                 pt
             }));
         }
-        let mut command = parts
-            .first()
-            .map(|(_, p)| p.command.clone())
-            .unwrap_or_default();
-        command += &format!(
-            "  (one sweep per {key} in {}; the outer key as --set)",
-            values
-                .iter()
-                .map(|v| v.to_string())
-                .collect::<Vec<_>>()
-                .join(", ")
-        );
-        Ok(SweepResult { points, command })
+        let commands = parts.iter().flat_map(|(_, p)| p.commands.clone()).collect();
+        let csv = parts.iter().flat_map(|(_, p)| p.csv.clone()).collect();
+        Ok(SweepResult {
+            points,
+            commands,
+            csv,
+        })
     }
 
     /// Renders `fig` to `OUT/<name>.png` and returns its size.
@@ -274,13 +266,9 @@ pub fn scene_with(
     src.scene(&ov).map_err(|e| err(&e))
 }
 
-/// The `pdamp simulate` command reproducing [`record_run`]'s run.
-pub fn simulate_command(scene: BundledScene, set: &[(&str, String)], out: &Path) -> String {
-    let mut c = format!("pdamp simulate {}", scene.path);
-    for (k, v) in set {
-        c += &format!(" --set {k}={v}");
-    }
-    c + &format!(" --out {}", out.display())
+/// The `pdamp simulate` command reproducing [`record_run`]'s run, into `out`.
+pub fn simulate_command(scene: BundledScene, set: &[(&str, String)], out: &Path) -> Command {
+    Command::simulate(scene.path, set, out)
 }
 
 /// The samples of one run kept in memory (the columns of `series.csv` that figures use).

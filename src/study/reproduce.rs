@@ -8,6 +8,7 @@
 
 use crate::error::StudyError;
 
+use super::command::Command;
 use super::options::{ReproduceOptions, ReproduceReport};
 use super::pipeline::{Ctx, SweepResult};
 use super::{dem_figures, impact_frf, impact_gap, impact_regimes, impact_series};
@@ -143,6 +144,20 @@ pub fn reproduce(
             0,
             impact_frf::frf_figure(&ctx, s, e0, e8, dem_frf.as_ref())?,
         );
+    }
+    // each figure again, alone, as it was made here
+    for f in &mut figures {
+        let mut again = Command::reproduce(s.mode.flag(), &opts.out, &f.name);
+        let default = crate::plot::FigureOptions::default();
+        if (opts.figure.width, opts.figure.height) != (default.width, default.height) {
+            again = again
+                .opt("width", opts.figure.width)
+                .opt("height", opts.figure.height);
+        }
+        if opts.skip_dem {
+            again = again.arg("--no-dem");
+        }
+        f.commands.push(again);
     }
     for why in &skipped {
         progress(&format!("skipped: {why}"));
