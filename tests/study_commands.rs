@@ -148,3 +148,45 @@ fn shell_words_read_back_what_the_study_writes() {
     );
     assert_eq!(f.as_deref(), Some("/tmp/a b.csv"));
 }
+
+/// The chapter-4 family's commands (DEM sweeps, the panel runs and their figures) parse too,
+/// on a reduced study (one frequency, 12 periods; the DEM runs are not rerun here).
+#[test]
+fn chapter4_commands_parse() {
+    use pdamp::study::settings::Chapter4Settings;
+    let dir = tempfile::tempdir().unwrap();
+    let ctx = pdamp::study::pipeline::Ctx {
+        out: dir.path().to_path_buf(),
+        figure: pdamp::plot::FigureOptions {
+            width: 640,
+            height: 480,
+            title: None,
+        },
+        progress: &|_| {},
+    };
+    let s = pdamp::study::Settings::for_mode(Mode::Quick);
+    let d = s.dem.clone().unwrap();
+    let c = Chapter4Settings {
+        frequencies_hz: vec![14.5],
+        periods: 12.0,
+        duration_s: None,
+        panel_freqs_hz: vec![14.5],
+        doubling_freqs_hz: vec![],
+    };
+    let figures = pdamp::study::chapter4::all(&ctx, &s, &d, &c, &|_| true)
+        .unwrap()
+        .figures;
+    assert!(figures.iter().any(|f| f.name == "ch4_panel_f14.5"));
+    let mut n = 0;
+    for f in &figures {
+        assert!(!f.commands.is_empty(), "{}: no commands", f.name);
+        for cmd in &f.commands {
+            let line = cmd.to_string();
+            let (words, _) = shell_words(&line);
+            let (ok, err) = pdamp(&words[1..], true, None);
+            assert!(ok, "{}: `{line}` rejected:\n{err}", f.name);
+            n += 1;
+        }
+    }
+    assert!(n >= 8, "{n} commands");
+}
