@@ -163,7 +163,7 @@ fn two_frequency_torus_is_quasi_periodic() {
         .collect();
     let rep = analyze(&x, Some(dt), Some(f));
     assert_eq!(rep.regime, Regime::QuasiPeriodic, "with forcing");
-    assert_eq!(rep.poincare_shape, Some("closed-curve"));
+    assert_eq!(rep.poincare_shape.as_deref(), Some("closed-curve"));
     let rep = analyze(&x, Some(dt), None);
     assert_eq!(rep.regime, Regime::QuasiPeriodic, "without forcing");
     assert!(rep.period.is_none());

@@ -34,7 +34,7 @@ use crate::analysis::surrogate_test::{surrogate_test, SurrogateTestOptions, Tail
 use crate::analysis::surrogates::{end_to_end_segment, SurrogateOptions};
 use crate::analysis::zero_one_test::{zero_one_test, ZeroOneOptions};
 use crate::error::AnalysisError;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Largest |x| [`analyze_series`] accepts (powers of larger values overflow f64).
 pub const MAX_ABS_VALUE: f64 = 1e150;
@@ -89,7 +89,7 @@ impl Default for AnalyzeOptions {
 }
 
 /// A spectral line in the report.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct LineReport {
     /// Interpolated frequency (Hz with `dt_s`, else cycles/sample).
     pub frequency: f64,
@@ -98,7 +98,7 @@ pub struct LineReport {
 }
 
 /// Kantz fit summary in the report.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct KantzFitReport {
     /// First Δn of the scaling region (samples).
     pub start: usize,
@@ -117,7 +117,7 @@ pub struct KantzFitReport {
 }
 
 /// Result of [`analyze_series`]: the verdict, the automatic choices and the evidence.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct AnalysisReport {
     /// Number of samples analysed (the tail of the series).
     pub n_samples: usize,
@@ -142,7 +142,7 @@ pub struct AnalysisReport {
     /// Spectral lines (the 12 strongest, by frequency).
     pub spectral_lines: Vec<LineReport>,
     /// Unit of the line frequencies: `"hz"` or `"cycles/sample"`.
-    pub frequency_unit: &'static str,
+    pub frequency_unit: String,
     /// Fraction of the power in lines.
     pub line_power_fraction: f64,
     /// Distinct Poincaré points (period n), when the section is a finite set.
@@ -150,7 +150,7 @@ pub struct AnalysisReport {
     /// Number of points of the stroboscopic section.
     pub poincare_section_points: Option<usize>,
     /// Shape of the section: `points`, `closed-curve`, `cloud` or `too-few`.
-    pub poincare_shape: Option<&'static str>,
+    pub poincare_shape: Option<String>,
     /// Closed-curve score of the section.
     pub closed_curve_score: Option<f64>,
     /// Kantz scaling region and quality.
@@ -167,7 +167,7 @@ pub struct AnalysisReport {
     /// Where the section came from: `exact` (the simulator's state at t = kT) or
     /// `interpolated` (cubic interpolation of the given series in delay coordinates).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub section_source: Option<&'static str>,
+    pub section_source: Option<String>,
     /// Exponent of the stroboscopic map estimated from the data (section divergence), per
     /// second, with its standard error.
     pub data_mle_per_s: Option<f64>,
@@ -191,6 +191,17 @@ pub struct AnalysisReport {
     pub evidence: Evidence,
     /// Fallbacks taken and estimators that could not run.
     pub notes: Vec<String>,
+}
+
+impl AnalysisReport {
+    /// `periodic-p` for a periodic verdict with a period, else the regime's name
+    /// (`chaotic`, `quasi-periodic`, …).
+    pub fn verdict(&self) -> String {
+        match (self.regime, self.period) {
+            (Regime::Periodic, Some(p)) => format!("periodic-{p}"),
+            (r, _) => r.as_str().to_string(),
+        }
+    }
 }
 
 /// Runs the whole analysis chain on a series and classifies its regime.
@@ -351,12 +362,15 @@ pub fn analyze_series(x: &[f64], opts: &AnalyzeOptions) -> Result<AnalysisReport
                 report.poincare_section_points = Some(summary.n_points);
                 report.poincare_distinct_points = summary.n_distinct;
                 report.closed_curve_score = Some(summary.closed_curve_score);
-                report.poincare_shape = Some(match summary.shape {
-                    SectionShape::Points(_) => "points",
-                    SectionShape::ClosedCurve => "closed-curve",
-                    SectionShape::Cloud => "cloud",
-                    SectionShape::TooFew => "too-few",
-                });
+                report.poincare_shape = Some(
+                    match summary.shape {
+                        SectionShape::Points(_) => "points",
+                        SectionShape::ClosedCurve => "closed-curve",
+                        SectionShape::Cloud => "cloud",
+                        SectionShape::TooFew => "too-few",
+                    }
+                    .to_string(),
+                );
                 if summary.shape == SectionShape::TooFew {
                     notes.push(format!(
                         "only {} section points: the section is not used for the verdict",
@@ -592,12 +606,15 @@ fn section_verdict(
         P::Periodic { period, .. } => Some(period),
         _ => None,
     };
-    report.poincare_shape = Some(match sec.pattern {
-        P::Periodic { .. } => "points",
-        P::QuasiPeriodic { .. } => "closed-curve",
-        P::Irregular => "cloud",
-        P::TooShort { .. } => "too-few",
-    });
+    report.poincare_shape = Some(
+        match sec.pattern {
+            P::Periodic { .. } => "points",
+            P::QuasiPeriodic { .. } => "closed-curve",
+            P::Irregular => "cloud",
+            P::TooShort { .. } => "too-few",
+        }
+        .to_string(),
+    );
     report.data_mle_per_s = data_exp.map(|d| d.per_period * forcing_hz);
     report.data_mle_stderr_per_s = data_exp.map(|d| d.stderr_per_period * forcing_hz);
     report.model_mle_per_s = model.map(|m| m.per_period * forcing_hz);
@@ -606,7 +623,7 @@ fn section_verdict(
     if let (Some(l), Some(dt)) = (report.mle_per_time, report.series_dt_s) {
         report.mle_per_sample = Some(l * dt);
     }
-    report.section_source = Some(source);
+    report.section_source = Some(source.to_string());
     report.section = Some(sec);
     report.section_exponent = data;
 }
@@ -628,7 +645,8 @@ fn empty_report(n: usize, dt_s: Option<f64>) -> AnalysisReport {
             "hz"
         } else {
             "cycles/sample"
-        },
+        }
+        .to_string(),
         line_power_fraction: 0.0,
         poincare_distinct_points: None,
         poincare_section_points: None,

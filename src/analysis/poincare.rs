@@ -8,7 +8,7 @@
 
 use crate::analysis::spectrum::check_finite;
 use crate::error::AnalysisError;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Interpolation between samples.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
@@ -419,7 +419,7 @@ pub fn closed_curve_score(points: &[[f64; 2]]) -> f64 {
 }
 
 /// Shape of a section.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case", tag = "kind", content = "n")]
 pub enum SectionShape {
     /// n distinct points: a period-n orbit.
@@ -433,7 +433,7 @@ pub enum SectionShape {
 }
 
 /// Summary of a section.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SectionSummary {
     /// Number of section points.
     pub n_points: usize,

@@ -115,7 +115,7 @@ pub fn harmonic_fundamental(
 }
 
 /// Everything the classifier looks at; each field is `None` when its estimator could not run.
-#[derive(Debug, Clone, PartialEq, Serialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 pub struct Evidence {
     /// Exact recurrence period in samples ([`recurrence_period`]).
     pub recurrence_period_samples: Option<usize>,

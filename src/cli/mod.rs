@@ -73,9 +73,17 @@ pub enum Command {
     Reproduce(commands::reproduce::Args),
 }
 
+/// With this environment variable set (to anything), `pdamp` parses its arguments, reports a
+/// parse error as usual, and stops without running: `tests/study_commands.rs` checks every
+/// command printed in `figures/README.md` with it.
+pub const PARSE_ONLY_ENV: &str = "PDAMP_PARSE_ONLY";
+
 /// Parse the command line and run the chosen subcommand.
 pub fn run() -> anyhow::Result<()> {
     let cli = Cli::parse();
+    if std::env::var_os(PARSE_ONLY_ENV).is_some() {
+        return Ok(());
+    }
     match cli.command {
         Command::Simulate(a) => commands::simulate::run(a),
         Command::Sweep(a) => commands::sweep::run(a),

@@ -1,11 +1,10 @@
 //! What a run reports: [`RunSummary`] (written as `summary.json`), and how it is run
 //! ([`RunOptions`]). Shared by every simulator (impact, DEM).
 
-use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
 use crate::analysis::analyze::AnalysisReport;
-use crate::analysis::regime::Regime;
 
 /// Options of one run that are not part of the physics.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -168,143 +167,45 @@ pub struct RunSummary {
     pub replica: Option<crate::dem::replica::ReplicaReport>,
 }
 
-/// The nonlinear analysis of a run (`summary.analysis`), typed: the fields the sweep tables,
-/// the study and the figures read are checked at compile time, and the rest of the
-/// [`AnalysisReport`] (spectral lines, evidence, section, notes, …) travels as written.
-/// Serializes to exactly the report's JSON object (same keys, same order) and reads it
-/// back ([`RunAnalysis::from_report`] builds it from the report itself, not by names).
-#[derive(Debug, Clone, PartialEq)]
-pub struct RunAnalysis {
-    /// The verdict.
-    pub regime: Regime,
-    /// Period in forcing periods; `None` unless periodic.
-    pub period: Option<f64>,
-    /// Exponent of the stroboscopic map from the data (1/s).
-    pub data_mle_per_s: Option<f64>,
-    /// Standard error of `data_mle_per_s` (1/s).
-    pub data_mle_stderr_per_s: Option<f64>,
-    /// Exponent from the model's equations (1/s), when known.
-    pub model_mle_per_s: Option<f64>,
-    /// Standard error of `model_mle_per_s` (1/s).
-    pub model_mle_stderr_per_s: Option<f64>,
-    /// Number of points of the stroboscopic section.
-    pub poincare_section_points: Option<usize>,
-    /// The whole report as a JSON object (the typed fields above are written over their
-    /// entries when serialized).
-    pub report: serde_json::Map<String, serde_json::Value>,
-}
-
-impl RunAnalysis {
-    /// The typed analysis of an [`AnalysisReport`].
-    ///
-    /// # Errors
-    /// A report that does not serialize to a JSON object (does not happen).
-    pub fn from_report(r: &AnalysisReport) -> Result<RunAnalysis, serde_json::Error> {
-        let report = match serde_json::to_value(r)? {
-            serde_json::Value::Object(m) => m,
-            _ => {
-                return Err(serde::ser::Error::custom(
-                    "analysis report is not an object",
-                ))
-            }
-        };
-        Ok(RunAnalysis {
-            regime: r.regime,
-            period: r.period,
-            data_mle_per_s: r.data_mle_per_s,
-            data_mle_stderr_per_s: r.data_mle_stderr_per_s,
-            model_mle_per_s: r.model_mle_per_s,
-            model_mle_stderr_per_s: r.model_mle_stderr_per_s,
-            poincare_section_points: r.poincare_section_points,
-            report,
-        })
-    }
-
-    /// `periodic-p` for a periodic verdict with a period, else the regime's name
-    /// (`chaotic`, `quasi-periodic`, …).
-    pub fn verdict(&self) -> String {
-        match (self.regime, self.period) {
-            (Regime::Periodic, Some(p)) => format!("periodic-{p}"),
-            (r, _) => r.as_str().to_string(),
-        }
-    }
-
-    fn typed(&self) -> [(&'static str, serde_json::Value); 7] {
-        use serde_json::Value;
-        let num = |x: Option<f64>| x.map_or(Value::Null, Value::from);
-        [
-            ("regime", Value::from(self.regime.as_str())),
-            ("period", num(self.period)),
-            ("data_mle_per_s", num(self.data_mle_per_s)),
-            ("data_mle_stderr_per_s", num(self.data_mle_stderr_per_s)),
-            ("model_mle_per_s", num(self.model_mle_per_s)),
-            ("model_mle_stderr_per_s", num(self.model_mle_stderr_per_s)),
-            (
-                "poincare_section_points",
-                self.poincare_section_points
-                    .map_or(Value::Null, Value::from),
-            ),
-        ]
-    }
-}
-
-impl Serialize for RunAnalysis {
-    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        let mut m = self.report.clone();
-        for (k, v) in self.typed() {
-            if m.contains_key(k) || !v.is_null() {
-                m.insert(k.to_string(), v);
-            }
-        }
-        m.serialize(s)
-    }
-}
-
-impl<'de> Deserialize<'de> for RunAnalysis {
-    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        use serde::de::Error;
-        let report = serde_json::Map::<String, serde_json::Value>::deserialize(d)?;
-        let get = |k: &str| report.get(k).cloned().unwrap_or(serde_json::Value::Null);
-        let regime: Regime = serde_json::from_value(get("regime")).map_err(D::Error::custom)?;
-        let f = |k: &str| -> Result<Option<f64>, D::Error> {
-            serde_json::from_value(get(k)).map_err(D::Error::custom)
-        };
-        Ok(RunAnalysis {
-            regime,
-            period: f("period")?,
-            data_mle_per_s: f("data_mle_per_s")?,
-            data_mle_stderr_per_s: f("data_mle_stderr_per_s")?,
-            model_mle_per_s: f("model_mle_per_s")?,
-            model_mle_stderr_per_s: f("model_mle_stderr_per_s")?,
-            poincare_section_points: serde_json::from_value(get("poincare_section_points"))
-                .map_err(D::Error::custom)?,
-            report,
-        })
-    }
-}
+/// The nonlinear analysis of a run (`summary.analysis`): the [`AnalysisReport`] itself, typed
+/// both ways (the sweep tables, the study and the figures read its fields, checked at compile
+/// time; a `summary.json` or `points/<i>.json` reads back into the same report).
+pub type RunAnalysis = AnalysisReport;
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::analysis::regime::Regime;
 
     #[test]
-    fn run_analysis_roundtrips_as_the_report_object() {
-        // the typed view reads the report's keys and writes back exactly the same object
-        // (a wrong key name would leave a typed field None and fail here)
+    fn run_analysis_reads_a_report_object() {
+        // a report as written by earlier versions (keys sorted, nulls written out) reads back
+        // into the typed report and writes the same object again
         let v = serde_json::json!({
-            "regime": "periodic",
-            "period": 2.0,
-            "data_mle_per_s": null,
-            "model_mle_per_s": -1.5,
-            "lag": 3,
-            "notes": ["x"],
-            "poincare_section_points": 48
+            "closed_curve_score": null, "data_mle_per_s": null, "data_mle_stderr_per_s": null,
+            "embedding_dim": null,
+            "evidence": {"fnn_converged": null, "forcing_period_samples": 64.0,
+                "harmonic_period_samples": null, "kantz_growth": null, "kantz_linear": false,
+                "line_count": 2, "line_power_fraction": 0.99, "mle_per_sample": null,
+                "mle_stderr_per_sample": null, "recurrence_period_samples": null,
+                "section": null, "surrogate_p": null, "surrogate_rejects": null,
+                "zero_one_k": null},
+            "fnn_fractions": [[1, 0.5], [2, null]], "frequency_unit": "hz", "kantz_fit": null,
+            "lag": 3, "line_power_fraction": 0.99, "mle_fit_r2": null, "mle_per_sample": null,
+            "mle_per_time": null, "model_mle_per_s": -1.5, "model_mle_stderr_per_s": 0.1,
+            "n_samples": 2000, "notes": ["x"], "period": 2.0,
+            "poincare_distinct_points": 2, "poincare_section_points": 48,
+            "poincare_shape": "points", "reason": "r", "regime": "periodic",
+            "section_source": "exact", "series_dt_s": 0.001,
+            "spectral_lines": [{"frequency": 5.0, "power": 1e-5}],
+            "zero_one_k": null, "zero_one_samples": null
         });
         let a: RunAnalysis = serde_json::from_value(v.clone()).unwrap();
         assert_eq!(a.regime, Regime::Periodic);
         assert_eq!(a.period, Some(2.0));
         assert_eq!(a.model_mle_per_s, Some(-1.5));
         assert_eq!(a.poincare_section_points, Some(48));
+        assert_eq!(a.poincare_shape.as_deref(), Some("points"));
         assert_eq!(a.verdict(), "periodic-2");
         assert_eq!(serde_json::to_value(&a).unwrap(), v);
     }

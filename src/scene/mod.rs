@@ -31,6 +31,7 @@
 pub mod damper;
 pub mod dem;
 pub mod excitation;
+pub mod keys;
 pub mod outputs;
 pub mod overrides;
 pub mod presets;

@@ -14,6 +14,7 @@
 //! - `ch4_reconstruction` (Fig. 4.7): delay reconstructions of z_cm at the same frequencies.
 
 use crate::analysis::mutual_information::{mutual_information, MutualInformationOptions};
+use crate::analysis::regime::Regime;
 use crate::analysis::spectrum::{power_spectrum, SpectrumOptions};
 use crate::error::StudyError;
 use crate::model::{RunOptions, RunSummary};
@@ -25,15 +26,20 @@ use crate::plot::poincare::PoincareFigure;
 use crate::plot::reconstruction::ReconstructionFigure;
 use crate::plot::regime_frf::{Exponents, RegimeFrfFigure};
 use crate::plot::spectrum::SpectrumFigure;
-use crate::plot::table::Table;
 use crate::plot::Series;
 use rayon::prelude::*;
 
+use super::command::Command;
 use super::dem_figures::{E_B as E_STEEL, GAMMA_N_B, GAMMA_S_B};
 use super::pipeline::{
-    col, scene_with, simulate_command, BundledScene, Ctx, FigureRecord, Recorded, SweepResult,
+    scene_with, simulate_command, BundledScene, Ctx, FigureRecord, Recorded, SweepResult,
 };
 use super::settings::{Chapter4Settings, DemSettings, Settings};
+use crate::scene::keys::{
+    DAMPER_GAMMA_N, DAMPER_GAMMA_S, DAMPER_YOUNGS_MODULUS, EXCITATION_FREQUENCY, RUN_DT_FRACTION,
+    RUN_DURATION, RUN_PERIODS,
+};
+use crate::sweep::SweepPoints;
 
 /// Scene B at Lz = 0.1225 m with softened grains and runs counted in periods
 /// (`data/scenes/thesis_b_ch4.toml`).
@@ -58,12 +64,12 @@ pub const NAMES: [&str; 7] = [
     "ch4_reconstruction",
 ];
 
-/// One point of a chapter-4 sweep, read from `sweep.csv`.
+/// One point of a chapter-4 sweep (from its typed summary).
 #[derive(Debug, Clone, PartialEq)]
 struct Point {
     f_hz: f64,
     amplitude_m: f64,
-    regime: String,
+    regime: Option<Regime>,
     period: Option<f64>,
     mle_per_s: Option<f64>,
     mle_stderr_per_s: Option<f64>,
@@ -74,34 +80,42 @@ struct Point {
 impl Point {
     fn verdict(&self) -> String {
         match self.period {
-            Some(p) if self.regime == "periodic" => format!("periodic-{p}"),
-            _ => self.regime.clone(),
+            Some(p) if self.regime == Some(Regime::Periodic) => format!("periodic-{p}"),
+            _ => self.regime_str().to_string(),
         }
     }
 }
 
-fn points(step: &str, t: &Table) -> Result<Vec<Point>, StudyError> {
-    let f = col(step, t, "frequency_hz")?;
-    let z = col(step, t, "amplitude_m")?;
-    let e = |e| StudyError::step(step, e);
-    let regime = t.str_column("regime").map_err(e)?;
-    let period = t.opt_f64_column("period").map_err(e)?;
-    let mle = t.opt_f64_column("mle_per_s").map_err(e)?;
-    let se = t.opt_f64_column("mle_stderr_per_s").map_err(e)?;
-    let floor = col(step, t, "bed_floor_impacts_per_cycle")?;
-    let ceiling = col(step, t, "bed_ceiling_impacts_per_cycle")?;
-    let mut out: Vec<Point> = (0..f.len())
-        .map(|i| Point {
-            f_hz: f[i],
-            amplitude_m: z[i],
-            regime: regime[i].clone(),
-            period: period[i],
-            mle_per_s: mle[i],
-            mle_stderr_per_s: se[i],
-            floor_impacts: floor[i],
-            ceiling_impacts: ceiling[i],
+impl Point {
+    /// The regime's name, empty when the point was not analysed (as in `sweep.csv`).
+    fn regime_str(&self) -> &'static str {
+        self.regime.map_or("", Regime::as_str)
+    }
+}
+
+fn points(step: &str, pts: &SweepPoints) -> Result<Vec<Point>, StudyError> {
+    let finite = |x: Option<f64>| x.filter(|v| v.is_finite());
+    let extra = |p: &crate::sweep::SweepPoint, key: &str| {
+        p.summary.extra.get(key).copied().ok_or_else(|| {
+            StudyError::step(step, format!("{}: point {}: no `{key}`", pts.dir, p.index))
         })
-        .collect();
+    };
+    let mut out = pts
+        .iter()
+        .map(|p| {
+            let a = p.summary.analysis.as_ref();
+            Ok(Point {
+                f_hz: p.summary.frequency_hz,
+                amplitude_m: p.summary.amplitude_m,
+                regime: a.map(|a| a.regime),
+                period: finite(a.and_then(|a| a.period)),
+                mle_per_s: finite(a.and_then(|a| a.data_mle_per_s)),
+                mle_stderr_per_s: finite(a.and_then(|a| a.data_mle_stderr_per_s)),
+                floor_impacts: extra(p, "bed_floor_impacts_per_cycle")?,
+                ceiling_impacts: extra(p, "bed_ceiling_impacts_per_cycle")?,
+            })
+        })
+        .collect::<Result<Vec<Point>, StudyError>>()?;
     out.sort_by(|a, b| a.f_hz.total_cmp(&b.f_hz));
     Ok(out)
 }
@@ -112,17 +126,17 @@ fn ch4_set(d: &DemSettings, c: &Chapter4Settings, factor: f64) -> Vec<(&'static 
     let mut set = Vec::new();
     if d.soften != SCENE_SOFTEN {
         let g = d.soften.powf(-0.6);
-        set.push(("damper.youngs_modulus", (E_STEEL / d.soften).to_string()));
-        set.push(("damper.gamma_n", (GAMMA_N_B * g).to_string()));
-        set.push(("damper.gamma_s", (GAMMA_S_B * g).to_string()));
+        set.push((DAMPER_YOUNGS_MODULUS, (E_STEEL / d.soften).to_string()));
+        set.push((DAMPER_GAMMA_N, (GAMMA_N_B * g).to_string()));
+        set.push((DAMPER_GAMMA_S, (GAMMA_S_B * g).to_string()));
     }
     if d.dt_fraction != SCENE_DT_FRACTION {
-        set.push(("run.dt_fraction", d.dt_fraction.to_string()));
+        set.push((RUN_DT_FRACTION, d.dt_fraction.to_string()));
     }
     match c.duration_s {
-        Some(s) => set.push(("run.duration", (factor * s).to_string())),
+        Some(s) => set.push((RUN_DURATION, (factor * s).to_string())),
         None if factor * c.periods != SCENE_PERIODS => {
-            set.push(("run.periods", (factor * c.periods).to_string()));
+            set.push((RUN_PERIODS, (factor * c.periods).to_string()));
         }
         None => {}
     }
@@ -181,12 +195,12 @@ pub fn all(
             &sweep_dir(c, factor),
             DEM_CH4,
             &ch4_set(d, c, factor),
-            &[("excitation.frequency", frequency_list(freqs))],
+            &[(EXCITATION_FREQUENCY, frequency_list(freqs))],
             true,
         )
     };
     let base = sweep(1.0, &c.frequencies_hz)?;
-    let pts = points("ch4_regime_frf", &base.table)?;
+    let pts = points("ch4_regime_frf", &base.points)?;
     let info = Info {
         ctx,
         c,
@@ -204,7 +218,7 @@ pub fn all(
     }
     if want("ch4_run_length") && !c.doubling_freqs_hz.is_empty() {
         let long = sweep(2.0, &c.doubling_freqs_hz)?;
-        let long_pts = points("ch4_run_length", &long.table)?;
+        let long_pts = points("ch4_run_length", &long.points)?;
         figures.push(run_length(&info, &pts, &long, &long_pts)?);
     }
     if want("ch4_panels") || want("ch4_reconstruction") {
@@ -238,12 +252,19 @@ struct Info<'a, 'b> {
 }
 
 impl Info<'_, '_> {
-    fn record(&self, name: &str, caption: String, plot: &str, size: (u32, u32)) -> FigureRecord {
+    /// The figure's record: the sweep's commands, then `plot`.
+    fn record(
+        &self,
+        name: &str,
+        caption: String,
+        plot: Vec<Command>,
+        size: (u32, u32),
+    ) -> FigureRecord {
         FigureRecord {
             name: name.into(),
             caption,
             spec_item: "chapter 4: regimes of the DEM bed along f at Lz = 0.1225 m".into(),
-            commands: vec![self.sweep.command.clone(), plot.into()],
+            commands: [self.sweep.commands.clone(), plot].concat(),
             reductions: self.reductions.to_vec(),
             size_px: size,
         }
@@ -264,7 +285,7 @@ fn regime_frf(info: &Info, pts: &[Point]) -> Result<FigureRecord, StudyError> {
             "{},{},{},{},{},{},{}\n",
             p.f_hz,
             p.amplitude_m,
-            p.regime,
+            p.regime_str(),
             opt_cell(p.period),
             opt_cell(p.mle_per_s),
             opt_cell(p.mle_stderr_per_s),
@@ -274,7 +295,7 @@ fn regime_frf(info: &Info, pts: &[Point]) -> Result<FigureRecord, StudyError> {
     info.ctx.write_text(&format!("{name}.csv"), &text)?;
     let f: Vec<f64> = pts.iter().map(|p| p.f_hz).collect();
     let z: Vec<f64> = pts.iter().map(|p| p.amplitude_m).collect();
-    let reg: Vec<String> = pts.iter().map(|p| p.regime.clone()).collect();
+    let reg: Vec<String> = pts.iter().map(|p| p.regime_str().to_string()).collect();
     let mle: Vec<Option<f64>> = pts.iter().map(|p| p.mle_per_s).collect();
     let se: Vec<Option<f64>> = pts.iter().map(|p| p.mle_stderr_per_s).collect();
     let period: Vec<Option<u32>> = pts
@@ -303,21 +324,32 @@ fn regime_frf(info: &Info, pts: &[Point]) -> Result<FigureRecord, StudyError> {
              the data Lyapunov exponent of z_cm with its error bar, 1/s).",
             length_text(info.c, 1.0)
         ),
-        "pdamp plot regime-frf sweep.csv -o ch4_regime_frf.png",
+        vec![Command::plot(
+            "regime-frf",
+            &info.sweep.csv,
+            &info.ctx.path(&format!("{name}.png")),
+        )],
         size,
     ))
 }
 
 fn bifurcation(info: &Info) -> Result<FigureRecord, StudyError> {
     let name = "ch4_bifurcation";
-    let st = info
-        .sweep
-        .strobe
-        .as_ref()
-        .ok_or_else(|| StudyError::step(name, "the sweep wrote no strobe.csv rows"))?;
-    let f = col(name, st, "frequency_hz")?;
-    let z = col(name, st, "grain_z_m")?;
-    let b = col(name, st, "box_z_m")?;
+    let rows: Vec<(f64, f64, f64)> = (info.sweep.points.iter())
+        .flat_map(|p| {
+            let f = p.summary.frequency_hz;
+            p.summary
+                .strobe
+                .iter()
+                .map(move |s| (f, s.grain_z_m, s.box_z_m))
+        })
+        .collect();
+    if rows.is_empty() {
+        return Err(StudyError::step(name, "the sweep wrote no strobe.csv rows"));
+    }
+    let f: Vec<f64> = rows.iter().map(|r| r.0).collect();
+    let z: Vec<f64> = rows.iter().map(|r| r.1).collect();
+    let b: Vec<f64> = rows.iter().map(|r| r.2).collect();
     let rel: Vec<f64> = z.iter().zip(&b).map(|(z, b)| z - b).collect();
     info.ctx.write_csv(
         name,
@@ -340,7 +372,13 @@ fn bifurcation(info: &Info) -> Result<FigureRecord, StudyError> {
          t = kT over the analysis window (the exact section), versus f: one dot per period-1 \
          frequency, n dots for period n (their spread is the bed's granular noise)."
             .into(),
-        "pdamp plot bifurcation strobe.csv -o ch4_bifurcation.png",
+        vec![Command::plot(
+            "bifurcation",
+            &(info.sweep.csv.iter())
+                .map(|p| p.with_file_name("strobe.csv"))
+                .collect::<Vec<_>>(),
+            &info.ctx.path(&format!("{name}.png")),
+        )],
         size,
     ))
 }
@@ -396,7 +434,7 @@ fn impacts(info: &Info, pts: &[Point]) -> Result<FigureRecord, StudyError> {
          cycle over the steady window (the centre of mass stopped by a wall that carries more \
          than half the bed's weight; see dem::bed_impacts)."
             .into(),
-        "columns bed_floor_impacts_per_cycle, bed_ceiling_impacts_per_cycle of sweep.csv",
+        vec![],
         size,
     ))
 }
@@ -477,10 +515,10 @@ fn run_length(
             length_text(info.c, 2.0),
             pairs.len()
         ),
-        "compare the two sweep.csv files",
+        vec![],
         size,
     );
-    rec.commands.insert(1, long.command.clone());
+    rec.commands.extend(long.commands.iter().cloned());
     Ok(rec)
 }
 
@@ -490,7 +528,8 @@ struct PanelRun {
     summary: RunSummary,
     rec: Recorded,
     dt_s: f64,
-    command: String,
+    /// The run's `--set` (for its `pdamp simulate` command).
+    set: Vec<(&'static str, String)>,
 }
 
 impl PanelRun {
@@ -505,7 +544,7 @@ impl PanelRun {
 fn panel_run(d: &DemSettings, c: &Chapter4Settings, f: f64) -> Result<PanelRun, StudyError> {
     let step = format!("dem panel f{f}");
     let mut set = ch4_set(d, c, 1.0);
-    set.push(("excitation.frequency", f.to_string()));
+    set.push((EXCITATION_FREQUENCY, f.to_string()));
     let scene = scene_with(&step, DEM_CH4, &set)?;
     let dt = scene.run.sample_interval;
     let opts = RunOptions {
@@ -515,13 +554,12 @@ fn panel_run(d: &DemSettings, c: &Chapter4Settings, f: f64) -> Result<PanelRun, 
     let mut rec = Recorded::default();
     let summary = crate::sweep::run_with_analysis(&scene, &mut rec, &opts, true)
         .map_err(|e| StudyError::step(&step, e))?;
-    let command = simulate_command(DEM_CH4, &set, std::path::Path::new(&format!("DIR_f{f}")));
     Ok(PanelRun {
         f_hz: f,
         summary,
         rec,
         dt_s: dt,
-        command,
+        set,
     })
 }
 
@@ -620,10 +658,26 @@ fn panel(info: &Info, r: &PanelRun) -> Result<FigureRecord, StudyError> {
             sz.len(),
             r.verdict()
         ),
-        "pdamp plot bed-motion / poincare / spectrum on the run directory",
+        vec![],
         (opts.width, opts.height),
     );
-    rec.commands[0] = r.command.clone();
+    // the run itself, into a directory, and the CLI's figures of its bed and section
+    let dir = info.ctx.path(&format!("data/ch4_run_f{f}"));
+    rec.commands = vec![
+        simulate_command(DEM_CH4, &r.set, &dir),
+        Command::plot(
+            "bed-motion",
+            &[dir.join("series.csv")],
+            &dir.join("bed_motion.png"),
+        ),
+        Command::plot(
+            "poincare",
+            &[dir.join("strobe.csv")],
+            &dir.join("poincare.png"),
+        )
+        .opt("x", "grain_z_m")
+        .opt("y", "grain_v_m_s"),
+    ];
     Ok(rec)
 }
 
@@ -631,6 +685,7 @@ fn reconstruction(info: &Info, runs: &[PanelRun]) -> Result<FigureRecord, StudyE
     let name = "ch4_reconstruction";
     let mut series: Vec<(Vec<f64>, usize, f64, String)> = Vec::new();
     let mut text = "frequency_hz,lag_s,decimation\n".to_string();
+    let mut commands = Vec::new();
     for r in runs {
         // 64 samples per period: the lag from the first minimum of the mutual information
         let dec = ((1.0 / (r.f_hz * 64.0 * r.dt_s)).round() as usize).max(1);
@@ -646,6 +701,18 @@ fn reconstruction(info: &Info, runs: &[PanelRun]) -> Result<FigureRecord, StudyE
         let lag = mi.first_minimum.unwrap_or(16).max(1);
         let keep = z.len().min(20 * 64);
         let dt = r.dt_s * dec as f64;
+        // the run into a directory, and its reconstruction at the same lag in its samples
+        let dir = info.ctx.path(&format!("data/ch4_run_f{}", r.f_hz));
+        commands.push(simulate_command(DEM_CH4, &r.set, &dir));
+        commands.push(
+            Command::plot(
+                "reconstruction",
+                &[dir.join("series.csv")],
+                &dir.join("reconstruction.png"),
+            )
+            .opt("column", "grain_z_m")
+            .opt("lag", lag * dec),
+        );
         text += &format!("{},{},{dec}\n", r.f_hz, lag as f64 * dt);
         series.push((
             z[z.len() - keep..].to_vec(),
@@ -690,9 +757,9 @@ fn reconstruction(info: &Info, runs: &[PanelRun]) -> Result<FigureRecord, StudyE
                 .collect::<Vec<_>>()
                 .join(", ")
         ),
-        "pdamp plot reconstruction DIR/series.csv --column grain_z_m --lag L",
+        vec![],
         (opts.width, opts.height),
     );
-    rec.commands[0] = runs.first().map(|r| r.command.clone()).unwrap_or_default();
+    rec.commands = commands;
     Ok(rec)
 }

@@ -8,12 +8,18 @@ use crate::observe::NullObserver;
 use crate::plot::energy::{energy_figure, energy_label};
 use crate::plot::resonance::resonance_figure;
 use crate::plot::Series;
+use crate::scene::keys::{
+    DAMPER_BOX, DAMPER_COUNT, DAMPER_GAMMA_N, DAMPER_GAMMA_S, DAMPER_RADIUS, DAMPER_YOUNGS_MODULUS,
+    EXCITATION_FREQUENCY, RUN_DT_FRACTION, RUN_DURATION,
+};
+use crate::sweep::SweepPoints;
 
 use super::check::EffectiveRow;
+use super::command::Command;
+use super::kit::{draw_bed_motion, draw_effective, effective_commands, fit_groups, lines};
 use super::pipeline::{
-    col, record_run, scene_with, simulate_command, Ctx, FigureRecord, SweepResult, DEM_B,
+    record_run, scene_with, simulate_command, Ctx, FigureRecord, SweepResult, DEM_B,
 };
-use super::reproduce::{draw_bed_motion, draw_effective, fit_groups};
 use super::settings::{DemSettings, Settings};
 
 /// Scene B's Lz (m) for the FRF, energy, γ_n and bed-motion figures.
@@ -54,9 +60,9 @@ pub struct DemOutput {
 /// The simulator's message (e.g. [`SimError::Unavailable`]).
 pub fn available() -> Result<(), String> {
     let set = [
-        ("damper.count", "4".to_string()),
-        ("run.duration", "0.01".to_string()),
-        ("damper.youngs_modulus", "2.03e8".to_string()),
+        (DAMPER_COUNT, "4".to_string()),
+        (RUN_DURATION, "0.01".to_string()),
+        (DAMPER_YOUNGS_MODULUS, "2.03e8".to_string()),
     ];
     let scene = scene_with("dem check", DEM_B, &set).map_err(|e| e.to_string())?;
     match crate::sweep::run_scene(&scene, &mut NullObserver, &RunOptions::summary_only()) {
@@ -70,11 +76,11 @@ pub fn available() -> Result<(), String> {
 fn base_set(d: &DemSettings, duration_s: f64) -> Vec<(&'static str, String)> {
     let g = crate::scene::dem::softening_damping_scale(d.soften);
     vec![
-        ("damper.youngs_modulus", (E_B / d.soften).to_string()),
-        ("damper.gamma_n", (GAMMA_N_B * g).to_string()),
-        ("damper.gamma_s", (GAMMA_S_B * g).to_string()),
-        ("run.dt_fraction", d.dt_fraction.to_string()),
-        ("run.duration", duration_s.to_string()),
+        (DAMPER_YOUNGS_MODULUS, (E_B / d.soften).to_string()),
+        (DAMPER_GAMMA_N, (GAMMA_N_B * g).to_string()),
+        (DAMPER_GAMMA_S, (GAMMA_S_B * g).to_string()),
+        (RUN_DT_FRACTION, d.dt_fraction.to_string()),
+        (RUN_DURATION, duration_s.to_string()),
     ]
 }
 
@@ -82,9 +88,9 @@ fn base_set(d: &DemSettings, duration_s: f64) -> Vec<(&'static str, String)> {
 fn count_set(n: usize, lz: f64) -> Vec<(&'static str, String)> {
     let r = R_B * (N_B as f64 / n as f64).cbrt();
     vec![
-        ("damper.count", n.to_string()),
-        ("damper.radius", format!("{r:.6}")),
-        ("damper.box", format!("[0.03675,0.03675,{lz}]")),
+        (DAMPER_COUNT, n.to_string()),
+        (DAMPER_RADIUS, format!("{r:.6}")),
+        (DAMPER_BOX, format!("[0.03675,0.03675,{lz}]")),
     ]
 }
 
@@ -103,7 +109,7 @@ pub fn all(ctx: &Ctx, s: &Settings, d: &DemSettings) -> Result<DemOutput, StudyE
         "dem_frf_n250",
         DEM_B,
         &set,
-        &[("excitation.frequency", d.freq.vary())],
+        &[(EXCITATION_FREQUENCY, d.freq.vary())],
         false,
     )?;
     figures.push(energy_vs_frequency(ctx, &frf, red(&["dem"]))?);
@@ -119,7 +125,7 @@ pub fn all(ctx: &Ctx, s: &Settings, d: &DemSettings) -> Result<DemOutput, StudyE
                 &format!("dem_lz_n{n}_lz{lz}"),
                 DEM_B,
                 &set,
-                &[("excitation.frequency", d.res_freq.vary())],
+                &[(EXCITATION_FREQUENCY, d.res_freq.vary())],
                 false,
             )?;
             v.push((lz, sw));
@@ -147,8 +153,8 @@ pub fn all(ctx: &Ctx, s: &Settings, d: &DemSettings) -> Result<DemOutput, StudyE
             DEM_B,
             &set,
             &[
-                ("damper.gamma_n", values.join(",")),
-                ("excitation.frequency", d.res_freq.vary()),
+                (DAMPER_GAMMA_N, values.join(",")),
+                (EXCITATION_FREQUENCY, d.res_freq.vary()),
             ],
             false,
         )?;
@@ -172,17 +178,14 @@ fn energy_vs_frequency(
     reductions: Vec<String>,
 ) -> Result<FigureRecord, StudyError> {
     let name = "energy_vs_frequency_dem";
-    let f = col(name, &sw.table, "frequency_hz")?;
-    let cols: Vec<String> = sw
-        .table
-        .columns_matching("energy_", "_j_per_cycle")
-        .into_iter()
-        .filter(|c| !c.contains("input") && !c.contains("impact") && !c.contains("balance"))
-        .collect();
-    let values = cols
-        .iter()
-        .map(|c| col(name, &sw.table, c))
-        .collect::<Result<Vec<_>, _>>()?;
+    let f = sw.points.map(|s| s.frequency_hz);
+    // the primary's viscous loss, then the grains' own (collision, friction …)
+    let mut cols = vec!["energy_viscous_j_per_cycle".to_string()];
+    cols.extend(grain_energy_keys(&sw.points));
+    let mut values = vec![sw.points.map(|s| s.energy_viscous_j_per_cycle)];
+    for c in &cols[1..] {
+        values.push(extra_values(name, &sw.points, c)?);
+    }
     let mut header = vec!["frequency_hz"];
     header.extend(cols.iter().map(|c| c.as_str()));
     let rows: Vec<Vec<f64>> = (0..f.len())
@@ -206,28 +209,52 @@ fn energy_vs_frequency(
                   versus frequency."
             .into(),
         spec_item: "collision vs friction energy per cycle versus f".into(),
-        commands: vec![
-            sw.command.clone(),
-            "pdamp plot energy sweep.csv -o energy_vs_frequency_dem.png".into(),
-        ],
+        commands: [
+            sw.commands.clone(),
+            vec![Command::plot(
+                "energy",
+                &sw.csv,
+                &ctx.path(&format!("{name}.png")),
+            )],
+        ]
+        .concat(),
         reductions,
         size_px: size,
     })
 }
 
-/// Grains' dissipation columns (collision, friction …) of a sweep table: every
-/// `energy_*_j_per_cycle` except input, viscous and impact.
-fn grain_dissipation(name: &str, sw: &SweepResult) -> Result<Vec<f64>, StudyError> {
-    let cols: Vec<String> = sw
-        .table
-        .columns_matching("energy_", "_j_per_cycle")
-        .into_iter()
-        .filter(|c| !c.contains("input") && !c.contains("viscous") && !c.contains("impact"))
+/// The DEM's own dissipation entries (collision, friction …) of the points' summaries: every
+/// model-specific `energy_*_j_per_cycle`, by name.
+fn grain_energy_keys(pts: &SweepPoints) -> Vec<String> {
+    let keys: std::collections::BTreeSet<&String> = pts
+        .iter()
+        .flat_map(|p| p.summary.extra.keys())
+        .filter(|k| k.starts_with("energy_") && k.ends_with("_j_per_cycle"))
         .collect();
-    let n = sw.table.rows.len();
-    let mut total = vec![0.0; n];
-    for c in &cols {
-        for (t, v) in total.iter_mut().zip(col(name, &sw.table, c)?) {
+    keys.into_iter().cloned().collect()
+}
+
+/// Model-specific summary entry `key` of every point, or a study error naming the point.
+fn extra_values(name: &str, pts: &SweepPoints, key: &str) -> Result<Vec<f64>, StudyError> {
+    pts.iter()
+        .map(|p| {
+            p.summary
+                .extra
+                .get(key)
+                .copied()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| {
+                    StudyError::step(name, format!("{}: point {}: no `{key}`", pts.dir, p.index))
+                })
+        })
+        .collect()
+}
+
+/// The grains' dissipation per cycle (collision + friction …) of every point.
+fn grain_dissipation(name: &str, sw: &SweepResult) -> Result<Vec<f64>, StudyError> {
+    let mut total = vec![0.0; sw.points.len()];
+    for c in grain_energy_keys(&sw.points) {
+        for (t, v) in total.iter_mut().zip(extra_values(name, &sw.points, &c)?) {
             *t += v;
         }
     }
@@ -245,7 +272,7 @@ fn zres_energy_vs_lz(
     for (n, v) in per_n {
         let (mut xs, mut zs, mut es) = (vec![], vec![], vec![]);
         for (lz, sw) in v {
-            let z = col(name, &sw.table, "amplitude_m")?;
+            let z = sw.points.map(|s| s.amplitude_m);
             let e = grain_dissipation(name, sw)?;
             let i = (0..z.len())
                 .max_by(|&a, &b| z[a].total_cmp(&z[b]))
@@ -289,7 +316,7 @@ fn zres_energy_vs_lz(
         .collect();
     let esize = ctx.render(
         ename,
-        &super::reproduce::lines(
+        &lines(
             series,
             "container height Lz (m)",
             "energy dissipated by the grains per cycle at resonance (J)",
@@ -297,19 +324,16 @@ fn zres_energy_vs_lz(
             "Grain dissipation per cycle at the resonance versus Lz",
         ),
     )?;
-    let commands: Vec<String> = per_n
+    // one sweep per (N, Lz)
+    let commands: Vec<Command> = per_n
         .iter()
-        .flat_map(|(_, v)| v.iter().map(|(_, s)| s.command.clone()))
-        .take(2)
-        .chain(std::iter::once(
-            "… one sweep per (N, Lz) as above; then pdamp plot resonance …/sweep.csv --x damper.box".into(),
-        ))
+        .flat_map(|(_, v)| v.iter().flat_map(|(_, s)| s.commands.iter().cloned()))
         .collect();
     ctx.write_text(
         "zres_vs_lz_dem.commands.txt",
-        &per_n
+        &commands
             .iter()
-            .flat_map(|(_, v)| v.iter().map(|(_, s)| s.command.clone() + "\n"))
+            .map(|c| format!("{c}\n"))
             .collect::<String>(),
     )?;
     let rec = FigureRecord {
@@ -348,7 +372,7 @@ fn effective_vs_lz(
         .ok_or_else(|| StudyError::step(name, "no DEM sweeps"))?;
     let mut rows = Vec::new();
     for (lz, sw) in v {
-        let fit = fit_groups(name, &single_group(&sw.table), "group")?;
+        let fit = fit_groups(name, &sw.points, None)?;
         if let Some(f) = fit.first() {
             rows.push(EffectiveRow { x_m: *lz, ..*f });
         }
@@ -362,24 +386,23 @@ fn effective_vs_lz(
                  FRF near resonance, versus container height Lz, with standard errors."
             ),
             spec_item: "effective damping C_ef/C and effective mass M_ef versus Lz".into(),
-            commands: vec![
-                "pdamp fit-frf data/dem_lz_n250_lz<Lz>/sweep.csv --stiffness 21500 --base-amplitude 4.5e-3 (one per Lz)".into(),
-            ],
+            commands: [
+                v.iter().flat_map(|(_, sw)| sw.commands.clone()).collect(),
+                effective_commands(
+                    ctx,
+                    name,
+                    &v.iter()
+                        .flat_map(|(_, sw)| sw.csv.clone())
+                        .collect::<Vec<_>>(),
+                    "lz_m",
+                ),
+            ]
+            .concat(),
             reductions: vec![],
             size_px: size,
         },
         rows,
     ))
-}
-
-/// The table with one extra constant column `group` (so that [`fit_groups`] fits all rows).
-fn single_group(t: &crate::plot::table::Table) -> crate::plot::table::Table {
-    let mut t = t.clone();
-    t.headers.push("group".into());
-    for r in &mut t.rows {
-        r.push("0".into());
-    }
-    t
 }
 
 fn zres_vs_gamma(
@@ -393,11 +416,14 @@ fn zres_vs_gamma(
     let mut data = Vec::new();
     let mut rows = Vec::new();
     for (n, sw) in curves {
-        let gam: Vec<f64> = col(name, &sw.table, "damper.gamma_n")?
+        let gam: Vec<f64> = sw
+            .points
+            .values(DAMPER_GAMMA_N)
+            .map_err(|e| StudyError::step(name, e))?
             .into_iter()
             .map(|x| x / g)
             .collect();
-        let z = col(name, &sw.table, "amplitude_m")?;
+        let z = sw.points.map(|s| s.amplitude_m);
         let (xs, zs) = crate::plot::resonance::resonance_amplitudes(&gam, &z);
         for (x, z) in xs.iter().zip(&zs) {
             rows.push(vec![*n as f64, *x, *z]);
@@ -423,7 +449,10 @@ fn zres_vs_gamma(
                   given as its real-steel equivalent (the softened runs use γ_n × soften^-0.6)."
             .into(),
         spec_item: "Z_res versus γ_n, γ_s for several N".into(),
-        commands: curves.iter().map(|(_, s)| s.command.clone()).collect(),
+        commands: curves
+            .iter()
+            .flat_map(|(_, s)| s.commands.clone())
+            .collect(),
         reductions,
         size_px: size,
     })
@@ -438,7 +467,7 @@ fn bed_motion(
     let f = 15.0;
     let mut set = base_set(d, d.bed_duration_s);
     set.extend(count_set(N_B, LZ_B));
-    set.push(("excitation.frequency", f.to_string()));
+    set.push((EXCITATION_FREQUENCY, f.to_string()));
     let scene = scene_with(name, DEM_B, &set)?;
     let from = (d.bed_duration_s - 4.0 / f).max(0.0);
     let r = record_run(name, &scene, 2e-4, from)?;
@@ -454,7 +483,12 @@ fn bed_motion(
         spec_item: "bed motion (floor and ceiling, grain band, centre of mass, grain force)".into(),
         commands: vec![
             simulate_command(DEM_B, &set, &ctx.path("data/bed_motion_dem")),
-            "pdamp plot bed-motion DIR/series.csv -o bed_motion_dem.png".into(),
+            Command::plot(
+                "bed-motion",
+                &[ctx.path("data/bed_motion_dem/series.csv")],
+                &ctx.path(&format!("{name}.png")),
+            )
+            .opt("from-time", from),
         ],
         reductions,
         size_px: size,

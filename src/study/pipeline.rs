@@ -3,13 +3,13 @@
 
 use std::path::{Path, PathBuf};
 
+use super::command::Command;
 use crate::error::{SimError, StudyError};
 use crate::model::RunOptions;
 use crate::observe::{fmt_num, ModelSample, Observer, Sample};
-use crate::plot::table::Table;
 use crate::plot::{render, Figure, FigureOptions};
 use crate::scene::{Scene, SceneSource};
-use crate::sweep::{run_sweep, SweepSpec, Vary};
+use crate::sweep::{run_sweep, SweepPoints, SweepSpec, Vary};
 
 /// A scene file bundled with the library (same text as under `data/scenes/`).
 #[derive(Debug, Clone, Copy)]
@@ -47,8 +47,8 @@ pub struct FigureRecord {
     pub caption: String,
     /// The SPEC §7 item it reproduces.
     pub spec_item: String,
-    /// Equivalent `pdamp` commands (sweeps, fits, plots).
-    pub commands: Vec<String>,
+    /// Equivalent `pdamp` commands (sweeps, fits, plots), built from what ran.
+    pub commands: Vec<Command>,
     /// Reductions relative to the source's parameters (empty in `--full`).
     pub reductions: Vec<String>,
     /// Size of the PNG (pixels).
@@ -65,15 +65,17 @@ pub struct Ctx<'a> {
     pub progress: &'a (dyn Fn(&str) + Sync),
 }
 
-/// The result of a sweep: its table and the equivalent command.
+/// The result of a sweep: its typed points and the equivalent commands.
 #[derive(Debug, Clone)]
 pub struct SweepResult {
-    /// `DIR/sweep.csv`.
-    pub table: Table,
-    /// `DIR/strobe.csv`, if it has rows.
-    pub strobe: Option<Table>,
-    /// `pdamp sweep …` reproducing it.
-    pub command: String,
+    /// The finished points (`DIR/points/<i>.json`), in point order, each with its summary
+    /// and stroboscopic samples.
+    pub points: SweepPoints,
+    /// `pdamp sweep …` reproducing it (one per part of a [`Ctx::sweep_split`]).
+    pub commands: Vec<Command>,
+    /// Its `sweep.csv` (one per part of a [`Ctx::sweep_split`], which have the outer key as a
+    /// `--set`, not as a column).
+    pub csv: Vec<PathBuf>,
 }
 
 impl Ctx<'_> {
@@ -108,17 +110,7 @@ impl Ctx<'_> {
             .map_err(|e| step(&e))?;
         let n: usize = varies.iter().map(|v| v.values.len()).product();
         let out = self.out.join("data").join(dir);
-        let mut command = format!("pdamp sweep {}", scene.path);
-        for (k, v) in set {
-            command += &format!(" --set {k}={v}");
-        }
-        for (k, v) in vary {
-            command += &format!(" --vary {k}={v}");
-        }
-        if !analyze {
-            command += " --no-analysis";
-        }
-        command += &format!(" --out {}", out.display());
+        let command = Command::sweep(scene.path, set, vary, analyze, &out);
         let spec = SweepSpec {
             base,
             set: set_parsed,
@@ -147,12 +139,11 @@ impl Ctx<'_> {
             report.skipped,
             started.elapsed().as_secs_f64()
         ));
-        let table = Table::read(&out.join("sweep.csv")).map_err(|e| step(&e))?;
-        let strobe = Table::read(&out.join("strobe.csv")).ok();
+        let points = SweepPoints::read(&out).map_err(|e| step(&e))?;
         Ok(SweepResult {
-            table,
-            strobe,
-            command,
+            points,
+            commands: vec![command],
+            csv: vec![out.join("sweep.csv")],
         })
     }
 
@@ -161,7 +152,7 @@ impl Ctx<'_> {
     /// its `sweep.csv` after every point, so many small sweeps are cheaper than one large one.
     ///
     /// # Errors
-    /// As [`Ctx::sweep`]; also if the parts' columns differ.
+    /// As [`Ctx::sweep`]; also if `outer` has no values.
     pub fn sweep_split(
         &self,
         dir: &str,
@@ -179,57 +170,31 @@ impl Ctx<'_> {
             let sub = format!("{dir}/{key}={v}");
             parts.push((v, self.sweep(&sub, scene, &set_v, vary, analyze)?));
         }
-        let join =
-            |pick: &dyn Fn(&SweepResult) -> Option<&Table>| -> Result<Option<Table>, StudyError> {
-                let mut out: Option<Table> = None;
-                for (v, p) in &parts {
-                    let Some(t) = pick(p) else { continue };
-                    let mut headers = t.headers.clone();
-                    headers.insert(1, key.to_string());
-                    let rows = t.rows.iter().map(|r| {
-                        let mut r = r.clone();
-                        r.insert(1, v.to_string());
-                        r
-                    });
-                    match &mut out {
-                        None => {
-                            out = Some(Table {
-                                path: self.out.join("data").join(dir).display().to_string(),
-                                headers,
-                                rows: rows.collect(),
-                            })
-                        }
-                        Some(o) if o.headers == headers => o.rows.extend(rows),
-                        Some(_) => {
-                            return Err(StudyError::step(
-                                format!("sweep {dir}"),
-                                format!("the sweep at {key} = {v} has different columns"),
-                            ))
-                        }
-                    }
-                }
-                Ok(out)
-            };
-        let table = join(&|p| Some(&p.table))?.ok_or_else(|| {
-            StudyError::step(format!("sweep {dir}"), "no values of the outer key")
-        })?;
-        let strobe = join(&|p| p.strobe.as_ref())?;
-        let mut command = parts
-            .first()
-            .map(|(_, p)| p.command.clone())
-            .unwrap_or_default();
-        command += &format!(
-            "  (one sweep per {key} in {}; the outer key as --set)",
-            values
-                .iter()
-                .map(|v| v.to_string())
-                .collect::<Vec<_>>()
-                .join(", ")
-        );
+        if parts.is_empty() {
+            return Err(StudyError::step(
+                format!("sweep {dir}"),
+                "no values of the outer key",
+            ));
+        }
+        // the outer key joins each point's varied values as the slowest one
+        let mut points = SweepPoints {
+            dir: self.out.join("data").join(dir).display().to_string(),
+            points: Vec::new(),
+        };
+        for (v, p) in &parts {
+            points.points.extend(p.points.iter().map(|pt| {
+                let mut pt = pt.clone();
+                pt.values
+                    .insert(0, (key.to_string(), toml::Value::Float(*v)));
+                pt
+            }));
+        }
+        let commands = parts.iter().flat_map(|(_, p)| p.commands.clone()).collect();
+        let csv = parts.iter().flat_map(|(_, p)| p.csv.clone()).collect();
         Ok(SweepResult {
-            table,
-            strobe,
-            command,
+            points,
+            commands,
+            csv,
         })
     }
 
@@ -301,13 +266,9 @@ pub fn scene_with(
     src.scene(&ov).map_err(|e| err(&e))
 }
 
-/// The `pdamp simulate` command reproducing [`record_run`]'s run.
-pub fn simulate_command(scene: BundledScene, set: &[(&str, String)], out: &Path) -> String {
-    let mut c = format!("pdamp simulate {}", scene.path);
-    for (k, v) in set {
-        c += &format!(" --set {k}={v}");
-    }
-    c + &format!(" --out {}", out.display())
+/// The `pdamp simulate` command reproducing [`record_run`]'s run, into `out`.
+pub fn simulate_command(scene: BundledScene, set: &[(&str, String)], out: &Path) -> Command {
+    Command::simulate(scene.path, set, out)
 }
 
 /// The samples of one run kept in memory (the columns of `series.csv` that figures use).
@@ -379,28 +340,4 @@ pub fn record_run_summary(
     let summary =
         crate::sweep::run_scene(scene, &mut rec, &opts).map_err(|e| StudyError::step(step, e))?;
     Ok((rec, summary))
-}
-
-/// Rows of a table grouped by the value of `key` (ascending), each group's row indices in
-/// file order.
-///
-/// # Errors
-/// [`StudyError::Step`] if the column is missing or not numeric.
-pub fn group_by(step: &str, t: &Table, key: &str) -> Result<Vec<(f64, Vec<usize>)>, StudyError> {
-    let v = t.f64_column(key).map_err(|e| StudyError::step(step, e))?;
-    let mut keys: Vec<f64> = v.clone();
-    keys.sort_by(f64::total_cmp);
-    keys.dedup();
-    Ok(keys
-        .into_iter()
-        .map(|k| (k, (0..v.len()).filter(|&i| v[i] == k).collect()))
-        .collect())
-}
-
-/// A numeric column, or a study error naming the step.
-///
-/// # Errors
-/// [`StudyError::Step`] if the column is missing or holds a non-number.
-pub fn col(step: &str, t: &Table, name: &str) -> Result<Vec<f64>, StudyError> {
-    t.f64_column(name).map_err(|e| StudyError::step(step, e))
 }

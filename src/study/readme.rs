@@ -1,7 +1,7 @@
 //! `OUT/README.md`: every figure with what it shows, the SPEC §7 item, the commands that make
 //! it and the reductions relative to the source's parameters.
 
-use super::reproduce::{ReproduceOptions, ReproduceReport};
+use super::options::{ReproduceOptions, ReproduceReport};
 
 /// The README text for a finished reproduction.
 pub fn readme(opts: &ReproduceOptions, report: &ReproduceReport) -> String {

@@ -4,10 +4,12 @@
 //! the same sweep skips finished points (resume), and the output does not depend on the
 //! number of threads.
 
+pub mod points;
 pub mod run;
 pub mod runner;
 pub mod vary;
 
+pub use points::{SweepPoint, SweepPoints};
 pub use run::{run_scene, run_with_analysis};
 pub use runner::{run_sweep, SweepReport, SweepSpec};
 pub use vary::{grid, Vary};

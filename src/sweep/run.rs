@@ -108,10 +108,7 @@ fn analyze_into(
         in_box_series: &in_box,
     };
     match analyze_forced(&run, &AnalyzeOptions::default()) {
-        Ok(report) => match crate::model::RunAnalysis::from_report(&report) {
-            Ok(v) => summary.analysis = Some(v),
-            Err(e) => summary.analysis_error = Some(format!("analysis report: {e}")),
-        },
+        Ok(report) => summary.analysis = Some(report),
         Err(e) => summary.analysis_error = Some(e.to_string()),
     }
 }

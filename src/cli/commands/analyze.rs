@@ -159,7 +159,7 @@ fn text_report(r: &AnalysisReport, args: &Args) -> String {
             l.frequency, r.frequency_unit, l.power
         );
     }
-    if let Some(shape) = r.poincare_shape {
+    if let Some(shape) = &r.poincare_shape {
         let _ = writeln!(
             s,
             "Poincaré section {} points: {}{}",
