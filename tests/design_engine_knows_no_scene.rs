@@ -78,6 +78,7 @@ fn engine_errors_name_no_scene_keys() {
         "run.duration",
         "run.periods",
         "run.steady_fraction",
+        "run.analysis_fraction",
         "run.sample_interval",
         "excitation.frequency",
         "excitation.amplitude",
@@ -85,12 +86,6 @@ fn engine_errors_name_no_scene_keys() {
         "primary.stiffness",
         "primary.damping",
     ]);
-    // Known exception, not an error: the regime verdict's reason for a too-short window
-    // tells the user which run keys lengthen it (src/analysis/regime.rs, owned elsewhere).
-    let found: Vec<String> = found
-        .into_iter()
-        .filter(|l| !(l.contains("analysis/regime.rs") && l.contains("the steady window holds")))
-        .collect();
     assert!(
         found.is_empty(),
         "engine code names scene-file keys (map a ModelError in src/setup/ instead):\n{}",

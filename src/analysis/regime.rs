@@ -482,7 +482,7 @@ pub fn classify_forced(e: &ForcedEvidence<'_>) -> Verdict {
             Regime::TooShort,
             None,
             format!(
-                "the steady window holds {points} forcing periods; a verdict needs at least {needed}: lengthen the run (run.periods or run.duration) or raise run.steady_fraction"
+                "the analysed window holds {points} forcing periods; a verdict needs at least {needed}: analyse a longer record"
             ),
         ),
         SectionPattern::Periodic { period, noisy } => {

@@ -26,6 +26,8 @@ pub const DAMPER_YOUNGS_MODULUS: &str = "damper.youngs_modulus";
 pub const RUN_DURATION: &str = "run.duration";
 /// `run.periods`: simulated forcing periods; replaces `run.duration`.
 pub const RUN_PERIODS: &str = "run.periods";
+/// `run.analysis_fraction`: last fraction of the run that is analysed (section and series).
+pub const RUN_ANALYSIS_FRACTION: &str = "run.analysis_fraction";
 /// `run.sample_interval`: output sampling of `series.csv` (s).
 pub const RUN_SAMPLE_INTERVAL: &str = "run.sample_interval";
 /// `run.dt_fraction`: DEM time step as a fraction of the contact time.

@@ -1,7 +1,7 @@
 //! Simulation dispatch: one scene → one [`RunSummary`], whatever the damper model.
 
-use crate::analysis::analyze::{analyze_forced, AnalyzeOptions, ForcedRun};
-use crate::analysis::regime::Exponent;
+use crate::analysis::analyze::{analyze_forced, AnalysisReport, AnalyzeOptions, ForcedRun};
+use crate::analysis::regime::{Exponent, Regime};
 use crate::error::SimError;
 use crate::impact::{ImpactWorld, ModelLyapunovOptions};
 use crate::model::{RunOptions, RunSummary};
@@ -108,9 +108,21 @@ fn analyze_into(
         in_box_series: &in_box,
     };
     match analyze_forced(&run, &AnalyzeOptions::default()) {
-        Ok(report) => summary.analysis = Some(report),
+        Ok(report) => summary.analysis = Some(with_scene_keys(report)),
         Err(e) => summary.analysis_error = Some(e.to_string()),
     }
+}
+
+/// The verdict's advice in the scene's terms: a too-short window names the keys that
+/// lengthen it (the analysis itself knows records, not scene files).
+fn with_scene_keys(mut report: AnalysisReport) -> AnalysisReport {
+    use crate::scene::keys::{RUN_ANALYSIS_FRACTION, RUN_DURATION, RUN_PERIODS};
+    if report.regime == Regime::TooShort {
+        report.reason.push_str(&format!(
+            " (raise {RUN_PERIODS} or {RUN_DURATION}, or {RUN_ANALYSIS_FRACTION})"
+        ));
+    }
+    report
 }
 
 /// The impact model's own exponent (tangent dynamics with saltation matrices,
