@@ -16,7 +16,9 @@ use crate::sweep::SweepPoints;
 
 use super::check::EffectiveRow;
 use super::command::Command;
-use super::kit::{draw_bed_motion, draw_effective, effective_commands, fit_groups, lines};
+use super::kit::{
+    draw_bed_motion, draw_effective, effective_commands, fit_groups, lines, resonance_curve,
+};
 use super::pipeline::{
     record_run, scene_with, simulate_command, Ctx, FigureRecord, SweepResult, DEM_B,
 };
@@ -416,15 +418,9 @@ fn zres_vs_gamma(
     let mut data = Vec::new();
     let mut rows = Vec::new();
     for (n, sw) in curves {
-        let gam: Vec<f64> = sw
-            .points
-            .values(DAMPER_GAMMA_N)
-            .map_err(|e| StudyError::step(name, e))?
-            .into_iter()
-            .map(|x| x / g)
-            .collect();
-        let z = sw.points.map(|s| s.amplitude_m);
-        let (xs, zs) = crate::plot::resonance::resonance_amplitudes(&gam, &z);
+        // γ_n of the softened runs, given as its real-steel equivalent
+        let (xs, zs) = resonance_curve(name, &sw.points, DAMPER_GAMMA_N)?;
+        let xs: Vec<f64> = xs.into_iter().map(|x| x / g).collect();
         for (x, z) in xs.iter().zip(&zs) {
             rows.push(vec![*n as f64, *x, *z]);
         }

@@ -3,13 +3,13 @@
 
 use crate::error::StudyError;
 use crate::plot::energy::energy_figure;
-use crate::plot::resonance::{resonance_amplitudes, resonance_figure};
+use crate::plot::resonance::resonance_figure;
 use crate::plot::Series;
 use crate::scene::keys::{DAMPER_GAP, DAMPER_RESTITUTION, EXCITATION_FREQUENCY, RUN_DURATION};
 use crate::sweep::{SweepPoint, SweepPoints};
 
 use super::check::EffectiveRow;
-use super::kit::{draw_effective, effective_commands, fit_groups, key_values};
+use super::kit::{draw_effective, effective_commands, fit_groups, resonance_curve};
 use super::pipeline::{Ctx, FigureRecord, SweepResult, IMPACT_B};
 use super::settings::Settings;
 
@@ -87,14 +87,8 @@ pub(super) fn zres_vs_gap(
     e8: &SweepResult,
 ) -> Result<FigureRecord, StudyError> {
     let name = "zres_vs_gap";
-    let (x0, z0) = resonance_amplitudes(
-        &key_values(name, &e0.points, DAMPER_GAP)?,
-        &e0.points.map(|s| s.amplitude_m),
-    );
-    let (x8, z8) = resonance_amplitudes(
-        &key_values(name, &e8.points, DAMPER_GAP)?,
-        &e8.points.map(|s| s.amplitude_m),
-    );
+    let (x0, z0) = resonance_curve(name, &e0.points, DAMPER_GAP)?;
+    let (x8, z8) = resonance_curve(name, &e8.points, DAMPER_GAP)?;
     let rows: Vec<Vec<f64>> = (0..x0.len()).map(|i| vec![x0[i], z0[i], z8[i]]).collect();
     ctx.write_csv(name, &["gap_m", "zres_e0_m", "zres_e0.8_m"], &rows)?;
     let size = ctx.render(
@@ -191,10 +185,7 @@ pub(super) fn zres_vs_restitution(ctx: &Ctx, s: &Settings) -> Result<FigureRecor
             &[(EXCITATION_FREQUENCY, s.grid_freq.vary())],
             false,
         )?;
-        let (xs, zs) = resonance_amplitudes(
-            &key_values(name, &sw.points, DAMPER_RESTITUTION)?,
-            &sw.points.map(|s| s.amplitude_m),
-        );
+        let (xs, zs) = resonance_curve(name, &sw.points, DAMPER_RESTITUTION)?;
         for (x, zz) in xs.iter().zip(&zs) {
             rows.push(vec![g, *x, *zz]);
         }

@@ -224,6 +224,30 @@ pub fn key_values(step: &str, pts: &SweepPoints, key: &str) -> Result<Vec<f64>, 
     pts.values(key).map_err(|e| StudyError::step(step, e))
 }
 
+/// Z_res per value of varied key `key`: the largest amplitude of each group of points (over
+/// the frequencies), groups by increasing value.
+///
+/// # Errors
+/// [`StudyError::Step`] if a point lacks `key`.
+pub fn resonance_curve(
+    step: &str,
+    pts: &SweepPoints,
+    key: &str,
+) -> Result<(Vec<f64>, Vec<f64>), StudyError> {
+    Ok(pts
+        .group_by(key)
+        .map_err(|e| StudyError::step(step, e))?
+        .into_iter()
+        .filter_map(|(x, group)| {
+            let z = group
+                .iter()
+                .map(|p| p.summary.amplitude_m)
+                .reduce(f64::max)?;
+            Some((x, z))
+        })
+        .unzip())
+}
+
 /// A lines figure with explicit labels (used by the DEM figures too).
 pub fn lines<'a>(
     series: Vec<Series<'a>>,
