@@ -30,15 +30,12 @@ use crate::plot::Series;
 use rayon::prelude::*;
 
 use super::command::Command;
-use super::dem_figures::{E_B as E_STEEL, GAMMA_N_B, GAMMA_S_B};
+use super::dem_figures::softened_steel_set;
 use super::pipeline::{
     scene_with, simulate_command, BundledScene, Ctx, FigureRecord, Recorded, SweepResult,
 };
 use super::settings::{Chapter4Settings, DemSettings, Settings};
-use crate::scene::keys::{
-    DAMPER_GAMMA_N, DAMPER_GAMMA_S, DAMPER_YOUNGS_MODULUS, EXCITATION_FREQUENCY, RUN_DT_FRACTION,
-    RUN_DURATION, RUN_PERIODS,
-};
+use crate::scene::keys::{EXCITATION_FREQUENCY, RUN_DT_FRACTION, RUN_DURATION, RUN_PERIODS};
 use crate::sweep::SweepPoints;
 
 /// Scene B at Lz = 0.1225 m with softened grains and runs counted in periods
@@ -125,10 +122,7 @@ fn points(step: &str, pts: &SweepPoints) -> Result<Vec<Point>, StudyError> {
 fn ch4_set(d: &DemSettings, c: &Chapter4Settings, factor: f64) -> Vec<(&'static str, String)> {
     let mut set = Vec::new();
     if d.soften != SCENE_SOFTEN {
-        let g = d.soften.powf(-0.6);
-        set.push((DAMPER_YOUNGS_MODULUS, (E_STEEL / d.soften).to_string()));
-        set.push((DAMPER_GAMMA_N, (GAMMA_N_B * g).to_string()));
-        set.push((DAMPER_GAMMA_S, (GAMMA_S_B * g).to_string()));
+        set.extend(softened_steel_set(d.soften));
     }
     if d.dt_fraction != SCENE_DT_FRACTION {
         set.push((RUN_DT_FRACTION, d.dt_fraction.to_string()));

@@ -74,16 +74,23 @@ pub fn available() -> Result<(), String> {
     }
 }
 
-/// The material and run overrides of the mode (softening, time step, duration).
-fn base_set(d: &DemSettings, duration_s: f64) -> Vec<(&'static str, String)> {
-    let g = crate::scene::dem::softening_damping_scale(d.soften);
+/// `--set` of scene B's steel softened by `soften`: E/soften, γ_n and γ_s × soften^-3/5 (the
+/// rule of [`crate::scene::dem::DemParams::softened`], which keeps e(v)).
+pub(super) fn softened_steel_set(soften: f64) -> Vec<(&'static str, String)> {
+    let g = crate::scene::dem::softening_damping_scale(soften);
     vec![
-        (DAMPER_YOUNGS_MODULUS, (E_B / d.soften).to_string()),
+        (DAMPER_YOUNGS_MODULUS, (E_B / soften).to_string()),
         (DAMPER_GAMMA_N, (GAMMA_N_B * g).to_string()),
         (DAMPER_GAMMA_S, (GAMMA_S_B * g).to_string()),
-        (RUN_DT_FRACTION, d.dt_fraction.to_string()),
-        (RUN_DURATION, duration_s.to_string()),
     ]
+}
+
+/// The material and run overrides of the mode (softening, time step, duration).
+fn base_set(d: &DemSettings, duration_s: f64) -> Vec<(&'static str, String)> {
+    let mut set = softened_steel_set(d.soften);
+    set.push((RUN_DT_FRACTION, d.dt_fraction.to_string()));
+    set.push((RUN_DURATION, duration_s.to_string()));
+    set
 }
 
 /// `--set` for N grains at scene B's total grain mass: R = R_B (N_B/N)^(1/3).
