@@ -22,6 +22,7 @@ fn reduced_chapter4_study_writes_every_figure_and_counts_two_impacts_at_14_5_hz(
             title: None,
         },
         progress: &|_| {},
+        points: Default::default(),
     };
     let s = Settings::for_mode(Mode::Quick);
     let d = s.dem.clone().unwrap();

@@ -163,6 +163,7 @@ fn chapter4_commands_parse() {
             title: None,
         },
         progress: &|_| {},
+        points: Default::default(),
     };
     let s = pdamp::study::Settings::for_mode(Mode::Quick);
     let d = s.dem.clone().unwrap();

@@ -218,15 +218,7 @@ fn energy_vs_frequency(
                   versus frequency."
             .into(),
         spec_item: "collision vs friction energy per cycle versus f".into(),
-        commands: [
-            sw.commands.clone(),
-            vec![Command::plot(
-                "energy",
-                &sw.csv,
-                &ctx.path(&format!("{name}.png")),
-            )],
-        ]
-        .concat(),
+        commands: sw.commands_then_plot("energy", &ctx.path(&format!("{name}.png"))),
         reductions,
         size_px: size,
     })

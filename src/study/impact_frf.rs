@@ -64,15 +64,7 @@ pub(super) fn energy_vs_frequency(
              into collision and friction: energy_vs_frequency_dem)."
         ),
         spec_item: "collision vs friction energy per cycle versus f".into(),
-        commands: [
-            sw.commands.clone(),
-            vec![Command::plot(
-                "energy",
-                &sw.csv,
-                &ctx.path(&format!("{name}.png")),
-            )],
-        ]
-        .concat(),
+        commands: sw.commands_then_plot("energy", &ctx.path(&format!("{name}.png"))),
         reductions: s.reductions(&["freq", "duration"]),
         size_px: size,
     })

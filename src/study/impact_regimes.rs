@@ -145,15 +145,7 @@ pub(super) fn regime_frf(
                   without an estimate have no marker."
             .into(),
         spec_item: "the FRF with regime bands and the Lyapunov exponent overlaid".into(),
-        commands: [
-            sw.commands.clone(),
-            vec![Command::plot(
-                "regime-frf",
-                &sw.csv,
-                &ctx.path(&format!("{name}.png")),
-            )],
-        ]
-        .concat(),
+        commands: sw.commands_then_plot("regime-frf", &ctx.path(&format!("{name}.png"))),
         reductions: s.reductions(&["regime"]),
         size_px: size,
     })

@@ -73,4 +73,6 @@ pub struct ReproduceReport {
     pub skipped: Vec<String>,
     /// Wall time (s).
     pub elapsed_s: f64,
+    /// Sweep points computed by this run and reused from earlier ones.
+    pub points_computed_reused: (usize, usize),
 }

@@ -63,6 +63,30 @@ pub struct Ctx<'a> {
     pub figure: FigureOptions,
     /// Receives one line per stage (the CLI prints them on stderr).
     pub progress: &'a (dyn Fn(&str) + Sync),
+    /// Sweep points computed and reused so far.
+    pub points: PointCounts,
+}
+
+/// How many sweep points a study computed and how many it reused from earlier runs
+/// (`OUT/data/*/points/`), so that its wall time can be read for what it is.
+#[derive(Debug, Default)]
+pub struct PointCounts {
+    computed: std::sync::atomic::AtomicUsize,
+    reused: std::sync::atomic::AtomicUsize,
+}
+
+impl PointCounts {
+    fn add(&self, computed: usize, reused: usize) {
+        use std::sync::atomic::Ordering::Relaxed;
+        self.computed.fetch_add(computed, Relaxed);
+        self.reused.fetch_add(reused, Relaxed);
+    }
+
+    /// (computed, reused) so far.
+    pub fn get(&self) -> (usize, usize) {
+        use std::sync::atomic::Ordering::Relaxed;
+        (self.computed.load(Relaxed), self.reused.load(Relaxed))
+    }
 }
 
 /// The result of a sweep: its typed points and the equivalent commands.
@@ -76,6 +100,15 @@ pub struct SweepResult {
     /// Its `sweep.csv` (one per part of a [`Ctx::sweep_split`], which have the outer key as a
     /// `--set`, not as a column).
     pub csv: Vec<PathBuf>,
+}
+
+impl SweepResult {
+    /// The sweep's commands followed by `pdamp plot KIND <its sweep.csv> -o OUT`.
+    pub fn commands_then_plot(&self, kind: &str, out: &Path) -> Vec<Command> {
+        let mut c = self.commands.clone();
+        c.push(Command::plot(kind, &self.csv, out));
+        c
+    }
 }
 
 impl Ctx<'_> {
@@ -133,6 +166,7 @@ impl Ctx<'_> {
                 report.failed.len()
             )));
         }
+        self.points.add(report.computed, report.skipped);
         (self.progress)(&format!(
             "sweep {dir}: done ({} computed, {} reused) in {:.1} s",
             report.computed,

@@ -33,6 +33,7 @@ pub fn reproduce(
         out: opts.out.clone(),
         figure: opts.figure.clone(),
         progress,
+        points: Default::default(),
     };
     let s = &opts.settings;
     let want = |name: &str| opts.wants(name);
@@ -168,6 +169,7 @@ pub fn reproduce(
         effective_dem,
         skipped,
         elapsed_s: started.elapsed().as_secs_f64(),
+        points_computed_reused: ctx.points.get(),
     };
     ctx.write_text(&opts.readme_name(), &super::readme::readme(opts, &report))?;
     Ok(report)
