@@ -3,6 +3,7 @@
 
 use std::path::Path;
 
+use pdamp::analysis::regime::Regime;
 use pdamp::error::PlotError;
 use pdamp::plot::bed_motion::BedMotionFigure;
 use pdamp::plot::bifurcation::BifurcationFigure;
@@ -217,17 +218,16 @@ fn bifurcation_diagram() {
     check_renders(&fig, "bifurcation", [102, 102, 102], 500);
 }
 
-fn regime_of(f: f64) -> String {
-    if f < 12.0 {
-        "periodic"
+fn regime_of(f: f64) -> Option<Regime> {
+    Some(if f < 12.0 {
+        Regime::Periodic
     } else if f < 18.0 {
-        "quasi-periodic"
+        Regime::QuasiPeriodic
     } else if f < 22.0 {
-        "chaotic"
+        Regime::Chaotic
     } else {
-        "periodic"
-    }
-    .to_string()
+        Regime::Periodic
+    })
 }
 
 /// Vermillion, the data exponent's colour in `regime_frf`.
@@ -246,7 +246,7 @@ fn count_color(img: &[u8], c: [u8; 3]) -> usize {
 #[test]
 fn regime_frf_two_panels_with_error_bars() {
     let (f, z, _) = frf_data();
-    let regime: Vec<String> = f.iter().map(|&f| regime_of(f)).collect();
+    let regime: Vec<Option<Regime>> = f.iter().map(|&f| regime_of(f)).collect();
     let period: Vec<Option<u32>> = f
         .iter()
         .map(|&f| {
@@ -469,16 +469,13 @@ fn regime_map_cells_and_legend() {
             x.push(f);
             y.push(lz);
             let chaotic = (f - 15.0).abs() < 4.0 && lz > 0.1;
-            reg.push(
-                if chaotic {
-                    "chaotic"
-                } else if f > 20.0 {
-                    "quasi-periodic"
-                } else {
-                    "periodic"
-                }
-                .to_string(),
-            );
+            reg.push(Some(if chaotic {
+                Regime::Chaotic
+            } else if f > 20.0 {
+                Regime::QuasiPeriodic
+            } else {
+                Regime::Periodic
+            }));
             mle.push(Some(if chaotic { 2.5 } else { -0.4 }));
             per.push((!chaotic && f <= 20.0).then_some(if f < 8.0 { 3 } else { 1 }));
         }
@@ -517,7 +514,11 @@ fn regime_map_uneven_rows_are_equal() {
         for i in 0..10 {
             x.push(2.0 + i as f64);
             y.push(g);
-            reg.push(if g == 0.003 { "chaotic" } else { "periodic" }.to_string());
+            reg.push(Some(if g == 0.003 {
+                Regime::Chaotic
+            } else {
+                Regime::Periodic
+            }));
         }
     }
     let fig = RegimeMapFigure {

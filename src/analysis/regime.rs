@@ -51,6 +51,36 @@ impl std::fmt::Display for Regime {
     }
 }
 
+impl Regime {
+    /// Every regime, in the order figures list them.
+    pub const ALL: [Regime; 6] = [
+        Regime::Periodic,
+        Regime::QuasiPeriodic,
+        Regime::Chaotic,
+        Regime::Stochastic,
+        Regime::Undetermined,
+        Regime::TooShort,
+    ];
+}
+
+impl std::str::FromStr for Regime {
+    type Err = String;
+
+    /// Reads a name written by [`Regime::as_str`] (surrounding blanks ignored).
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let t = s.trim();
+        Regime::ALL
+            .into_iter()
+            .find(|r| r.as_str() == t)
+            .ok_or_else(|| {
+                format!(
+                    "unknown regime {t:?}: expected one of {}",
+                    Regime::ALL.map(Regime::as_str).join(", ")
+                )
+            })
+    }
+}
+
 /// Returns the smallest p ≤ `max_period` with max_n |s_{n+p} − s_n| ≤ `rel_tol`·(max − min)
 /// over the series, or `None`.
 ///
@@ -701,6 +731,11 @@ mod tests {
         };
         assert_ne!(classify(&regular, &t).regime, Regime::Chaotic);
         assert_eq!(Regime::QuasiPeriodic.as_str(), "quasi-periodic");
+        for r in Regime::ALL {
+            assert_eq!(r.as_str().parse::<Regime>(), Ok(r));
+        }
+        let e = "periodic-2".parse::<Regime>().unwrap_err();
+        assert!(e.contains("\"periodic-2\"") && e.contains("too-short"), "{e}");
         assert_eq!(
             serde_json::to_string(&Regime::QuasiPeriodic).unwrap(),
             "\"quasi-periodic\""

@@ -8,6 +8,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::{register_font, FontStyle};
 
+use crate::analysis::regime::Regime;
 use crate::error::PlotError;
 
 /// DejaVu Sans (Bitstream Vera licence, see `data/fonts/LICENSE-DejaVu`), bundled so that
@@ -163,54 +164,36 @@ pub fn series_color(i: usize) -> RGBColor {
     PALETTE[i % PALETTE.len()]
 }
 
-/// Colour of a dynamical regime as written in the `regime` column.
-///
-/// periodic → green, quasi-periodic → blue, chaotic → red, stochastic → purple, too-short →
-/// sand, anything else (undetermined, empty) → grey. Names starting with `periodic` (e.g. `periodic-2`) count as
-/// periodic.
-pub fn regime_color(regime: &str) -> RGBColor {
-    let r = regime.trim().to_ascii_lowercase();
-    if r.starts_with("quasi") {
-        RGBColor(86, 140, 233)
-    } else if r.starts_with("periodic") {
-        RGBColor(60, 175, 90)
-    } else if r.starts_with("chaotic") {
-        RGBColor(220, 50, 40)
-    } else if r.starts_with("stochastic") {
-        RGBColor(150, 90, 180)
-    } else if r.starts_with("too") {
-        RGBColor(205, 170, 110)
-    } else {
-        RGBColor(160, 160, 160)
+/// Colour of a dynamical regime: periodic → green, quasi-periodic → blue, chaotic → red,
+/// stochastic → purple, too-short → sand, undetermined or none → grey.
+pub fn regime_color(regime: Option<Regime>) -> RGBColor {
+    match regime {
+        Some(Regime::QuasiPeriodic) => RGBColor(86, 140, 233),
+        Some(Regime::Periodic) => RGBColor(60, 175, 90),
+        Some(Regime::Chaotic) => RGBColor(220, 50, 40),
+        Some(Regime::Stochastic) => RGBColor(150, 90, 180),
+        Some(Regime::TooShort) => RGBColor(205, 170, 110),
+        Some(Regime::Undetermined) | None => RGBColor(160, 160, 160),
     }
 }
 
-/// The regime names in a fixed legend order, restricted to those present in `regimes`
-/// (unknown names keep their first-seen order at the end).
-pub fn regime_legend(regimes: &[&str]) -> Vec<String> {
-    let rank = |r: &str| {
-        let r = r.to_ascii_lowercase();
-        [
-            "periodic",
-            "quasi",
-            "chaotic",
-            "stochastic",
-            "undetermined",
-            "too",
-        ]
-        .iter()
-        .rposition(|o| r.starts_with(o))
-        .unwrap_or(6)
-    };
-    let mut seen: Vec<String> = Vec::new();
-    for r in regimes {
-        let r = r.trim().to_string();
-        if !seen.contains(&r) {
-            seen.push(r);
-        }
+/// The regimes present in `regimes`, in the fixed legend order of [`Regime::ALL`], points
+/// without a regime (`None`) last.
+pub fn regime_legend(regimes: &[Option<Regime>]) -> Vec<Option<Regime>> {
+    let mut out: Vec<Option<Regime>> = Regime::ALL
+        .into_iter()
+        .map(Some)
+        .filter(|r| regimes.contains(r))
+        .collect();
+    if regimes.contains(&None) {
+        out.push(None);
     }
-    seen.sort_by_key(|r| rank(r));
-    seen
+    out
+}
+
+/// The legend label of a regime ("no regime" for a point without one).
+pub fn regime_label(regime: Option<Regime>) -> String {
+    regime.map_or("no regime", Regime::as_str).to_string()
 }
 
 /// Perceptually ordered colour scale (viridis, 5 anchor colours linearly interpolated);

@@ -8,9 +8,10 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::common::{
-    self, check_finite, check_len, draw_err, padded_range, regime_color, regime_legend, Figure,
-    LegendEntry, LegendMark,
+    self, check_finite, check_len, draw_err, padded_range, regime_color, regime_label,
+    regime_legend, Figure, LegendEntry, LegendMark,
 };
+use crate::analysis::regime::Regime;
 use crate::error::PlotError;
 
 /// One exponent per sweep point with its standard error (both 1/s); `None`, non-finite or
@@ -56,8 +57,8 @@ pub struct RegimeFrfFigure<'a> {
     pub frequency_hz: &'a [f64],
     /// `amplitude_m` per point (drawn in mm).
     pub amplitude_m: &'a [f64],
-    /// `regime` per point ("periodic", "quasi-periodic", "chaotic", …).
-    pub regime: &'a [String],
+    /// The regime of each point (`None`: not classified, e.g. a sweep without analysis).
+    pub regime: &'a [Option<Regime>],
     /// `period` per point (periodic points); periods ≥ 2 are written in their band.
     pub period: Option<&'a [Option<u32>]>,
     /// The exponent estimated from the data (`mle_per_s`, `mle_stderr_per_s`).
@@ -92,7 +93,7 @@ impl RegimeFrfFigure<'_> {
 fn bands<DB: DrawingBackend>(
     chart: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
     f: &[f64],
-    reg: &[&str],
+    reg: &[Option<Regime>],
     (f_lo, f_hi): (f64, f64),
     (y0, y1): (f64, f64),
     alpha: f64,
@@ -112,7 +113,7 @@ fn bands<DB: DrawingBackend>(
         chart
             .draw_series(std::iter::once(Rectangle::new(
                 [(left, y0), (right, y1)],
-                common::shade(regime_color(r), alpha).filled(),
+                common::shade(regime_color(*r), alpha).filled(),
             )))
             .map_err(draw_err)?;
     }
@@ -156,7 +157,7 @@ impl Figure for RegimeFrfFigure<'_> {
         idx.sort_by(|&a, &b| self.frequency_hz[a].total_cmp(&self.frequency_hz[b]));
         let f: Vec<f64> = idx.iter().map(|&i| self.frequency_hz[i]).collect();
         let z: Vec<f64> = idx.iter().map(|&i| 1e3 * self.amplitude_m[i]).collect();
-        let reg: Vec<&str> = idx.iter().map(|&i| self.regime[i].as_str()).collect();
+        let reg: Vec<Option<Regime>> = idx.iter().map(|&i| self.regime[i]).collect();
         let per: Vec<Option<u32>> = idx
             .iter()
             .map(|&i| self.period.and_then(|p| p[i]))
@@ -209,7 +210,7 @@ impl Figure for RegimeFrfFigure<'_> {
         let mut last_right = i32::MIN;
         let mut i = 0;
         while i < per.len() {
-            let Some(n) = per[i].filter(|&n| n >= 2 && reg[i].starts_with("periodic")) else {
+            let Some(n) = per[i].filter(|&n| n >= 2 && reg[i] == Some(Regime::Periodic)) else {
                 i += 1;
                 continue;
             };
@@ -304,9 +305,8 @@ impl Figure for RegimeFrfFigure<'_> {
         // ---- legend panel ----
         let mut legend = vec![LegendEntry::heading("regime (bands)")];
         for r in regime_legend(&reg) {
-            let c = common::shade(regime_color(&r), 0.55);
-            let label = if r.is_empty() { "no regime".into() } else { r };
-            legend.push(LegendEntry::new(label, c, LegendMark::Patch));
+            let c = common::shade(regime_color(r), 0.55);
+            legend.push(LegendEntry::new(regime_label(r), c, LegendMark::Patch));
         }
         if any_period {
             legend.push(LegendEntry::note("Pn: period n ≥ 2"));

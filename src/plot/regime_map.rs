@@ -9,9 +9,10 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::common::{
-    self, check_finite, check_len, draw_err, regime_color, regime_legend, Figure, LegendEntry,
-    LegendMark,
+    self, check_finite, check_len, draw_err, regime_color, regime_label, regime_legend, Figure,
+    LegendEntry, LegendMark,
 };
+use crate::analysis::regime::Regime;
 use crate::error::PlotError;
 
 /// Regime-map figure from a two-key `sweep.csv`.
@@ -21,8 +22,8 @@ pub struct RegimeMapFigure<'a> {
     pub x: &'a [f64],
     /// Second varied key per point (e.g. `damper.gap`, m).
     pub y: &'a [f64],
-    /// `regime` per point.
-    pub regime: &'a [String],
+    /// The regime of each point (`None`: not classified).
+    pub regime: &'a [Option<Regime>],
     /// `period` per point; periodic cells of period ≥ 2 are drawn darker and numbered.
     pub period: Option<&'a [Option<u32>]>,
     /// Largest Lyapunov exponent per point (1/s), shading the chaotic cells; `None` entries
@@ -118,15 +119,19 @@ impl Axis {
 
 /// Colour of a cell: the regime's colour; chaotic cells from light (λ → 0) to dark red
 /// (λ = `l_max`); periodic cells of period ≥ 2 darker green.
-fn cell_color(regime: &str, period: Option<u32>, mle: Option<f64>, l_max: f64) -> RGBColor {
-    let r = regime.trim().to_ascii_lowercase();
-    if r.starts_with("chaotic") {
+fn cell_color(
+    regime: Option<Regime>,
+    period: Option<u32>,
+    mle: Option<f64>,
+    l_max: f64,
+) -> RGBColor {
+    if regime == Some(Regime::Chaotic) {
         let t = match mle {
             Some(l) if l_max > 0.0 => (l / l_max).clamp(0.0, 1.0),
             _ => 0.5,
         };
         chaos_shade(t)
-    } else if r.starts_with("periodic") && period.is_some_and(|n| n >= 2) {
+    } else if regime == Some(Regime::Periodic) && period.is_some_and(|n| n >= 2) {
         RGBColor(25, 120, 55)
     } else {
         common::shade(regime_color(regime), 0.8)
@@ -175,12 +180,7 @@ impl Figure for RegimeMapFigure<'_> {
         let ((x_lo, x_hi), (y_lo, y_hi)) = (ax.range(), ay.range());
         let mle = |i: usize| self.mle_per_s.and_then(|m| m[i]).filter(|v| v.is_finite());
         let per = |i: usize| self.period.and_then(|p| p[i]);
-        let is_chaotic = |i: usize| {
-            self.regime[i]
-                .trim()
-                .to_ascii_lowercase()
-                .starts_with("chaotic")
-        };
+        let is_chaotic = |i: usize| self.regime[i] == Some(Regime::Chaotic);
         let chaotic_l: Vec<f64> = (0..self.x.len())
             .filter(|&i| is_chaotic(i))
             .filter_map(mle)
@@ -198,7 +198,7 @@ impl Figure for RegimeMapFigure<'_> {
             .map_err(draw_err)?;
         for i in 0..self.x.len() {
             let (cx, cy) = (ax.cell(self.x[i]), ay.cell(self.y[i]));
-            let c = cell_color(&self.regime[i], per(i), mle(i), l_max);
+            let c = cell_color(self.regime[i], per(i), mle(i), l_max);
             chart
                 .draw_series(std::iter::once(Rectangle::new(
                     [
@@ -254,7 +254,7 @@ impl Figure for RegimeMapFigure<'_> {
             let Some(n) = per(i).filter(|&n| n >= 2) else {
                 continue;
             };
-            if !self.regime[i].trim().starts_with("periodic") {
+            if self.regime[i] != Some(Regime::Periodic) {
                 continue;
             }
             let (cx, cy) = (ax.cell(self.x[i]), ay.cell(self.y[i]));
@@ -282,34 +282,28 @@ impl Figure for RegimeMapFigure<'_> {
         }
 
         // ---- legend panel ----
-        let names: Vec<&str> = self.regime.iter().map(|s| s.as_str()).collect();
-        let any_long_period = (0..self.x.len()).any(|i| {
-            per(i).is_some_and(|n| n >= 2) && self.regime[i].trim().starts_with("periodic")
-        });
+        let any_long_period = (0..self.x.len())
+            .any(|i| per(i).is_some_and(|n| n >= 2) && self.regime[i] == Some(Regime::Periodic));
         let mut legend = vec![LegendEntry::heading("regime")];
-        for r in regime_legend(&names) {
-            let label = if r.is_empty() {
-                "no regime".into()
-            } else {
-                r.clone()
-            };
-            if r.to_ascii_lowercase().starts_with("chaotic") {
+        for r in regime_legend(self.regime) {
+            let label = regime_label(r);
+            if r == Some(Regime::Chaotic) {
                 legend.push(LegendEntry::new(label, chaos_shade(0.6), LegendMark::Patch));
-            } else if r.starts_with("periodic") && any_long_period {
+            } else if r == Some(Regime::Periodic) && any_long_period {
                 legend.push(LegendEntry::new(
                     "periodic, period 1",
-                    cell_color(&r, Some(1), None, 0.0),
+                    cell_color(r, Some(1), None, 0.0),
                     LegendMark::Patch,
                 ));
                 legend.push(LegendEntry::new(
                     "periodic, period ≥ 2",
-                    cell_color(&r, Some(2), None, 0.0),
+                    cell_color(r, Some(2), None, 0.0),
                     LegendMark::Patch,
                 ));
             } else {
                 legend.push(LegendEntry::new(
                     label,
-                    cell_color(&r, None, None, 0.0),
+                    cell_color(r, None, None, 0.0),
                     LegendMark::Patch,
                 ));
             }

@@ -289,7 +289,7 @@ fn regime_frf(info: &Info, pts: &[Point]) -> Result<FigureRecord, StudyError> {
     info.ctx.write_text(&format!("{name}.csv"), &text)?;
     let f: Vec<f64> = pts.iter().map(|p| p.f_hz).collect();
     let z: Vec<f64> = pts.iter().map(|p| p.amplitude_m).collect();
-    let reg: Vec<String> = pts.iter().map(|p| p.regime_str().to_string()).collect();
+    let reg: Vec<Option<Regime>> = pts.iter().map(|p| p.regime).collect();
     let mle: Vec<Option<f64>> = pts.iter().map(|p| p.mle_per_s).collect();
     let se: Vec<Option<f64>> = pts.iter().map(|p| p.mle_stderr_per_s).collect();
     let period: Vec<Option<u32>> = pts

@@ -1,6 +1,7 @@
 //! The impact model's regimes: the FRF coloured by regime with both exponents, the strobed
 //! bifurcation diagram, and the regime map over frequency × gap.
 
+use crate::analysis::regime::Regime;
 use crate::error::StudyError;
 use crate::plot::bifurcation::BifurcationFigure;
 use crate::plot::regime_frf::{Exponents, RegimeFrfFigure};
@@ -31,7 +32,7 @@ pub(super) fn regime_sweep(ctx: &Ctx, s: &Settings) -> Result<SweepResult, Study
 struct RegimeColumns {
     f: Vec<f64>,
     y: Vec<f64>,
-    regime: Vec<String>,
+    regime: Vec<Option<Regime>>,
     period: Vec<Option<u32>>,
     mle: Vec<Option<f64>>,
     mle_se: Vec<Option<f64>>,
@@ -67,13 +68,7 @@ fn regime_columns(
     let c = RegimeColumns {
         regime: pts
             .iter()
-            .map(|p| {
-                p.summary
-                    .analysis
-                    .as_ref()
-                    .map_or("", |a| a.regime.as_str())
-                    .to_string()
-            })
+            .map(|p| p.summary.analysis.as_ref().map(|a| a.regime))
             .collect(),
         period: opt(|a| a.period)
             .into_iter()
@@ -99,7 +94,7 @@ fn regime_columns(
             "{},{},{},{},{},{},{},{}\n",
             c.f[i],
             c.y[i],
-            c.regime[i],
+            c.regime[i].map_or("", Regime::as_str),
             c.period[i].map(|p| p.to_string()).unwrap_or_default(),
             cell(c.mle[i]),
             cell(c.mle_se[i]),

@@ -419,7 +419,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             one()?;
             let f = first.f64_column("frequency_hz")?;
             let z = first.f64_column("amplitude_m")?;
-            let r = first.str_column("regime")?;
+            let r = regime_column(&first.str_column("regime")?)?;
             let col = |name: &str| -> anyhow::Result<Option<Vec<Option<f64>>>> {
                 Ok(if first.has(name) {
                     Some(first.opt_f64_column(name)?)
@@ -541,7 +541,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                     .context("regime-map needs --x COLUMN and --y COLUMN (the two varied keys)")?;
             let yn = o.y.clone().context("regime-map needs --y COLUMN")?;
             let (x, y) = (first.f64_column(&xn)?, first.f64_column(&yn)?);
-            let r = first.str_column("regime")?;
+            let r = regime_column(&first.str_column("regime")?)?;
             let col = |name: &str| -> anyhow::Result<Option<Vec<Option<f64>>>> {
                 Ok(if first.has(name) {
                     Some(first.opt_f64_column(name)?)
@@ -586,6 +586,24 @@ fn exponents<'a>(
         per_s,
         stderr_per_s: s.as_deref(),
     })
+}
+
+/// The `regime` column as regimes: an empty cell is a point without a verdict (a sweep run with
+/// `--no-analysis`); any other name must be one that pdamp writes.
+fn regime_column(cells: &[String]) -> anyhow::Result<Vec<Option<pdamp::analysis::regime::Regime>>> {
+    cells
+        .iter()
+        .enumerate()
+        .map(|(row, c)| {
+            if c.trim().is_empty() {
+                Ok(None)
+            } else {
+                c.parse()
+                    .map(Some)
+                    .map_err(|e| anyhow::anyhow!("column regime, data row {}: {e}", row + 1))
+            }
+        })
+        .collect()
 }
 
 /// The `period` column as whole periods ≥ 1 (other cells: none).
