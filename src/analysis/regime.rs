@@ -735,7 +735,10 @@ mod tests {
             assert_eq!(r.as_str().parse::<Regime>(), Ok(r));
         }
         let e = "periodic-2".parse::<Regime>().unwrap_err();
-        assert!(e.contains("\"periodic-2\"") && e.contains("too-short"), "{e}");
+        assert!(
+            e.contains("\"periodic-2\"") && e.contains("too-short"),
+            "{e}"
+        );
         assert_eq!(
             serde_json::to_string(&Regime::QuasiPeriodic).unwrap(),
             "\"quasi-periodic\""
