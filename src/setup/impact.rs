@@ -86,13 +86,7 @@ pub fn model_lyapunov_of_scene(
     scene: &Scene,
     opts: &ModelLyapunovOptions,
 ) -> Result<Option<ModelLyapunov>, SimError> {
-    if !matches!(scene.damper, Damper::Impact(_)) {
-        return Ok(None);
-    }
-    ImpactWorld::new(&scene.resolve_impact()?)
-        .model_lyapunov(opts)
-        .map(Some)
-        .map_err(super::keyed)
+    impact_lyapunov(scene, opts, ImpactWorld::model_lyapunov)
 }
 
 /// Largest Lyapunov exponent of an impact-damper scene from two diverging copies of the model
@@ -130,11 +124,20 @@ pub fn two_trajectory_lyapunov_of_scene(
     scene: &Scene,
     opts: &ModelLyapunovOptions,
 ) -> Result<Option<ModelLyapunov>, SimError> {
+    impact_lyapunov(scene, opts, ImpactWorld::model_lyapunov_two_trajectory)
+}
+
+/// `estimate` of the impact model of `scene` with its errors keyed to the scene; `None` for a
+/// scene whose damper is not `impact`.
+fn impact_lyapunov(
+    scene: &Scene,
+    opts: &ModelLyapunovOptions,
+    estimate: fn(&ImpactWorld, &ModelLyapunovOptions) -> Result<ModelLyapunov, SimError>,
+) -> Result<Option<ModelLyapunov>, SimError> {
     if !matches!(scene.damper, Damper::Impact(_)) {
         return Ok(None);
     }
-    ImpactWorld::new(&scene.resolve_impact()?)
-        .model_lyapunov_two_trajectory(opts)
+    estimate(&ImpactWorld::new(&scene.resolve_impact()?), opts)
         .map(Some)
         .map_err(super::keyed)
 }
