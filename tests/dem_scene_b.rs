@@ -30,9 +30,9 @@ fn check_run(p: &DemParams, duration: f64) -> pdamp::dem::DemSummary {
     // no grain ever leaves the box: every sampled grain centre between floor and ceiling
     for x in &samples {
         assert!(
-            x.grain_zmin_m > x.floor_z_m && x.grain_zmax_m < x.ceiling_z_m,
+            x.dem.grain_zmin_m > x.sample.floor_z_m && x.dem.grain_zmax_m < x.sample.ceiling_z_m,
             "grain outside at t = {}",
-            x.time_s
+            x.sample.time_s
         );
     }
     // the ledger balances within 1 % (issue's criterion)
@@ -43,7 +43,9 @@ fn check_run(p: &DemParams, duration: f64) -> pdamp::dem::DemSummary {
     );
     // the damper works: collisions and friction dissipate, the base does positive work
     let last = samples.last().unwrap();
-    assert!(last.e_collision_j > 0.0 && last.e_friction_j > 0.0 && last.e_base_work_j > 0.0);
+    assert!(
+        last.dem.e_collision_j > 0.0 && last.dem.e_friction_j > 0.0 && last.dem.e_base_work_j > 0.0
+    );
     // random packing band (Scott & Kilgour 1969: RLP ≈ 0.55–0.60, RCP ≈ 0.64)
     assert!(
         (0.55..=0.64).contains(&s.volume_fraction),
@@ -98,5 +100,5 @@ fn scene_b_kinematic_box_ledger_balances() {
         s.energy_balance_relative_error
     );
     let last = samples.last().unwrap();
-    assert!(last.e_base_work_j > 0.0 && last.e_viscous_j == 0.0);
+    assert!(last.dem.e_base_work_j > 0.0 && last.dem.e_viscous_j == 0.0);
 }

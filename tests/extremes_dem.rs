@@ -36,13 +36,15 @@ fn sane(s: &DemSummary, v: &[DemSample], tol: f64) {
     assert!(!v.is_empty());
     for x in v {
         assert!(
-            x.box_z_m.is_finite() && x.grain_z_m.is_finite() && x.grain_force_n.is_finite(),
+            x.sample.box_z_m.is_finite()
+                && x.sample.grain_z_m.is_finite()
+                && x.sample.grain_force_n.is_finite(),
             "{x:?}"
         );
         assert!(
-            x.grain_zmin_m > x.floor_z_m && x.grain_zmax_m < x.ceiling_z_m,
+            x.dem.grain_zmin_m > x.sample.floor_z_m && x.dem.grain_zmax_m < x.sample.ceiling_z_m,
             "grain outside at t = {}",
-            x.time_s
+            x.sample.time_s
         );
     }
     assert!(s.amplitude_m.is_finite());

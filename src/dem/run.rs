@@ -10,7 +10,7 @@ use crate::packing::{advancing_front_packing, fcc_lattice, volume_fraction};
 use crate::units::G;
 
 use crate::model::StrobePoint;
-use crate::observe::{ModelSample, Observer, Sample, SampleKind};
+use crate::observe::{DemSampleState, ModelSample, Observer, Sample, SampleKind};
 
 use super::bed_impacts::BedImpacts;
 use super::energy::{balance, EnergyLedger};
@@ -69,78 +69,24 @@ impl Default for DemRunConfig {
     }
 }
 
-/// A DEM sample as one flat record (lab frame, SI units; energies cumulative since the drive
-/// started): the [`Sample`] with its [`ModelSample::Dem`] part, for callers that keep the
-/// samples of a DEM run ([`DemSample::from_sample`]).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+/// A DEM sample with its DEM part unpacked (lab frame, SI units; energies cumulative since
+/// the drive started), for callers that keep the samples of a DEM run
+/// ([`DemSample::from_sample`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DemSample {
-    /// Time since the drive started (s).
-    pub time_s: f64,
-    /// Base displacement u (m).
-    pub base_u_m: f64,
-    /// Box (primary) displacement z (m).
-    pub box_z_m: f64,
-    /// Box velocity z' (m/s).
-    pub box_v_m_s: f64,
-    /// Floor height (m).
-    pub floor_z_m: f64,
-    /// Ceiling height (m).
-    pub ceiling_z_m: f64,
-    /// Grains' centre of mass z_cm (m).
-    pub grain_z_m: f64,
-    /// Lowest grain centre (m).
-    pub grain_zmin_m: f64,
-    /// Highest grain centre (m).
-    pub grain_zmax_m: f64,
-    /// Energy dissipated by normal damping (J).
-    pub e_collision_j: f64,
-    /// Energy dissipated by friction (J).
-    pub e_friction_j: f64,
-    /// Energy dissipated in the primary's damper C (J).
-    pub e_viscous_j: f64,
-    /// Work done by the base (J).
-    pub e_base_work_j: f64,
-    /// Grains' kinetic energy, translational + rotational (J).
-    pub e_kinetic_j: f64,
-    /// Grains' gravitational potential energy relative to the start (J).
-    pub e_potential_j: f64,
-    /// Elastic energy in contacts (J).
-    pub e_elastic_j: f64,
-    /// Energy of the primary: ½ M z'² + ½ K (z − u)² (J).
-    pub e_primary_j: f64,
-    /// Ledger residual E − E₀ − W_base + D (J); ≈ 0.
-    pub e_balance_residual_j: f64,
-    /// Vertical force of the grains on the box F_gz (N).
-    pub grain_force_n: f64,
+    /// The sample (time, base, box, walls, z_cm, grain force).
+    pub sample: Sample,
+    /// Its [`ModelSample::Dem`] part: the grains' extent and the energy ledger.
+    pub dem: DemSampleState,
 }
 
 impl DemSample {
     /// The DEM sample carried by `s`, if its model part is the DEM's.
     pub fn from_sample(s: &Sample) -> Option<DemSample> {
-        let ModelSample::Dem(d) = s.model else {
+        let ModelSample::Dem(dem) = s.model else {
             return None;
         };
-        Some(DemSample {
-            time_s: s.time_s,
-            base_u_m: s.base_u_m,
-            box_z_m: s.box_z_m,
-            box_v_m_s: s.box_v_m_s,
-            floor_z_m: s.floor_z_m,
-            ceiling_z_m: s.ceiling_z_m,
-            grain_z_m: s.grain_z_m,
-            grain_zmin_m: d.grain_zmin_m,
-            grain_zmax_m: d.grain_zmax_m,
-            e_collision_j: d.e_collision_j,
-            e_friction_j: d.e_friction_j,
-            e_viscous_j: d.e_viscous_j,
-            e_base_work_j: d.e_base_work_j,
-            e_kinetic_j: d.e_kinetic_j,
-            e_potential_j: d.e_potential_j,
-            e_elastic_j: d.e_elastic_j,
-            e_primary_j: d.e_primary_j,
-            e_balance_residual_j: d.e_balance_residual_j,
-            grain_force_n: s.grain_force_n,
-        })
+        Some(DemSample { sample: *s, dem })
     }
 }
 

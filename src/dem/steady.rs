@@ -131,13 +131,18 @@ impl EnergyWatch {
 
     /// The sample of the state `w`, with its energies (cumulative since the drive started).
     pub fn sample(&self, w: &DemWorld) -> Sample {
+        self.sample_and_residual(w).0
+    }
+
+    /// [`EnergyWatch::sample`] and the ledger's residual E − E₀ − W_base + D (J) in it.
+    fn sample_and_residual(&self, w: &DemWorld) -> (Sample, f64) {
         let e0 = &self.start;
         let (zcm, lo, hi) = w.z_stats();
         let (u, _) = w.base_now();
         let st = w.energy_state();
         let (res, _) = balance(&st, e0, &w.ledger);
         let l: EnergyLedger = w.ledger;
-        Sample {
+        let sample = Sample {
             time_s: w.t,
             base_u_m: u,
             box_z_m: w.box_z,
@@ -159,7 +164,8 @@ impl EnergyWatch {
                 e_balance_residual_j: res,
             }),
             grain_force_n: w.grain_force_n,
-        }
+        };
+        (sample, res)
     }
 
     /// The sample of `w` after checking the state: the residual is measured against the
@@ -168,11 +174,7 @@ impl EnergyWatch {
     /// # Errors
     /// [`SimError::Unstable`] from [`check`].
     pub fn checked_sample(&self, w: &DemWorld) -> Result<Sample, SimError> {
-        let s = self.sample(w);
-        let residual = match s.model {
-            ModelSample::Dem(d) => d.e_balance_residual_j,
-            _ => 0.0,
-        };
+        let (s, residual) = self.sample_and_residual(w);
         let scale = w
             .ledger
             .base_work_j
