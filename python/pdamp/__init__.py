@@ -415,9 +415,7 @@ class Analysis:
         r = dict(report)
         regime = r["regime"]
         period = r.get("period")
-        verdict = r.get("verdict") or (
-            f"periodic-{period:g}" if regime == "periodic" and period is not None else regime
-        )
+        verdict = r.get("verdict") or _verdict(regime, period)
         return cls(
             regime=regime,
             verdict=verdict,
@@ -436,6 +434,14 @@ class Analysis:
     def to_dict(self) -> Dict[str, Any]:
         """The whole report as a dict (JSON-serialisable)."""
         return dict(self.report)
+
+
+def _verdict(regime: str, period: Optional[float]) -> str:
+    """``periodic-p`` with p written as the library writes it (``2``, ``37.3``), else the regime."""
+    if regime != "periodic" or period is None:
+        return regime
+    p = repr(float(period))
+    return f"periodic-{p[:-2] if p.endswith('.0') else p}"
 
 
 def analyze(
@@ -548,7 +554,8 @@ def simulate(
         SceneError: an invalid scene or override (the message names the key and the fix).
         SimulationError: a run that could not finish (e.g. an unstable DEM time step).
         OSError: a scene file that cannot be read, an ``out`` that cannot be written.
-        KeyboardInterrupt: Ctrl-C (checked every few forcing periods).
+        KeyboardInterrupt: Ctrl-C; a run that records samples stops within a few forcing
+            periods (checked at the simulators' progress reports).
     """
     columns, strobe, summary = _pdamp.simulate(
         scene,
@@ -617,13 +624,17 @@ def sweep(
 
     Points that fail are reported in ``Sweep.failed`` (and with a warning), not raised.
     """
-    pairs = [
-        (str(k), v if isinstance(v, str) else np.asarray(v).tolist()) for k, v in vary.items()
-    ]
+    pairs = [(str(k), v if isinstance(v, str) else _values(v)) for k, v in vary.items()]
     if out is None:
         with tempfile.TemporaryDirectory(prefix="pdamp-sweep-") as tmp:
             return _sweep_into(scene, pairs, set, analyze, tmp, keep=False)
     return _sweep_into(scene, pairs, set, analyze, os.fspath(out), keep=True)
+
+
+def _values(v: Any) -> List[Any]:
+    """Values to sweep as a list of Python scalars (a single value is a list of one)."""
+    a = np.asarray(v)
+    return [a.item()] if a.ndim == 0 else a.tolist()
 
 
 def _sweep_into(

@@ -41,22 +41,13 @@ impl Observer for Columns {
     }
 
     fn sample(&mut self, s: &Sample) -> Result<(), SimError> {
-        let fixed = [
-            s.time_s,
-            s.base_u_m,
-            s.box_z_m,
-            s.box_v_m_s,
-            s.floor_z_m,
-            s.ceiling_z_m,
-            s.grain_z_m,
-        ];
         let mut col = self.data.iter_mut();
         let mut push = |v: f64| {
             if let Some(c) = col.next() {
                 c.push(v);
             }
         };
-        fixed.into_iter().for_each(&mut push);
+        s.fixed_values().into_iter().for_each(&mut push);
         s.model.for_each_value(&mut push);
         push(s.grain_force_n);
         Ok(())

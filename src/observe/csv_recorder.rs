@@ -58,16 +58,7 @@ impl<W: Write> Observer for CsvRecorder<W> {
 
     fn sample(&mut self, s: &Sample) -> Result<(), SimError> {
         use std::fmt::Write as _;
-        let fixed = [
-            s.time_s,
-            s.base_u_m,
-            s.box_z_m,
-            s.box_v_m_s,
-            s.floor_z_m,
-            s.ceiling_z_m,
-            s.grain_z_m,
-        ];
-        for (i, v) in fixed.iter().enumerate() {
+        for (i, v) in s.fixed_values().iter().enumerate() {
             if i > 0 {
                 self.line.push(',');
             }

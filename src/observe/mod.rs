@@ -178,6 +178,21 @@ pub struct Sample {
     pub grain_force_n: f64,
 }
 
+impl Sample {
+    /// The values of the fixed columns, in the order of [`FIXED_COLUMNS`].
+    pub fn fixed_values(&self) -> [f64; 7] {
+        [
+            self.time_s,
+            self.base_u_m,
+            self.box_z_m,
+            self.box_v_m_s,
+            self.floor_z_m,
+            self.ceiling_z_m,
+            self.grain_z_m,
+        ]
+    }
+}
+
 /// The grains' state at one instant, for particle snapshots (borrowed from the DEM world).
 #[derive(Debug, Clone, Copy)]
 pub struct GrainState<'a> {
