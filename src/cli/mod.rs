@@ -10,7 +10,7 @@ use clap::{Parser, Subcommand};
 
 /// pdamp — particle vibration dampers: simulate, sweep, analyse and plot.
 ///
-/// Simulation: `simulate`, `sweep`, `check-scene`, `tradeoff`.
+/// Simulation: `simulate`, `sweep`, `check-scene`, `scene`, `tradeoff`.
 /// Series analysis (TISEAN-like, reads plain text/CSV columns): `mutual`, `fnn`, `embed`,
 /// `spectrum`, `poincare`, `lyap-k`, `lyap-r`, `d2`, `cao`, `rqa`, `analyze`, `surrogates`,
 /// `surrogate-test`, `nrlazy`.
@@ -32,6 +32,8 @@ pub enum Command {
     Sweep(commands::sweep::Args),
     /// [simulation] Validate a scene file without running it.
     CheckScene(commands::check_scene::Args),
+    /// [simulation] Write a commented starting scene (--template primary|impact|dem).
+    Scene(commands::scene::Args),
     /// [simulation] Measure speed against accuracy for a scene's cheaper settings.
     Tradeoff(commands::tradeoff::Args),
     /// [analysis] Time-delayed mutual information I(τ) and its first minimum (TISEAN `mutual`).
@@ -88,6 +90,7 @@ pub fn run() -> anyhow::Result<()> {
         Command::Simulate(a) => commands::simulate::run(a),
         Command::Sweep(a) => commands::sweep::run(a),
         Command::CheckScene(a) => commands::check_scene::run(a),
+        Command::Scene(a) => commands::scene::run(a),
         Command::Tradeoff(a) => commands::tradeoff::run(a),
         Command::Mutual(a) => commands::mutual::run(a),
         Command::Fnn(a) => commands::fnn::run(a),

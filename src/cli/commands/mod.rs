@@ -14,6 +14,7 @@ pub mod plot;
 pub mod poincare;
 pub mod reproduce;
 pub mod rqa;
+pub mod scene;
 pub mod simulate;
 pub mod spectrum;
 pub mod surrogate_test;
