@@ -33,9 +33,51 @@ impl SnapshotWriter {
     }
 }
 
+/// Removes the snapshot files (`grains_NNNNNN.csv` / `.vtk`) from `dir`, so that a run never
+/// leaves an earlier run's snapshots beside its own; other files are kept, a missing
+/// directory is fine.
+///
+/// # Errors
+/// The file system's error.
+pub fn remove_snapshots(dir: &Path) -> std::io::Result<()> {
+    let entries = match std::fs::read_dir(dir) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        r => r?,
+    };
+    for entry in entries {
+        let path = entry?.path();
+        if is_snapshot_file(&path) {
+            std::fs::remove_file(&path)?;
+        }
+    }
+    Ok(())
+}
+
+/// `grains_` + six or more digits + `.csv` / `.vtk`: the names [`SnapshotWriter`] writes.
+fn is_snapshot_file(path: &Path) -> bool {
+    let (Some(stem), Some(ext)) = (
+        path.file_stem().and_then(|s| s.to_str()),
+        path.extension().and_then(|s| s.to_str()),
+    ) else {
+        return false;
+    };
+    let digits = stem.strip_prefix("grains_").unwrap_or("");
+    matches!(ext, "csv" | "vtk") && digits.len() >= 6 && digits.bytes().all(|b| b.is_ascii_digit())
+}
+
 impl Observer for SnapshotWriter {
     fn sample(&mut self, _s: &Sample) -> Result<(), SimError> {
         Ok(())
+    }
+
+    /// Clears the snapshots of an earlier run from the directory.
+    fn start(&mut self, _kind: super::SampleKind) -> Result<(), SimError> {
+        remove_snapshots(&self.dir).map_err(|e| {
+            SimError::Output(format!(
+                "clearing old snapshots in {}: {e}",
+                self.dir.display()
+            ))
+        })
     }
 
     fn snapshot(&mut self, g: &GrainState<'_>) -> Result<(), SimError> {
