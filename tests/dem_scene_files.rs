@@ -2,6 +2,8 @@
 //! (`DemParams::thesis_b()`, `DemParams::thesis_b_softened(1000.0)`), and `pdamp simulate`
 //! runs a short DEM scene end to end, writing the contract's columns and summary keys.
 
+mod scratch;
+
 use pdamp::scene::dem::DemParams;
 use pdamp::scene::{Damper, Scene};
 
@@ -46,7 +48,7 @@ fn scene_files_match_presets() {
 
 #[test]
 fn simulate_cli_writes_dem_series_and_summary() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let out = dir.path().join("b");
     let st = std::process::Command::new(env!("CARGO_BIN_EXE_pdamp"))
         .args(["simulate", "data/scenes/thesis_b_soft.toml", "--out"])
@@ -90,7 +92,7 @@ fn simulate_cli_writes_dem_series_and_summary() {
 #[test]
 fn explicit_dt_above_the_limit_is_a_scene_error() {
     let text = std::fs::read_to_string("data/scenes/thesis_b.toml").unwrap();
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let f = dir.path().join("s.toml");
     std::fs::write(&f, text.replace("dt = \"auto\"", "dt = 1e-5")).unwrap();
     let o = std::process::Command::new(env!("CARGO_BIN_EXE_pdamp"))
@@ -107,7 +109,7 @@ fn explicit_dt_above_the_limit_is_a_scene_error() {
 
 #[test]
 fn snapshots_are_written_as_csv_and_vtk_xml() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let snaps = dir.path().join("snaps");
     let st = std::process::Command::new(env!("CARGO_BIN_EXE_pdamp"))
         .args(["simulate", "data/scenes/thesis_b_soft.toml", "--out"])

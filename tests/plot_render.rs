@@ -1,6 +1,8 @@
 //! Every figure kind renders headless (bundled font, no display) to a PNG of the requested
 //! size that is not blank and shows its data colour; bad data gives errors naming the field.
 
+mod scratch;
+
 use std::path::Path;
 
 use pdamp::analysis::regime::Regime;
@@ -49,7 +51,7 @@ fn read_png(path: &Path) -> (u32, u32, image::RgbImage) {
 /// Renders to PNG and checks size, non-blankness, that the data colour (or `data_color`)
 /// appears, and that text was drawn in the caption strip (font works headless).
 fn check_renders<F: Figure>(fig: &F, name: &str, data_color: [u8; 3], min_data_px: usize) {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let path = dir.path().join(format!("{name}.png"));
     render(fig, &path, &opts()).unwrap_or_else(|e| panic!("{name}: {e}"));
     let (w, h, img) = read_png(&path);
@@ -576,7 +578,7 @@ fn nan_in_data_is_an_error_naming_the_field() {
         }],
         reference: None,
     };
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let path = dir.path().join("bad.png");
     let e = render(&fig, &path, &opts()).unwrap_err();
     assert!(matches!(e, PlotError::BadData { .. }));

@@ -4,6 +4,7 @@
 //! library never imports clap. Errors are reported through `anyhow`.
 
 pub mod commands;
+pub mod exit;
 pub mod progress;
 
 use clap::{Parser, Subcommand};

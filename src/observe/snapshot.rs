@@ -37,9 +37,60 @@ impl SnapshotWriter {
     }
 }
 
+/// Removes the snapshot files (`grains_NNNNNN.csv` / `.vtk`) from `dir`, so that a run never
+/// leaves an earlier run's snapshots beside its own; other files are kept, a missing
+/// directory is fine.
+///
+/// # Errors
+/// The file system's error.
+pub fn remove_snapshots(dir: &Path) -> std::io::Result<()> {
+    let entries = match std::fs::read_dir(dir) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        r => r?,
+    };
+    for entry in entries {
+        let path = entry?.path();
+        if is_snapshot_file(&path) {
+            std::fs::remove_file(&path)?;
+        }
+    }
+    Ok(())
+}
+
+/// The names [`SnapshotWriter`] writes: `grains_` or `box_` + six or more digits + `.csv`,
+/// `.vtp` (or an earlier version's `.vtk`), and the series `grains.pvd` / `box.pvd`.
+fn is_snapshot_file(path: &Path) -> bool {
+    let Some(name) = path.file_name().and_then(|s| s.to_str()) else {
+        return false;
+    };
+    if name == "grains.pvd" || name == "box.pvd" {
+        return true;
+    }
+    let Some((stem, ext)) = name.rsplit_once('.') else {
+        return false;
+    };
+    let digits = stem
+        .strip_prefix("grains_")
+        .or_else(|| stem.strip_prefix("box_"))
+        .unwrap_or("");
+    matches!(ext, "csv" | "vtp" | "vtk")
+        && digits.len() >= 6
+        && digits.bytes().all(|b| b.is_ascii_digit())
+}
+
 impl Observer for SnapshotWriter {
     fn sample(&mut self, _s: &Sample) -> Result<(), SimError> {
         Ok(())
+    }
+
+    /// Clears the snapshots of an earlier run from the directory.
+    fn start(&mut self, _kind: super::SampleKind) -> Result<(), SimError> {
+        remove_snapshots(&self.dir).map_err(|e| {
+            SimError::Output(format!(
+                "clearing old snapshots in {}: {e}",
+                self.dir.display()
+            ))
+        })
     }
 
     fn snapshot(&mut self, g: &GrainState<'_>) -> Result<(), SimError> {

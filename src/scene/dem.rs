@@ -168,7 +168,9 @@ pub struct DemParams {
     /// Interval between particle snapshots (s); none when absent.
     #[serde(default)]
     pub snapshot_interval: Option<f64>,
-    /// Directory of the snapshots (default `snapshots`, relative to the current directory).
+    /// Directory of the snapshots (default `snapshots`); a relative path is under the run's
+    /// output directory (`pdamp simulate --out DIR`: `DIR/snapshots`; a sweep point `i`:
+    /// `OUT/points/i/snapshots`), an absolute one gets the run directory's name appended.
     #[serde(default)]
     pub snapshot_dir: Option<String>,
     /// Snapshot files: `"csv"`, `"vtk"` or `"both"` (default).

@@ -638,8 +638,8 @@ fn estimator(args: &Args, opts: &FigureOptions) -> anyhow::Result<()> {
         .map_err(|e: String| anyhow!("--column: {e}"))?;
     let read = SeriesReadOptions {
         columns: vec![column],
-        skip_lines: 0,
         max_rows: o.length,
+        ..SeriesReadOptions::default()
     };
     let x = read_series_file(&file, &read)?;
     let out = &args.output;
