@@ -120,6 +120,23 @@ fn atomic_write(path: &Path, data: &[u8]) -> Result<(), SimError> {
     })
 }
 
+/// Writes a point record atomically (temporary file + rename; the temporary file is removed
+/// on error, e.g. a full disk) but without [`crate::io::atomic_write`]'s sync: a sweep's
+/// cost per point would be the disk's flush latency, and a record lost or cut by an
+/// operating-system crash is recomputed anyway, since every record is parsed and checked
+/// before a rerun skips its point.
+fn write_point(path: &Path, data: &[u8]) -> Result<(), SimError> {
+    let name = path
+        .file_name()
+        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    let tmp = path.with_file_name(format!(".{name}.tmp{}", std::process::id()));
+    let result = std::fs::write(&tmp, data).and_then(|()| std::fs::rename(&tmp, path));
+    result.map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        out_err(path, e)
+    })
+}
+
 fn value_str(v: &toml::Value) -> String {
     match v {
         toml::Value::String(s) => s.clone(),
@@ -199,7 +216,7 @@ pub fn run_shard(
             .and_then(|rec| {
                 let json =
                     serde_json::to_vec_pretty(&rec).map_err(|e| SimError::Output(e.to_string()))?;
-                atomic_write(&point_path(out, i), &json)?;
+                write_point(&point_path(out, i), &json)?;
                 let mut guard = state.lock().unwrap_or_else(|p| p.into_inner());
                 guard.0.append(&rec, started.elapsed().as_secs_f64())?;
                 guard.1 += 1;
