@@ -8,6 +8,7 @@ pub mod fit_frf;
 pub mod fnn;
 pub mod lyap_k;
 pub mod lyap_r;
+pub mod merge;
 pub mod mutual;
 pub mod nrlazy;
 pub mod plot;
