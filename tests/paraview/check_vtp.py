@@ -23,13 +23,12 @@ from vtk.util.numpy_support import vtk_to_numpy
 import numpy as np
 
 binary, work = sys.argv[1], Path(sys.argv[2])
-snaps = work / "snaps"
+snaps = work / "o" / "snapshots"  # the default damper.snapshot_dir, under the run's directory
 subprocess.run(
     [binary, "simulate", "data/scenes/thesis_b_soft.toml", "--out", str(work / "o"),
      "--set", "run.duration=0.02", "--set", "damper.count=40",
      "--set", "damper.snapshot_interval=0.01",
-     "--set", "damper.snapshot_format=\"both\"",
-     "--set", f"damper.snapshot_dir=\"{snaps}\""],
+     "--set", "damper.snapshot_format=\"both\""],
     check=True,
 )
 
