@@ -61,7 +61,25 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             "damper: impact, m_p = {} kg, gap = {} m, e = {}",
             p.mass, p.gap, p.restitution
         ),
-        Damper::Dem(d) => println!("damper: dem, {} grains, box {:?} m", d.count, d.r#box),
+        Damper::Dem(d) => {
+            println!("damper: dem, {} grains, box {:?} m", d.count, d.r#box);
+            if d.contact == pdamp::scene::dem::ContactKind::HertzKk {
+                let gamma = |wall| pdamp::setup::dem::hertz_kk_gamma_n(d, wall);
+                println!(
+                    "contact: hertz-kk, γ_n = {:.6e} (grain–grain), {:.6e} (grain–wall) kg s⁻¹ m^-1/2{}",
+                    gamma(false)?,
+                    gamma(true)?,
+                    match d.restitution {
+                        Some(e) => format!(
+                            " — from e = {e} at {} m/s",
+                            d.restitution_speed
+                                .unwrap_or(pdamp::setup::dem::DEFAULT_RESTITUTION_SPEED)
+                        ),
+                        None => String::new(),
+                    }
+                );
+            }
+        }
         Damper::Auto(_) => {
             if let Some(c) = &resolved.auto {
                 println!("damper: {}", pdamp::tradeoff::auto::describe(c));
