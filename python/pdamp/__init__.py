@@ -508,7 +508,9 @@ class Simulation:
         series: the sampled series, the columns of ``series.csv`` in its order (``time_s``,
             ``base_u_m``, ``box_z_m``, ``box_v_m_s``, ``floor_z_m``, ``ceiling_z_m``,
             ``grain_z_m``, the model's columns, ``grain_force_n``), every
-            ``run.sample_interval`` from t = 0; empty with ``series=False``.
+            ``run.sample_interval`` from t = 0; empty with ``series=False``. No NaN: a
+            non-finite state stops the run (``SimulationError``); ``ceiling_z_m`` is ``inf``
+            without a ceiling (``series.csv`` leaves that cell empty).
         strobe: the exact state once per forcing period over the analysis window (the
             columns of ``strobe.csv``: ``cycle``, ``time_s``, ``grain_z_m``, ``box_z_m``,
             ``grain_v_m_s``, ``box_v_m_s``).

@@ -24,7 +24,9 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 }
 
 /// The sampled series in memory, one column per `series.csv` column, in its order:
-/// [`FIXED_COLUMNS`], the model's columns ([`SampleKind::columns`]), `grain_force_n`.
+/// [`FIXED_COLUMNS`], the model's columns ([`SampleKind::columns`]), `grain_force_n`. A
+/// non-finite value stops the run, as it does `series.csv`'s recorder (but `ceiling_z_m` is
+/// `inf` without a ceiling, where the CSV leaves the cell empty).
 #[derive(Default)]
 struct Columns {
     names: Vec<&'static str>,
@@ -41,15 +43,21 @@ impl Observer for Columns {
     }
 
     fn sample(&mut self, s: &Sample) -> Result<(), SimError> {
-        let mut col = self.data.iter_mut();
-        let mut push = |v: f64| {
-            if let Some(c) = col.next() {
-                c.push(v);
+        let mut values = Vec::with_capacity(self.names.len());
+        values.extend_from_slice(&s.fixed_values());
+        s.model.for_each_value(|v| values.push(v));
+        values.push(s.grain_force_n);
+        for ((name, column), v) in self.names.iter().zip(&mut self.data).zip(values) {
+            // as series.csv: no NaN leaks; `ceiling_z_m = inf` means no ceiling
+            let no_ceiling = *name == "ceiling_z_m" && v == f64::INFINITY;
+            if !(v.is_finite() || no_ceiling) {
+                return Err(SimError::Unstable {
+                    t_s: s.time_s,
+                    reason: format!("the sample's {name} is {v}: the state is no longer finite"),
+                });
             }
-        };
-        s.fixed_values().into_iter().for_each(&mut push);
-        s.model.for_each_value(&mut push);
-        push(s.grain_force_n);
+            column.push(v);
+        }
         Ok(())
     }
 }

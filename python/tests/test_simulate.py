@@ -79,6 +79,18 @@ def test_series_equals_the_cli_csv(cli_run, py_run):
     assert set(np.unique(sim.series["contact"])) >= {0.0, 1.0}
 
 
+def test_no_ceiling_is_inf_where_the_cli_leaves_the_cell_empty(tmp_path):
+    out = tmp_path / "cli"
+    run_cli("simulate", SCENE, "--out", out, "--set", "run.periods=4", "--set", "damper.gap=inf",
+            "--no-analysis")
+    want = read_csv(out / "series.csv")
+    sim = pdamp.simulate(SCENE, set={"run.periods": 4, "damper.gap": float("inf")}, analyze=False)
+    assert np.all(np.isnan(want["ceiling_z_m"])) and np.all(np.isposinf(sim.series["ceiling_z_m"]))
+    for name, column in want.items():
+        if name != "ceiling_z_m":
+            np.testing.assert_array_equal(sim.series[name], column, err_msg=name)
+
+
 def test_strobe_and_summary_equal_the_cli(cli_run, py_run):
     sim, _ = py_run
     strobe = read_csv(cli_run / "strobe.csv")
