@@ -160,6 +160,10 @@ fn simulate<'py>(
         }
         run_resolved(&resolved, &mut Tee { observers }, &opts, analyze)
     });
+    if let (Some(d), Err(e)) = (&dir, &result) {
+        // as `pdamp simulate`: the directory stays marked incomplete, with the reason
+        let _ = d.mark_failed(&e.to_string());
+    }
     if let Some(e) = interrupt.raised {
         return Err(e);
     }

@@ -196,7 +196,7 @@ def test_periodic_verdict_of_a_run_reads_as_the_library_writes_it():
     assert sim.strobe["cycle"].size > 0 and sim.series == {}
 
 
-def test_ctrl_c_stops_a_long_run():
+def test_ctrl_c_stops_a_long_run(tmp_path):
     # 2 000 000 forcing periods take ~18 s of CPU (200 000 measured at 1.8 s); SIGINT after
     # 0.5 s must stop the run within a few periods (checked at the progress reports), not
     # after it ends
@@ -213,7 +213,11 @@ def test_ctrl_c_stops_a_long_run():
                 SCENE,
                 set={"run.periods": 2_000_000, "run.sample_interval": 1.0},
                 analyze=False,
+                out=tmp_path / "run",
             )
     finally:
         timer.cancel()
     assert time.monotonic() - start < 5.0
+    # as `pdamp simulate`: the run directory stays marked incomplete, and has no summary
+    assert (tmp_path / "run" / "RUNNING").is_file()
+    assert not (tmp_path / "run" / "summary.json").exists()
