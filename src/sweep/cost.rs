@@ -28,8 +28,8 @@ pub const IMPACT_S_PER_PERIOD: f64 = 20e-6;
 /// CPU seconds of the nonlinear analysis of one point (measured: 43 ms mean, 2000 periods).
 pub const ANALYSIS_S: f64 = 0.1;
 /// DEM particle-steps per CPU second (measured 4.4e6 for scene B with real steel,
-/// `data/reference/tradeoff_scene_b.csv`; taken at half).
-pub const DEM_PARTICLE_STEPS_PER_S: f64 = 2.2e6;
+/// `data/reference/tradeoff_scene_b.csv`, one thread; `pdamp slurm` adds its safety factor).
+pub const DEM_PARTICLE_STEPS_PER_S: f64 = 4.4e6;
 /// Memory of a process besides the DEM's particles (bytes).
 const BASE_MEMORY: f64 = 200e6;
 /// Memory per DEM grain (state, neighbour lists, contacts) (bytes).
