@@ -208,6 +208,15 @@ pub enum DataError {
         /// Underlying error.
         source: std::io::Error,
     },
+    /// A file of a run directory that is incomplete (a run still writing it, or one that
+    /// failed or was killed: see [`crate::io::run_dir`]).
+    #[error("{path}: {message}")]
+    Incomplete {
+        /// The run directory.
+        path: String,
+        /// What its marker says and what to do.
+        message: String,
+    },
     /// Malformed content: names the file, line and column.
     #[error("{path}:{line}: {message}")]
     Malformed {
@@ -234,7 +243,7 @@ pub enum PlotError {
         hint: String,
     },
     /// The output file name has an extension no backend handles.
-    #[error("{path}: unsupported figure format (use .png)")]
+    #[error("{path}: unsupported figure format (use .png or .svg)")]
     Format {
         /// Requested output path.
         path: String,

@@ -1,6 +1,8 @@
 //! `pdamp analyze --json`, `pdamp spectrum` and `pdamp poincare` end to end: the binary reads a
 //! series file and prints the documented JSON keys / CSV headers with the reference values.
 
+mod scratch;
+
 use pdamp::systems::logistic::logistic_series;
 use std::f64::consts::TAU;
 use std::io::Write;
@@ -30,7 +32,7 @@ fn pdamp(args: &[&str]) -> (String, String, bool) {
 
 #[test]
 fn analyze_json_periodic_and_chaotic() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     // Logistic r = 3.5: period 4 (SPEC §9: between r₂ = 3.4495 and r₃ = 3.5441).
     let file = write_series(&dir, "p4.txt", &logistic_series(3.5, 0.3, 3000, 1000));
     let (out, err, ok) = pdamp(&["analyze", &file, "--json"]);
@@ -67,7 +69,7 @@ fn analyze_json_periodic_and_chaotic() {
 
 #[test]
 fn analyze_forced_sine_text_and_errors() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let (dt, f) = (1e-3, 1.0 / (37.3e-3));
     let x: Vec<f64> = (0..10_000)
         .map(|n| (TAU * f * n as f64 * dt).sin())
@@ -100,7 +102,7 @@ fn analyze_forced_sine_text_and_errors() {
 
 #[test]
 fn spectrum_and_poincare_csv() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let x: Vec<f64> = (0..4096)
         .map(|n| 2.0 * (TAU * 0.1 * n as f64).sin())
         .collect();
@@ -129,7 +131,7 @@ fn spectrum_and_poincare_csv() {
 fn tisean_verbs_name_bad_input() {
     // mutual, fnn and lyap-k on a time column, a constant series, a NaN and a too short
     // series: an error that names the problem, never output.
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let x: Vec<f64> = (0..3000).map(|i| (i as f64 * 0.37).sin()).collect();
     let two = dir.path().join("t_x.txt");
     let mut f = std::fs::File::create(&two).unwrap();
@@ -187,7 +189,7 @@ fn tisean_verbs_name_bad_input() {
 fn every_estimator_verb_refuses_a_time_column() {
     // a strictly increasing column (time or index) is not a signal: every estimator verb says
     // so instead of printing an estimate of it
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let t: Vec<f64> = (0..5000).map(|i| i as f64 * 0.01).collect();
     let file = write_series(&dir, "time.txt", &t);
     for verb in [

@@ -1,6 +1,8 @@
 //! `pdamp surrogates`, `pdamp surrogate-test` and `pdamp nrlazy` end to end: output format,
 //! determinism for a seed, and clear errors for a time column, NaN, constant or short input.
 
+mod scratch;
+
 use std::io::Write;
 use std::process::Command;
 
@@ -34,7 +36,7 @@ fn henon_file(dir: &tempfile::TempDir, n: usize) -> String {
 
 #[test]
 fn surrogates_are_columns_and_deterministic() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let f = henon_file(&dir, 500);
     let (a, err, ok) = pdamp(&["surrogates", &f, "-n", "3", "-I", "5"]);
     assert!(ok, "{err}");
@@ -66,7 +68,7 @@ fn surrogates_are_columns_and_deterministic() {
 
 #[test]
 fn surrogate_test_json_rejects_henon() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let f = henon_file(&dir, 2000);
     let (out, err, ok) = pdamp(&["surrogate-test", &f, "-m", "2", "--json"]);
     assert!(ok, "{err}");
@@ -89,7 +91,7 @@ fn surrogate_test_json_rejects_henon() {
 
 #[test]
 fn nrlazy_writes_one_column() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let f = henon_file(&dir, 1000);
     let (out, err, ok) = pdamp(&["nrlazy", &f, "-m", "5", "-v", "0.1", "-i", "2"]);
     assert!(ok, "{err}");
@@ -100,7 +102,7 @@ fn nrlazy_writes_one_column() {
 
 #[test]
 fn bad_input_gives_clear_errors() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let timed: String = henon_x(100)
         .iter()
         .enumerate()

@@ -10,6 +10,8 @@
 //!     the noise band.
 //! Run in release: `cargo test --release --test dem_replica`.
 
+mod scratch;
+
 use pdamp::dem::replica::{run_replica, ReplicaOptions, ReplicaVerdict};
 use pdamp::dem::DemSample;
 use pdamp::model::RunOptions;
@@ -62,7 +64,7 @@ fn scene_key_run_replica() {
 
 #[test]
 fn zero_perturbation_is_bit_identical_through_simulate() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let out = Command::new(env!("CARGO_BIN_EXE_pdamp"))
         .args([
             "simulate",

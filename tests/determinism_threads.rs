@@ -1,6 +1,8 @@
 //! A sweep gives byte-identical sweep.csv, strobe.csv and point files whatever the number of
 //! rayon threads (every point is independent and the files are rebuilt in point order).
 
+mod scratch;
+
 use std::path::Path;
 use std::process::Command;
 
@@ -31,7 +33,7 @@ fn one_and_two_threads_give_identical_files() {
         env!("CARGO_MANIFEST_DIR"),
         "/data/scenes/thesis_b_impact.toml"
     );
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let (a, b) = (dir.path().join("t1"), dir.path().join("t2"));
     sweep(scene, &a, "1");
     sweep(scene, &b, "2");
@@ -61,7 +63,7 @@ fn analysis_columns_are_thread_independent_too() {
         env!("CARGO_MANIFEST_DIR"),
         "/data/scenes/thesis_b_impact.toml"
     );
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let run = |out: &Path, threads: &str| {
         let st = Command::new(env!("CARGO_BIN_EXE_pdamp"))
             .args([

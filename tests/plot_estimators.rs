@@ -2,6 +2,8 @@
 //! size that is not blank, shows its data colour and a caption; a constant series is a clear
 //! error (no panic), and the figures reject unusable data naming the field.
 
+mod scratch;
+
 use std::io::Write;
 use std::path::Path;
 use std::process::Command;
@@ -44,7 +46,7 @@ fn count_color(img: &image::RgbImage, c: [u8; 3]) -> usize {
 /// Runs `pdamp plot KIND LORENZ ARGS -o FILE` and checks the PNG: size from IHDR, non-blank,
 /// the given colours present, dark caption text in the top strip.
 fn check_plot(kind: &str, extra: &[&str], colors: &[[u8; 3]]) -> String {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let png = dir.path().join(format!("{kind}.png"));
     let (w, h) = (W.to_string(), H.to_string());
     let mut args = vec!["plot", kind, LORENZ, "-o", png.to_str().unwrap()];
@@ -92,7 +94,7 @@ fn constant_series(dir: &tempfile::TempDir) -> String {
 
 /// A constant series fails with a message saying so, exit status ≠ 0, no panic, no file.
 fn check_constant_fails(kind: &str) {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let file = constant_series(&dir);
     let png = dir.path().join("c.png");
     let (err, ok) = pdamp(&["plot", kind, &file, "-o", png.to_str().unwrap()]);

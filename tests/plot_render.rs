@@ -1,6 +1,8 @@
 //! Every figure kind renders headless (bundled font, no display) to a PNG of the requested
 //! size that is not blank and shows its data colour; bad data gives errors naming the field.
 
+mod scratch;
+
 use std::path::Path;
 
 use pdamp::analysis::regime::Regime;
@@ -49,7 +51,7 @@ fn read_png(path: &Path) -> (u32, u32, image::RgbImage) {
 /// Renders to PNG and checks size, non-blankness, that the data colour (or `data_color`)
 /// appears, and that text was drawn in the caption strip (font works headless).
 fn check_renders<F: Figure>(fig: &F, name: &str, data_color: [u8; 3], min_data_px: usize) {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let path = dir.path().join(format!("{name}.png"));
     render(fig, &path, &opts()).unwrap_or_else(|e| panic!("{name}: {e}"));
     let (w, h, img) = read_png(&path);
@@ -576,7 +578,7 @@ fn nan_in_data_is_an_error_naming_the_field() {
         }],
         reference: None,
     };
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let path = dir.path().join("bad.png");
     let e = render(&fig, &path, &opts()).unwrap_err();
     assert!(matches!(e, PlotError::BadData { .. }));
@@ -681,4 +683,44 @@ fn d2_local_slopes_with_plateau() {
     assert!(fig.default_title().contains("D2 ="));
     // the m = 1 curve is drawn in the first palette colour
     check_renders(&fig, "d2", BLUE, 200);
+}
+
+#[test]
+fn svg_output_is_the_same_drawing_as_vectors() {
+    // `-o x.svg` draws the figure with plotters' SVG backend: a standalone <svg> document of
+    // the requested size, the caption as text, the data as vector primitives; written through a
+    // temporary sibling, so nothing else is left in the directory.
+    let dir = std::env::temp_dir().join(format!("pdamp_svg_{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let x: Vec<f64> = (0..50).map(|i| (i as f64 * 0.3).sin()).collect();
+    let y: Vec<f64> = (0..50).map(|i| (i as f64 * 0.3).cos()).collect();
+    let fig = PoincareFigure {
+        x: &x,
+        y: &y,
+        x_label: "z (m)".into(),
+        y_label: "v (m/s)".into(),
+    };
+    let path = dir.join("section.SVG");
+    let o = FigureOptions {
+        title: Some("An SVG section".into()),
+        ..opts()
+    };
+    render(&fig, &path, &o).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(text.starts_with("<svg"), "{}", &text[..text.len().min(80)]);
+    assert!(text.trim_end().ends_with("</svg>"));
+    assert!(text.contains(&format!("width=\"{}\"", o.width)), "size");
+    assert!(text.contains("An SVG section"), "caption as text");
+    assert!(text.contains("z (m)"), "axis label as text");
+    // 50 points drawn as vector marks (circles or paths), not a raster image
+    assert!(!text.contains("<image"), "no embedded raster");
+    let marks = text.matches("<circle").count() + text.matches("<path").count();
+    assert!(marks >= 50, "{marks} vector marks");
+    let left: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(left.len(), 1, "only the figure remains: {left:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
 }

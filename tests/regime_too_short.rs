@@ -2,6 +2,8 @@
 //! periods needed and — from `simulate`, which knows the scene — the keys that lengthen it; the
 //! analysis itself speaks of records, not scene files.
 
+mod scratch;
+
 use std::process::Command;
 
 #[test]
@@ -10,7 +12,7 @@ fn a_short_run_is_too_short_and_names_the_keys_that_lengthen_it() {
         env!("CARGO_MANIFEST_DIR"),
         "/data/scenes/thesis_b_impact.toml"
     );
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let out = dir.path().join("run");
     // 3 s at 10 Hz: 30 forcing periods, of which the analysed half holds 15
     let st = Command::new(env!("CARGO_BIN_EXE_pdamp"))

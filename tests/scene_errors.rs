@@ -1,5 +1,7 @@
 //! Bad scenes and arguments give clear errors naming the key (library and CLI binary).
 
+mod scratch;
+
 use pdamp::scene::{Scene, SceneSource};
 use pdamp::sweep::Vary;
 use std::process::Command;
@@ -219,7 +221,7 @@ fn pdamp(args: &[&str]) -> (bool, String) {
 
 #[test]
 fn cli_reports_the_key() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let bad = dir.path().join("bad.toml");
     std::fs::write(&bad, GOOD.replace("gap = 0.0835", "gap = 0.0835\ngapp = 2")).unwrap();
     let good = dir.path().join("good.toml");

@@ -4,6 +4,8 @@
 //! hits the floor and the ceiling once each per period (the source's "two impacts per period"),
 //! at 5.5 Hz (box acceleration below g) it never leaves the floor.
 
+mod scratch;
+
 use pdamp::plot::table::Table;
 use pdamp::plot::FigureOptions;
 use pdamp::study::chapter4;
@@ -13,7 +15,7 @@ use pdamp::study::{Mode, Settings};
 
 #[test]
 fn reduced_chapter4_study_writes_every_figure_and_counts_two_impacts_at_14_5_hz() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let ctx = Ctx {
         out: dir.path().to_path_buf(),
         figure: FigureOptions {

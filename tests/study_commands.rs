@@ -4,6 +4,8 @@
 //! end to end in order (the smoke sizes make them cheap: the sweeps resume from the finished
 //! points, which also checks that a printed sweep is the very sweep that ran).
 
+mod scratch;
+
 use std::path::Path;
 use std::process::{Command, Stdio};
 
@@ -84,7 +86,7 @@ fn pdamp(args: &[String], parse_only: bool, stdout: Option<&str>) -> (bool, Stri
 
 #[test]
 fn every_readme_command_parses_and_runs() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let opts = ReproduceOptions::new(Mode::Smoke, dir.path());
     let report = reproduce(&opts, &|_| {}).unwrap();
     let readme = std::fs::read_to_string(dir.path().join("README.md")).unwrap();
@@ -154,7 +156,7 @@ fn shell_words_read_back_what_the_study_writes() {
 #[test]
 fn chapter4_commands_parse() {
     use pdamp::study::settings::Chapter4Settings;
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let ctx = pdamp::study::pipeline::Ctx {
         out: dir.path().to_path_buf(),
         figure: pdamp::plot::FigureOptions {

@@ -4,6 +4,8 @@
 //! respond as M + m_p when the gap is closed, as M when the gap is huge, and damps best in
 //! between.
 
+mod scratch;
+
 use pdamp::study::{check_effective, reproduce, Mode, ReproduceOptions};
 
 const M: f64 = 2.37; // scene B primary mass (kg), SPEC §6
@@ -12,7 +14,7 @@ const C: f64 = 7.6; // primary damping (N s/m)
 
 #[test]
 fn smoke_reproduction_draws_every_figure_and_shows_the_physics() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let mut opts = ReproduceOptions::new(Mode::Smoke, dir.path());
     // a non-default size, so that the size check cannot pass by accident
     opts.figure.width = 640;

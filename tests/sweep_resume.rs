@@ -1,6 +1,8 @@
 //! Resumable sweeps: interrupting a sweep (killed process, lost point files) and rerunning it
 //! skips the finished points and produces byte-identical final files.
 
+mod scratch;
+
 use std::path::Path;
 use std::process::Command;
 
@@ -45,7 +47,7 @@ const VARY: &str = "excitation.frequency=2:30:2";
 
 #[test]
 fn lost_points_are_recomputed_and_files_are_identical() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let scene = dir.path().join("s.toml");
     std::fs::write(&scene, SCENE).unwrap();
     let out = dir.path().join("out");
@@ -86,7 +88,7 @@ fn lost_points_are_recomputed_and_files_are_identical() {
 
 #[test]
 fn killed_sweep_resumes_to_the_same_files() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = scratch::tempdir().unwrap();
     let scene = dir.path().join("s.toml");
     std::fs::write(&scene, SCENE.replace("periods = 60", "periods = 400")).unwrap();
     let reference = dir.path().join("ref");

@@ -4,13 +4,14 @@
 //! library never imports clap. Errors are reported through `anyhow`.
 
 pub mod commands;
+pub mod exit;
 pub mod progress;
 
 use clap::{Parser, Subcommand};
 
 /// pdamp — particle vibration dampers: simulate, sweep, analyse and plot.
 ///
-/// Simulation: `simulate`, `sweep`, `merge`, `slurm`, `check-scene`, `tradeoff`.
+/// Simulation: `simulate`, `sweep`, `merge`, `slurm`, `check-scene`, `scene`, `tradeoff`.
 /// Series analysis (TISEAN-like, reads plain text/CSV columns): `mutual`, `fnn`, `embed`,
 /// `spectrum`, `poincare`, `lyap-k`, `lyap-r`, `d2`, `cao`, `rqa`, `analyze`, `surrogates`,
 /// `surrogate-test`, `nrlazy`.
@@ -36,6 +37,8 @@ pub enum Command {
     Slurm(commands::slurm::Args),
     /// [simulation] Validate a scene file without running it.
     CheckScene(commands::check_scene::Args),
+    /// [simulation] Write a commented starting scene (--template primary|impact|dem).
+    Scene(commands::scene::Args),
     /// [simulation] Measure speed against accuracy for a scene's cheaper settings.
     Tradeoff(commands::tradeoff::Args),
     /// [analysis] Time-delayed mutual information I(τ) and its first minimum (TISEAN `mutual`).
@@ -94,6 +97,7 @@ pub fn run() -> anyhow::Result<()> {
         Command::Merge(a) => commands::merge::run(a),
         Command::Slurm(a) => commands::slurm::run(a),
         Command::CheckScene(a) => commands::check_scene::run(a),
+        Command::Scene(a) => commands::scene::run(a),
         Command::Tradeoff(a) => commands::tradeoff::run(a),
         Command::Mutual(a) => commands::mutual::run(a),
         Command::Fnn(a) => commands::fnn::run(a),

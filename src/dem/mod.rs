@@ -20,5 +20,5 @@ pub use model::{DemModel, Grains, Packing};
 pub use replica::{
     run_replica, ReplicaOptions, ReplicaReport, ReplicaRow, ReplicaTracker, ReplicaVerdict,
 };
-pub use run::{run_dem, DemRunConfig, DemSample, DemSummary, DtChoice};
+pub use run::{initial_positions, run_dem, DemRunConfig, DemSample, DemSummary, DtChoice};
 pub use world::{BoxDrive, DemWorld, PrimarySystem};

@@ -186,6 +186,26 @@ pub struct DemSummary {
     pub cycles_steady: f64,
 }
 
+/// The grains' initial centres (m) by the model's packing: a jittered FCC lattice or the
+/// advancing front. Also the resolve step's check that the grains fit the box.
+///
+/// # Errors
+/// [`ModelError`] ([`crate::error::Quantity::GrainCount`]) if the grains do not fit.
+pub fn initial_positions(model: &DemModel) -> Result<Vec<[f64; 3]>, ModelError> {
+    match model.packing {
+        Packing::Lattice { seed } => fcc_lattice(
+            model.box_size_m,
+            model.grains.radius_m.len(),
+            model.grains.r_max_m,
+            0.05,
+            seed ^ 0x5eed,
+        ),
+        Packing::AdvancingFront => {
+            advancing_front_packing(model.box_size_m, &model.grains.radius_m)
+        }
+    }
+}
+
 /// Builds the initial bed of `model` (its grains placed on a lattice or by the advancing
 /// front) at rest, with the box held still at `box_z` (m).
 ///
@@ -198,16 +218,7 @@ pub fn initial_world(
     box_z: f64,
 ) -> Result<DemWorld, SimError> {
     let radii = model.grains.radius_m.clone();
-    let pos = match model.packing {
-        Packing::Lattice { seed } => fcc_lattice(
-            model.box_size_m,
-            radii.len(),
-            model.grains.r_max_m,
-            0.05,
-            seed ^ 0x5eed,
-        )?,
-        Packing::AdvancingFront => advancing_front_packing(model.box_size_m, &radii)?,
-    };
+    let pos = initial_positions(model)?;
     let mut w = DemWorld::new(model, drive, dt, radii, pos)?;
     w.shift_box_to(box_z);
     w.refresh();

@@ -7,9 +7,17 @@
 //! DIR/strobe.csv    cycle,time_s,grain_z_m,box_z_m,grain_v_m_s,box_v_m_s (one row per period)
 //! DIR/replica.csv   cycle,time_s,grain_z_a_m,grain_z_b_m,separation_m (only with run.replica)
 //! DIR/scene.toml    the scene as resolved from the file and its --set overrides
+//! DIR/snapshots/    DEM particle snapshots (damper.snapshot_interval; relative
+//!                   damper.snapshot_dir values are under DIR)
+//! DIR/RUNNING       present while the run goes, and left by a run that failed or was killed
 //! ```
 //!
-//! Every file but `series.csv` is written whole through [`crate::io::atomic_write`].
+//! **Whole or marked incomplete**: [`RunDir::create`] writes `RUNNING` first, then removes the
+//! files an earlier run left in the directory; [`RunDir::write_outputs`] writes `summary.json`
+//! last and then removes `RUNNING`. A directory with `RUNNING` is incomplete whatever else it
+//! holds, and every reader of run files ([`check_complete`]: the series reader, the figure
+//! and fit tables) refuses it. Every file but `series.csv` is written whole through
+//! [`crate::io::atomic_write`].
 
 use std::path::{Path, PathBuf};
 
@@ -28,6 +36,50 @@ pub const STROBE_CSV: &str = "strobe.csv";
 pub const REPLICA_CSV: &str = "replica.csv";
 /// `scene.toml`: the resolved scene.
 pub const SCENE_TOML: &str = "scene.toml";
+/// `RUNNING`: the marker of a run in progress, failed or killed (see the module documentation).
+pub const RUNNING: &str = "RUNNING";
+/// `snapshots`: the default directory of DEM particle snapshots, under the run directory.
+pub const SNAPSHOTS: &str = "snapshots";
+
+/// The files a run writes, removed from a reused directory before a new run starts
+/// (`summary.json` first, so that nothing looks complete at any point).
+const RUN_FILES: [&str; 5] = [
+    SUMMARY_JSON,
+    SERIES_CSV,
+    STROBE_CSV,
+    REPLICA_CSV,
+    SCENE_TOML,
+];
+
+/// Refuses a path inside an incomplete run directory: `path` itself (a directory) or its
+/// parent (a file) holding the [`RUNNING`] marker. Paths outside run directories pass.
+///
+/// # Errors
+/// [`DataError::Incomplete`] naming the directory and what the marker says (running since
+/// when, or failed with a reason).
+pub fn check_complete(path: &Path) -> Result<(), DataError> {
+    let dir = if path.is_dir() {
+        path
+    } else {
+        match path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => Path::new("."),
+        }
+    };
+    let marker = dir.join(RUNNING);
+    if !marker.exists() {
+        return Ok(());
+    }
+    let said = std::fs::read_to_string(&marker).unwrap_or_default();
+    Err(DataError::Incomplete {
+        path: dir.display().to_string(),
+        message: format!(
+            "incomplete run directory ({RUNNING} present: {}); its files are partial — rerun \
+             the simulation into it, or use a directory without {RUNNING}",
+            said.trim()
+        ),
+    })
+}
 
 /// Why a run directory's files could not be written.
 #[derive(Debug, thiserror::Error)]
@@ -50,15 +102,40 @@ pub struct RunDir {
 }
 
 impl RunDir {
-    /// The run directory at `path`, created (with its parents) if missing.
+    /// Starts a run in the directory at `path`, created (with its parents) if missing: writes
+    /// the [`RUNNING`] marker, then removes the run files ([`SUMMARY_JSON`] first, …) and the
+    /// snapshots ([`SNAPSHOTS`]) an earlier run left there.
     ///
     /// # Errors
-    /// The file system's error if the directory cannot be created.
+    /// The file system's error if the directory cannot be created or cleared.
     pub fn create(path: &Path) -> std::io::Result<Self> {
         std::fs::create_dir_all(path)?;
-        Ok(RunDir {
+        let dir = RunDir {
             path: path.to_path_buf(),
-        })
+        };
+        let marker = format!(
+            "running since {} s after the Unix epoch (process {}); a run killed or failed \
+             leaves this file\n",
+            std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .map_or(0, |d| d.as_secs()),
+            std::process::id()
+        );
+        crate::io::atomic_write(&dir.file(RUNNING), marker.as_bytes())
+            .map_err(|e| std::io::Error::other(e.to_string()))?;
+        for f in RUN_FILES {
+            remove_if_present(&dir.file(f))?;
+        }
+        crate::observe::snapshot::remove_snapshots(&dir.file(SNAPSHOTS))?;
+        Ok(dir)
+    }
+
+    /// Records in the [`RUNNING`] marker why the run failed (the directory stays incomplete).
+    ///
+    /// # Errors
+    /// [`DataError::Io`] if the marker cannot be written.
+    pub fn mark_failed(&self, why: &str) -> Result<(), DataError> {
+        crate::io::atomic_write(&self.file(RUNNING), format!("failed: {why}\n").as_bytes())
     }
 
     /// The directory.
@@ -81,8 +158,9 @@ impl RunDir {
         CsvRecorder::create(&self.file(SERIES_CSV))
     }
 
-    /// Writes `summary.json` (with `"auto_choice": auto_choice` if given), `strobe.csv`,
-    /// `replica.csv` (if the summary has a replica test) and `scene.toml`, in that order.
+    /// Writes `strobe.csv`, `replica.csv` (if the summary has a replica test), `scene.toml`
+    /// and, last, `summary.json` (with `"auto_choice": auto_choice` if given); then removes
+    /// the [`RUNNING`] marker: the directory is complete.
     ///
     /// # Errors
     /// [`RunDirError`]: a file that cannot be written (naming it) or a serialisation error.
@@ -97,13 +175,32 @@ impl RunDir {
             obj.insert("auto_choice".into(), serde_json::Value::String(why));
         }
         let json = serde_json::to_string_pretty(&value)?;
-        crate::io::atomic_write(&self.file(SUMMARY_JSON), json.as_bytes())?;
         crate::io::atomic_write(&self.file(STROBE_CSV), strobe_csv(summary).as_bytes())?;
         if let Some(csv) = replica_csv(summary) {
             crate::io::atomic_write(&self.file(REPLICA_CSV), csv.as_bytes())?;
         }
         crate::io::atomic_write(&self.file(SCENE_TOML), scene.to_toml()?.as_bytes())?;
-        Ok(())
+        crate::io::atomic_write(&self.file(SUMMARY_JSON), json.as_bytes())?;
+        Ok(self.finish()?)
+    }
+
+    /// Removes the [`RUNNING`] marker: everything the run writes is written.
+    ///
+    /// # Errors
+    /// [`DataError::Io`] if the marker cannot be removed.
+    pub fn finish(&self) -> Result<(), DataError> {
+        remove_if_present(&self.file(RUNNING)).map_err(|source| DataError::Io {
+            path: self.file(RUNNING).display().to_string(),
+            source,
+        })
+    }
+}
+
+/// Removes a file; a missing one is fine.
+fn remove_if_present(path: &Path) -> std::io::Result<()> {
+    match std::fs::remove_file(path) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(e),
+        _ => Ok(()),
     }
 }
 

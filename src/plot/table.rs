@@ -21,9 +21,11 @@ impl Table {
     /// Reads a CSV file with a header row. Lines starting with `#` are comments.
     ///
     /// # Errors
-    /// [`DataError::Io`] if unreadable; [`DataError::Malformed`] for a missing header, a row
-    /// with the wrong number of cells, or no data rows.
+    /// [`DataError::Io`] if unreadable or in an incomplete run directory
+    /// ([`crate::io::run_dir::check_complete`]); [`DataError::Malformed`] for a missing
+    /// header, a row with the wrong number of cells, or no data rows.
     pub fn read(path: &Path) -> Result<Table, DataError> {
+        crate::io::run_dir::check_complete(path)?;
         let text = std::fs::read_to_string(path).map_err(|source| DataError::Io {
             path: path.display().to_string(),
             source,

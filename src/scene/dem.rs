@@ -71,7 +71,8 @@ pub enum RadiusDistributionKind {
 pub enum SnapshotFormat {
     /// `snapshots/grains_NNNNNN.csv`.
     Csv,
-    /// Legacy VTK polydata `snapshots/grains_NNNNNN.vtk` (ParaView).
+    /// VTK XML for ParaView: `grains_NNNNNN.vtp`, `box_NNNNNN.vtp` and the time series
+    /// `grains.pvd`, `box.pvd`.
     Vtk,
     /// Both.
     #[default]
@@ -124,9 +125,16 @@ pub struct DemParams {
     /// Contact law: `"hertz-kk"` (Hertz + Kuwabara–Kono, default) or `"linear"`.
     #[serde(default)]
     pub contact: ContactKind,
-    /// Coefficient of restitution e (–) for `contact = "linear"` (grain–grain).
+    /// Coefficient of restitution e (–), grain–grain. `linear`: the law's constant e
+    /// (required). `hertz-kk`: instead of `gamma_n`, the e that collisions at
+    /// `restitution_speed` have; γ_n is derived from it (Müller–Pöschel's e(v) inverted at the
+    /// grains' middle radius) and printed by `check-scene`.
     #[serde(default)]
     pub restitution: Option<f64>,
+    /// Impact speed (m/s) at which `restitution` holds for `hertz-kk` (default 1 m/s):
+    /// viscoelastic grains bounce more at lower speeds.
+    #[serde(default)]
+    pub restitution_speed: Option<f64>,
     /// Yield strength Y (Pa) for `contact = "linear"` (fixes k_n via the yield overlap).
     #[serde(default)]
     pub yield_strength: Option<f64>,
@@ -149,7 +157,8 @@ pub struct DemParams {
     /// Grain–wall γ_s (kg s⁻¹ m^-1/2); default: `gamma_s`.
     #[serde(default)]
     pub wall_gamma_s: Option<f64>,
-    /// Grain–wall restitution for `linear` (–); default: `restitution`.
+    /// Grain–wall restitution (–); default: `restitution`. For `hertz-kk` it gives the wall's
+    /// γ_n unless `wall_gamma_n` is set.
     #[serde(default)]
     pub wall_restitution: Option<f64>,
     /// Initial bed: `"lattice"` (FCC drop and settle, default) or `"advancing-front"`.
@@ -167,7 +176,9 @@ pub struct DemParams {
     /// Interval between particle snapshots (s); none when absent.
     #[serde(default)]
     pub snapshot_interval: Option<f64>,
-    /// Directory of the snapshots (default `snapshots`, relative to the current directory).
+    /// Directory of the snapshots (default `snapshots`); a relative path is under the run's
+    /// output directory (`pdamp simulate --out DIR`: `DIR/snapshots`; a sweep point `i`:
+    /// `OUT/points/i/snapshots`), an absolute one gets the run directory's name appended.
     #[serde(default)]
     pub snapshot_dir: Option<String>,
     /// Snapshot files: `"csv"`, `"vtk"` or `"both"` (default).
@@ -252,6 +263,7 @@ impl DemParams {
             gamma_s: 10980.0,
             contact: ContactKind::HertzKk,
             restitution: None,
+            restitution_speed: None,
             yield_strength: None,
             attractive_normal_force: false,
             wall_youngs_modulus: None,
@@ -437,6 +449,38 @@ impl DemParams {
         }
     }
 
+    /// `hertz-kk` with a restitution: e ∈ (0, 1] and not together with the γ_n it replaces.
+    fn validate_hertz_restitution(&self) -> Result<(), SceneError> {
+        for (k, e, gamma) in [
+            ("damper.restitution", self.restitution, self.gamma_n > 0.0),
+            (
+                "damper.wall_restitution",
+                self.wall_restitution,
+                self.wall_gamma_n.is_some(),
+            ),
+        ] {
+            let Some(e) = e else { continue };
+            if !(e > 0.0 && e <= 1.0) {
+                return Err(SceneError::invalid(
+                    k,
+                    e,
+                    "must be in (0, 1] (coefficient of restitution)",
+                ));
+            }
+            if gamma {
+                return Err(SceneError::invalid(
+                    k,
+                    e,
+                    format!(
+                        "give either {k} or the damping {} for contact = \"hertz-kk\", not both (the restitution sets the damping)",
+                        k.replace("restitution", "gamma_n")
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// Checks every constraint once; the error names the key, the value and the fix.
     ///
     /// # Errors
@@ -478,6 +522,12 @@ impl DemParams {
             if let Some(v) = v {
                 non_negative(k, v, "see the key's documentation")?;
             }
+        }
+        if let Some(v) = self.restitution_speed {
+            positive("damper.restitution_speed", v, "m/s")?;
+        }
+        if self.contact == ContactKind::HertzKk {
+            self.validate_hertz_restitution()?;
         }
         if self.contact == ContactKind::Linear {
             let e = self.restitution.ok_or_else(|| SceneError::Missing {

@@ -149,6 +149,63 @@ pub fn dem_model(params: &DemParams) -> Result<DemModel, SceneError> {
     Ok(model)
 }
 
+/// Default impact speed (m/s) at which a `hertz-kk` scene's `restitution` holds.
+pub const DEFAULT_RESTITUTION_SPEED: f64 = 1.0;
+
+/// γ_n of the Hertz–Kuwabara–Kono law for grain–grain (`wall = false`) or grain–wall
+/// contacts (kg s⁻¹ m^-1/2): the scene's `gamma_n` / `wall_gamma_n`, or, when the scene gives
+/// a restitution instead, the damping that gives it at `restitution_speed`
+/// ([`crate::contact::restitution::kuwabara_kono_gamma_n`]) for two grains of the
+/// distribution's middle radius (r_min + r_max)/2, or such a grain and the wall.
+///
+/// # Errors
+/// A bad radius distribution, or a restitution the inversion cannot reach.
+pub fn hertz_kk_gamma_n(params: &DemParams, wall: bool) -> Result<f64, SceneError> {
+    use crate::contact::material::{Material, PairProperties};
+    let (explicit, e, key) = if wall {
+        (
+            params.wall_gamma_n,
+            params.wall_restitution.or(params.restitution),
+            "damper.wall_restitution",
+        )
+    } else {
+        (None, params.restitution, "damper.restitution")
+    };
+    if let Some(g) = explicit {
+        return Ok(g);
+    }
+    let Some(e) = e else {
+        return Ok(params.gamma_n);
+    };
+    let dist = params.radius_distribution()?;
+    let r = 0.5 * (dist.r_min() + dist.r_max());
+    let m = params.density * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
+    let grain = Material {
+        youngs_modulus: params.youngs_modulus,
+        poisson: params.poisson,
+    };
+    let pair = if wall {
+        let w = Material {
+            youngs_modulus: params.wall_youngs_modulus.unwrap_or(params.youngs_modulus),
+            poisson: params.wall_poisson.unwrap_or(params.poisson),
+        };
+        PairProperties::new(r, m, &grain, f64::INFINITY, f64::INFINITY, &w)
+    } else {
+        PairProperties::new(r, m, &grain, r, m, &grain)
+    };
+    let k_n = crate::contact::hertz_stiffness(pair.e_star, pair.r_star);
+    let v = params
+        .restitution_speed
+        .unwrap_or(DEFAULT_RESTITUTION_SPEED);
+    crate::contact::restitution::kuwabara_kono_gamma_n(k_n, pair.m_star, v, e).ok_or_else(|| {
+        SceneError::invalid(
+            key,
+            e,
+            "no Kuwabara–Kono damping gives this restitution: use 0 < e ≤ 1",
+        )
+    })
+}
+
 /// The contact model of `params` ([`DemParams::validate`] passed): grain–grain and
 /// grain–wall laws selected by `damper.contact`, wall values defaulting to the grains'.
 ///
@@ -158,11 +215,7 @@ pub fn contact_model(params: &DemParams) -> Result<ContactModel, SceneError> {
     let normal = |wall: bool| -> Result<NormalLaw, SceneError> {
         Ok(match params.contact {
             ContactKind::HertzKk => NormalLaw::HertzKuwabaraKono {
-                gamma_n: if wall {
-                    params.wall_gamma_n.unwrap_or(params.gamma_n)
-                } else {
-                    params.gamma_n
-                },
+                gamma_n: hertz_kk_gamma_n(params, wall)?,
             },
             ContactKind::Linear => {
                 let e = params.restitution.ok_or_else(|| SceneError::Missing {

@@ -13,9 +13,11 @@
 
 pub mod dem;
 pub mod impact;
+pub mod plan;
 
 pub use dem::{dem_model, DemSetup};
 pub use impact::{model_lyapunov_of_scene, two_trajectory_lyapunov_of_scene};
+pub use plan::RunPlan;
 
 use crate::error::{ModelError, Quantity, SceneError, SimError};
 use crate::impact::ImpactSetup;
@@ -62,6 +64,36 @@ impl Resolved {
     pub fn window(&self) -> RunWindow {
         window(&self.scene)
     }
+
+    /// Places the run's own files under its output directory `dir`: a relative
+    /// `damper.snapshot_dir` (default `snapshots`) becomes `dir/…`; an absolute one gets
+    /// `dir`'s last component appended, so that two runs (two sweep points) never share
+    /// snapshot files. Without this call snapshots go to the relative path as given (from
+    /// the current directory), as a library caller without an output directory expects.
+    pub fn place_outputs_in(&mut self, dir: &std::path::Path) {
+        if let Setup::Dem(DemSetup {
+            snapshots: Some((snap, _)),
+            ..
+        }) = &mut self.setup
+        {
+            *snap = if snap.is_absolute() {
+                snap.join(dir.file_name().unwrap_or_default())
+            } else {
+                dir.join(&*snap)
+            };
+        }
+    }
+
+    /// The directory snapshots go to, if the run writes any.
+    pub fn snapshot_dir(&self) -> Option<&std::path::Path> {
+        match &self.setup {
+            Setup::Dem(DemSetup {
+                snapshots: Some((snap, _)),
+                ..
+            }) => Some(snap),
+            _ => None,
+        }
+    }
 }
 
 impl Scene {
@@ -83,7 +115,10 @@ impl Scene {
             Damper::Dem(_) => Setup::Dem(dem::dem_setup(&scene)?),
             _ => Setup::Impact(impact::impact_setup(&scene)?),
         };
-        Ok(Resolved { scene, auto, setup })
+        let resolved = Resolved { scene, auto, setup };
+        // the bounds on derived quantities that do not depend on what is written
+        RunPlan::new(&resolved, &RunOptions::summary_only())?;
+        Ok(resolved)
     }
 
     /// Resolve a scene whose damper is `none` or `impact` to the event-driven model's setup.

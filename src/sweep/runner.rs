@@ -6,7 +6,7 @@ use super::shard::Shard;
 use super::tables::{out_err, point_path, read_record, stream_name, write_tables, StreamLog};
 use super::vary::{grid_len, grid_point, Vary};
 use crate::error::{SceneError, SimError};
-use crate::model::RunOptions;
+use crate::model::{RunOptions, RunSummary};
 use crate::observe::{fmt_num, NullObserver};
 use crate::scene::{Scene, SceneSource};
 use rayon::prelude::*;
@@ -212,7 +212,15 @@ pub fn run_shard(
         let started = std::time::Instant::now();
         let result = point_scene(spec, i)
             .map_err(SimError::from)
-            .and_then(|scene| run_point(&scene, &grid_point(&spec.varies, i), i, spec.analyze))
+            .and_then(|scene| {
+                run_point(
+                    &scene,
+                    &grid_point(&spec.varies, i),
+                    i,
+                    spec.analyze,
+                    &points_dir,
+                )
+            })
             .and_then(|rec| {
                 let json =
                     serde_json::to_vec_pretty(&rec).map_err(|e| SimError::Output(e.to_string()))?;
@@ -298,13 +306,9 @@ fn run_point(
     values: &[(String, toml::Value)],
     i: usize,
     analyze: bool,
+    points_dir: &Path,
 ) -> Result<PointRecord, SimError> {
-    let s = super::run::run_with_analysis(
-        scene,
-        &mut NullObserver,
-        &RunOptions::summary_only(),
-        analyze,
-    )?;
+    let s = run_in_point_dir(scene, &points_dir.join(i.to_string()), analyze)?;
     let mut cells = BTreeMap::new();
     cells.insert("frequency_hz".to_string(), fmt_num(s.frequency_hz));
     cells.insert("amplitude_m".to_string(), fmt_opt(Some(s.amplitude_m)));
@@ -380,4 +384,22 @@ fn run_point(
         strobe,
         summary,
     })
+}
+
+/// Runs one point; its own files (DEM snapshots) go under `dir` = `OUT/points/<i>/`, marked
+/// incomplete ([`crate::io::run_dir::RUNNING`]) until the run ends and cleared of an earlier
+/// attempt's files when it starts.
+fn run_in_point_dir(scene: &Scene, dir: &Path, analyze: bool) -> Result<RunSummary, SimError> {
+    let mut resolved = scene.resolve()?;
+    resolved.place_outputs_in(dir);
+    let run_dir = match resolved.snapshot_dir() {
+        Some(_) => Some(crate::io::RunDir::create(dir).map_err(|e| out_err(dir, e))?),
+        None => None,
+    };
+    let opts = RunOptions::summary_only();
+    let s = super::run::run_resolved(&resolved, &mut NullObserver, &opts, analyze)?;
+    if let Some(d) = run_dir {
+        d.finish().map_err(|e| out_err(dir, e))?;
+    }
+    Ok(s)
 }

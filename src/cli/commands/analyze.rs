@@ -45,7 +45,8 @@ pub struct Args {
     /// Input series.
     #[command(flatten)]
     pub input: SeriesInput,
-    /// Sampling interval in seconds: exponents per second and frequencies in Hz.
+    /// Sampling interval in seconds: exponents per second and frequencies in Hz. Default: the
+    /// step of the file's time column, if it has one.
     #[arg(long = "dt", help_heading = "Analysis")]
     pub dt_s: Option<f64>,
     /// Forcing frequency in Hz (needs --dt): enables the stroboscopic section; the period is
@@ -65,9 +66,12 @@ pub struct Args {
 
 /// Run `pdamp analyze`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let x = args.input.read()?;
+    let table = args.input.read_table()?;
+    // a time column gives the sampling interval unless --dt says otherwise
+    let dt_s = args.dt_s.or(table.time.as_ref().map(|t| t.dt));
+    let x = table.columns.into_iter().next().unwrap_or_default();
     let opts = AnalyzeOptions {
-        dt_s: args.dt_s,
+        dt_s,
         forcing_hz: args.forcing_hz,
         max_samples: args.max_samples,
         seed: args.seed,

@@ -1,5 +1,6 @@
 //! `pdamp check-scene SCENE [--set key=value …]`: validate a scene without running it and print
-//! its derived quantities.
+//! its derived quantities — exactly the checks `pdamp simulate` runs before it starts
+//! (resolve, time-step guard, packing, step/sample/snapshot bounds, output size).
 
 use pdamp::scene::Damper;
 use std::path::PathBuf;
@@ -12,6 +13,9 @@ pub struct Args {
     /// Override a scene key, dotted (as in `simulate`). Repeatable.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
+    /// Largest output (bytes) `simulate` may write (as in `simulate`).
+    #[arg(long, value_name = "BYTES", default_value_t = pdamp::setup::plan::DEFAULT_MAX_OUTPUT_BYTES)]
+    pub max_output: f64,
 }
 
 /// Run `pdamp check-scene`.
@@ -20,6 +24,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     // the resolve step checks what validation alone cannot (e.g. run.dt against the contact
     // time) and makes the `kind = "auto"` choice
     let resolved = scene.resolve()?;
+    let plan = super::simulate::plan_full_run(&resolved, args.max_output)?;
     let f = scene.frequency_hz();
     let omega = scene.excitation.omega_rad_s();
     println!("{}: valid", args.scene.display());
@@ -56,12 +61,31 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             "damper: impact, m_p = {} kg, gap = {} m, e = {}",
             p.mass, p.gap, p.restitution
         ),
-        Damper::Dem(d) => println!("damper: dem, {} grains, box {:?} m", d.count, d.r#box),
+        Damper::Dem(d) => {
+            println!("damper: dem, {} grains, box {:?} m", d.count, d.r#box);
+            if d.contact == pdamp::scene::dem::ContactKind::HertzKk {
+                let gamma = |wall| pdamp::setup::dem::hertz_kk_gamma_n(d, wall);
+                println!(
+                    "contact: hertz-kk, γ_n = {:.6e} (grain–grain), {:.6e} (grain–wall) kg s⁻¹ m^-1/2{}",
+                    gamma(false)?,
+                    gamma(true)?,
+                    match d.restitution {
+                        Some(e) => format!(
+                            " — from e = {e} at {} m/s",
+                            d.restitution_speed
+                                .unwrap_or(pdamp::setup::dem::DEFAULT_RESTITUTION_SPEED)
+                        ),
+                        None => String::new(),
+                    }
+                );
+            }
+        }
         Damper::Auto(_) => {
             if let Some(c) = &resolved.auto {
                 println!("damper: {}", pdamp::tradeoff::auto::describe(c));
             }
         }
     }
+    println!("plan: {}", plan.describe());
     Ok(())
 }

@@ -15,6 +15,7 @@ pub mod plot;
 pub mod poincare;
 pub mod reproduce;
 pub mod rqa;
+pub mod scene;
 pub mod simulate;
 pub mod slurm;
 pub mod spectrum;

@@ -5,23 +5,22 @@ use std::io::Write;
 use anyhow::Context;
 use pdamp::analysis::mutual_information::small_sample_bias;
 use pdamp::analysis::{mutual_information, MutualInformationOptions};
-use pdamp::io::{read_series, Column, SeriesReadOptions};
+use pdamp::io::series::{read_table, Delimiter, SeriesTable};
+use pdamp::io::{Column, SeriesReadOptions};
 
 /// Series input shared by the analysis subcommands (TISEAN's file, `-c`, `-l`, `-x`).
 #[derive(Debug, Clone, clap::Args)]
 pub struct SeriesInput {
     /// Series file: plain text or CSV, one sample per line, `#` comments, optional header
-    /// row; `-` reads standard input.
+    /// row; `-` reads standard input. One delimiter per file, every row with the same number
+    /// of fields.
     #[arg(default_value = "-", help_heading = "Input")]
     pub file: String,
-    /// Column to read: 1-based number (as TISEAN -c) or header name.
-    #[arg(
-        short = 'c',
-        long = "column",
-        default_value = "1",
-        help_heading = "Input"
-    )]
-    pub column: Column,
+    /// Column to read: 1-based number (as TISEAN -c) or header name. Default: the first, or
+    /// the second when the first is a time column (header `t`, `time` or `time_s`, uniformly
+    /// increasing; its step is reported).
+    #[arg(short = 'c', long = "column", help_heading = "Input")]
+    pub column: Option<Column>,
     /// Use at most this many samples (TISEAN -l). Default: all.
     #[arg(short = 'l', long = "length", help_heading = "Input")]
     pub length: Option<usize>,
@@ -33,17 +32,50 @@ pub struct SeriesInput {
         help_heading = "Input"
     )]
     pub skip: usize,
+    /// Field delimiter: comma, semicolon, tab or whitespace. Default: detected from the first
+    /// row.
+    #[arg(long, value_name = "DELIMITER", help_heading = "Input")]
+    pub delimiter: Option<Delimiter>,
+    /// The file writes decimals with a comma (`-4,408e0`); its delimiter is then a semicolon,
+    /// tab or whitespace.
+    #[arg(long, help_heading = "Input")]
+    pub decimal_comma: bool,
 }
 
 impl SeriesInput {
-    /// Reads the selected column.
-    pub fn read(&self) -> anyhow::Result<Vec<f64>> {
-        let opts = SeriesReadOptions {
-            columns: vec![self.column.clone()],
+    /// The reader's options for `columns` (empty: the automatic choice).
+    pub fn options(&self, columns: Vec<Column>) -> SeriesReadOptions {
+        SeriesReadOptions {
+            columns,
             skip_lines: self.skip,
             max_rows: self.length,
-        };
-        Ok(read_series(&self.file, &opts)?)
+            delimiter: self.delimiter,
+            decimal_comma: self.decimal_comma,
+        }
+    }
+
+    /// Reads the selected column, saying on stderr which one when a time column was found.
+    pub fn read_table(&self) -> anyhow::Result<SeriesTable> {
+        let table = read_table(
+            &self.file,
+            &self.options(self.column.iter().cloned().collect()),
+        )?;
+        if table.time.is_some() {
+            eprintln!("{}: reading {}", self.file, table.describe_choice());
+        }
+        Ok(table)
+    }
+
+    /// Reads the selected column (see [`SeriesInput::read_table`]).
+    pub fn read(&self) -> anyhow::Result<Vec<f64>> {
+        Ok(self.read_table()?.columns.remove(0))
+    }
+
+    /// The selected column as given (`1` when chosen automatically), for messages.
+    pub fn column_label(&self) -> String {
+        self.column
+            .as_ref()
+            .map_or_else(|| "1".to_string(), ToString::to_string)
     }
 }
 

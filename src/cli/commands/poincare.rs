@@ -9,7 +9,7 @@ use pdamp::analysis::poincare::{
     classify_section, period_in_samples, stroboscopic_section, ClusterOptions, Interpolation,
     SecondCoordinate, SectionShape, StrobeOptions,
 };
-use pdamp::io::{read_series, Column, SeriesReadOptions};
+use pdamp::io::{read_series, Column};
 
 /// Long help of `pdamp poincare`: what it writes and how to read it.
 const LONG_HELP: &str =
@@ -89,11 +89,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let y = match &args.second_column {
         Some(c) => Some(read_series(
             &args.input.file,
-            &SeriesReadOptions {
-                columns: vec![c.clone()],
-                skip_lines: args.input.skip,
-                max_rows: args.input.length,
-            },
+            &args.input.options(vec![c.clone()]),
         )?),
         None => None,
     };

@@ -29,6 +29,21 @@ pub struct Args {
     /// Skip the nonlinear analysis of the steady-state grain series (faster).
     #[arg(long)]
     pub no_analysis: bool,
+    /// Largest output (bytes) the run may write; a larger estimate is refused before the
+    /// run starts (e.g. `--max-output 2e10` for 20 GB).
+    #[arg(long, value_name = "BYTES", default_value_t = pdamp::setup::plan::DEFAULT_MAX_OUTPUT_BYTES)]
+    pub max_output: f64,
+}
+
+/// The plan of a resolved scene's full-series run (what `simulate` writes), refused above
+/// `max_output` bytes: the one check `simulate` and `check-scene` share.
+pub(crate) fn plan_full_run(
+    resolved: &pdamp::setup::Resolved,
+    max_output: f64,
+) -> anyhow::Result<pdamp::setup::RunPlan> {
+    let plan = pdamp::setup::RunPlan::new(resolved, &pdamp::setup::full_series(&resolved.scene))?;
+    plan.check_output(max_output)?;
+    Ok(plan)
 }
 
 /// Load a scene file and apply `--set` overrides.
@@ -49,11 +64,34 @@ pub(crate) fn load_scene(path: &Path, set: &[String]) -> anyhow::Result<LoadedSc
     Ok((src, overrides, scene))
 }
 
+/// Runs the resolved scene with `series.csv` recorded into `dir`.
+fn run_into(
+    dir: &RunDir,
+    resolved: &pdamp::setup::Resolved,
+    scene: &Scene,
+    analysis: bool,
+) -> anyhow::Result<pdamp::model::RunSummary> {
+    let mut csv = dir.series_recorder()?;
+    let mut bar = ProgressObserver::new(scene.duration_s(), "simulate");
+    let mut tee = Tee {
+        observers: vec![&mut csv, &mut bar],
+    };
+    Ok(run_resolved(
+        resolved,
+        &mut tee,
+        &pdamp::setup::full_series(scene),
+        analysis,
+    )?)
+}
+
 /// Run `pdamp simulate`.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let (_, _, scene) = load_scene(&args.scene, &args.set)?;
     // `kind = "auto"`: say which model and settings were chosen, and why (stderr + summary).
-    let resolved = scene.resolve()?;
+    let mut resolved = scene.resolve()?;
+    resolved.place_outputs_in(&args.out);
+    let plan = plan_full_run(&resolved, args.max_output)?;
+    eprintln!("plan: {}", plan.describe());
     let auto_choice = resolved.auto.as_ref().map(|c| {
         let why = pdamp::tradeoff::auto::describe(c);
         eprintln!("{why}");
@@ -61,22 +99,19 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     });
     let dir = RunDir::create(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
-    let mut csv = dir.series_recorder()?;
-    let mut bar = ProgressObserver::new(scene.duration_s(), "simulate");
-    let mut tee = Tee {
-        observers: vec![&mut csv, &mut bar],
+    let summary = match run_into(&dir, &resolved, &scene, !args.no_analysis) {
+        Ok(s) => s,
+        Err(e) => {
+            // the directory stays marked incomplete, with the reason in its marker
+            let _ = dir.mark_failed(&format!("{e:#}"));
+            return Err(e);
+        }
     };
-    let summary = run_resolved(
-        &resolved,
-        &mut tee,
-        &pdamp::setup::full_series(&scene),
-        !args.no_analysis,
-    )?;
     dir.write_outputs(&scene, &summary, auto_choice)?;
     println!(
         "{}: f = {} Hz, amplitude Z = {:.6e} m{}, impacts/cycle = {}, energy balance residual = {}",
         summary.model,
-        summary.frequency_hz,
+        pdamp::observe::fmt_num(summary.frequency_hz),
         summary.amplitude_m,
         summary
             .reference_amplitude_m

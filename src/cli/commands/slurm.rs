@@ -47,7 +47,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if args.shards == 0 {
         anyhow::bail!("--shards 0: a job array needs at least one shard (--shards 1 or more)");
     }
-    if !(args.time_factor >= 1.0) {
+    if args.time_factor.is_nan() || args.time_factor < 1.0 {
         anyhow::bail!("--time-factor {}: must be ≥ 1", args.time_factor);
     }
     let spec = args.def.spec()?;

@@ -80,10 +80,7 @@ pub(crate) fn reject_time_column(x: &[f64], input: &SeriesInput) -> anyhow::Resu
             "{}: column {} is strictly monotone ({} … {}), which looks like a time or index \
              column; select the signal column with -c (e.g. -c 2)",
             input.file,
-            match &input.column {
-                pdamp::io::Column::Index(i) => i.to_string(),
-                pdamp::io::Column::Name(n) => format!("`{n}`"),
-            },
+            input.column_label(),
             x[0],
             x[x.len() - 1]
         );

@@ -1,0 +1,7 @@
+//! cargo-fuzz target `vary_range` (see fuzz/targets.rs and fuzz/README.md).
+#![no_main]
+
+#[path = "../targets.rs"]
+mod targets;
+
+libfuzzer_sys::fuzz_target!(|data: &[u8]| targets::vary_range(data));
