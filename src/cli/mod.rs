@@ -11,7 +11,7 @@ use clap::{Parser, Subcommand};
 
 /// pdamp — particle vibration dampers: simulate, sweep, analyse and plot.
 ///
-/// Simulation: `simulate`, `sweep`, `merge`, `check-scene`, `scene`, `tradeoff`.
+/// Simulation: `simulate`, `sweep`, `merge`, `slurm`, `check-scene`, `scene`, `tradeoff`.
 /// Series analysis (TISEAN-like, reads plain text/CSV columns): `mutual`, `fnn`, `embed`,
 /// `spectrum`, `poincare`, `lyap-k`, `lyap-r`, `d2`, `cao`, `rqa`, `analyze`, `surrogates`,
 /// `surrogate-test`, `nrlazy`.
@@ -33,6 +33,8 @@ pub enum Command {
     Sweep(commands::sweep::Args),
     /// [simulation] Merge the shards of a sweep (`sweep --shard K/N`) into sweep.csv, strobe.csv.
     Merge(commands::merge::Args),
+    /// [simulation] Write a Slurm job-array submission of a sweep (shards + dependent merge).
+    Slurm(commands::slurm::Args),
     /// [simulation] Validate a scene file without running it.
     CheckScene(commands::check_scene::Args),
     /// [simulation] Write a commented starting scene (--template primary|impact|dem).
@@ -93,6 +95,7 @@ pub fn run() -> anyhow::Result<()> {
         Command::Simulate(a) => commands::simulate::run(a),
         Command::Sweep(a) => commands::sweep::run(a),
         Command::Merge(a) => commands::merge::run(a),
+        Command::Slurm(a) => commands::slurm::run(a),
         Command::CheckScene(a) => commands::check_scene::run(a),
         Command::Scene(a) => commands::scene::run(a),
         Command::Tradeoff(a) => commands::tradeoff::run(a),

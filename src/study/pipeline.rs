@@ -182,8 +182,9 @@ impl Ctx<'_> {
     }
 
     /// Like [`Ctx::sweep`] with `outer` as the slowest key of the grid, but as one sweep per
-    /// value of `outer` (in `OUT/data/<dir>/<key>=<value>/`), concatenated. Each sweep rebuilds
-    /// its `sweep.csv` after every point, so many small sweeps are cheaper than one large one.
+    /// value of `outer` (in `OUT/data/<dir>/<key>=<value>/`), concatenated. (The split dates
+    /// from when a sweep rebuilt its `sweep.csv` after every point; sweeps now stream their
+    /// points, and the split is kept so that existing `OUT/data` directories resume.)
     ///
     /// # Errors
     /// As [`Ctx::sweep`]; also if `outer` has no values.

@@ -7,10 +7,12 @@
 //! `timings.csv`). A grid too large for the disk or memory is refused up front ([`budget`]).
 
 pub mod budget;
+pub mod cost;
 pub mod points;
 pub mod run;
 pub mod runner;
 pub mod shard;
+pub mod slurm;
 pub mod tables;
 pub mod vary;
 

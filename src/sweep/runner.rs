@@ -257,7 +257,7 @@ pub fn run_shard(
 }
 
 /// The scene of point `i`, with the point named in a scene error.
-fn point_scene(spec: &SweepSpec, i: usize) -> Result<Scene, SceneError> {
+pub(super) fn point_scene(spec: &SweepSpec, i: usize) -> Result<Scene, SceneError> {
     let mut ov = spec.set.clone();
     ov.extend(grid_point(&spec.varies, i));
     spec.base.scene(&ov).map_err(|e| match e {

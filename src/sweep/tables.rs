@@ -430,6 +430,37 @@ mod tests {
     use super::*;
 
     #[test]
+    fn model_timings_go_to_timings_csv_not_sweep_csv() {
+        // a DEM point's extras: `grains` is a result, `wall_time_s` and the throughputs are
+        // measurements of the machine
+        let cells: BTreeMap<String, String> = [
+            ("amplitude_m", "0.01"),
+            ("grains", "250"),
+            ("wall_time_s", "12.5"),
+            ("particle_steps_per_s", "4e6"),
+        ]
+        .map(|(k, v)| (k.to_string(), v.to_string()))
+        .into();
+        let rows = vec![(0, vec!["5".to_string()], cells)];
+        let keys = vec!["excitation.frequency".to_string()];
+        let csv = sweep_csv(&keys, &rows);
+        let header = csv.lines().next().unwrap();
+        assert!(header.contains(",grains,"), "{header}");
+        assert!(
+            !header.contains("wall_time") && !header.contains("particle_steps"),
+            "{header}"
+        );
+        let dir = tempfile::tempdir().unwrap();
+        let walls: BTreeMap<usize, String> = [(0, "13.0".to_string())].into();
+        write_timings(&rows, &walls, dir.path()).unwrap();
+        let t = std::fs::read_to_string(dir.path().join("timings.csv")).unwrap();
+        assert_eq!(
+            t,
+            "point,wall_time_s,run_wall_time_s,particle_steps_per_s\n0,13.0,12.5,4e6\n"
+        );
+    }
+
+    #[test]
     fn ranges_compress_runs() {
         assert_eq!(ranges(&[0, 1, 2, 3, 7, 9, 10]), "0-3, 7, 9-10");
         assert_eq!(ranges(&[]), "");

@@ -110,7 +110,7 @@ fn range(key: &str, start: &str, stop: &str, step: &str) -> Result<Vec<toml::Val
         ));
     }
     let n = ((b - a) / s + 1e-9).floor() + 1.0;
-    if !(n <= MAX_VALUES as f64) {
+    if n.is_nan() || n > MAX_VALUES as f64 {
         return Err(too_many(key, &spec, n));
     }
     Ok((0..n as usize)

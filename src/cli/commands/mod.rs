@@ -17,6 +17,7 @@ pub mod reproduce;
 pub mod rqa;
 pub mod scene;
 pub mod simulate;
+pub mod slurm;
 pub mod spectrum;
 pub mod surrogate_test;
 pub mod surrogates;

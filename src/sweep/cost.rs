@@ -1,0 +1,138 @@
+//! A sweep's estimated cost, from its scenes alone (nothing is run): CPU time and memory per
+//! point, which `pdamp slurm` turns into the `--time` and `--mem` of each job-array task.
+//!
+//! # Formula
+//! - Impact model (SPEC §3): t = P · c_impact, with P forcing periods and c_impact the cost of a
+//!   period in the slowest band measured (below the primary's resonance with an impact per
+//!   period, ~40 segments per period: [`IMPACT_S_PER_PERIOD`]), plus [`ANALYSIS_S`] per point
+//!   with the analysis.
+//! - DEM (SPEC §2): t = N · (T/dt + T_settle/dt) / r, with N grains, dt the scene's time step
+//!   (automatic: the fraction of the Hertz contact time at the largest expected impact speed,
+//!   [`crate::dem::stability::choose_dt`]) and r = [`DEM_PARTICLE_STEPS_PER_S`].
+//!
+//! # Units
+//! Seconds of one core, bytes.
+//!
+//! # Pitfalls
+//! The constants were measured on one machine (2 cores, 2026; `figures/TRADEOFF.md` for the
+//! DEM rate); a cluster's cores may be faster or slower. `pdamp slurm` adds a safety factor.
+
+use super::runner::SweepSpec;
+use crate::error::SceneError;
+use crate::scene::Scene;
+use crate::setup::Setup;
+
+/// CPU seconds per forcing period of the impact model in its slowest band (measured: 2000
+/// periods in 16–31 ms at 6–10 Hz for scene B's one-particle model, e = 0).
+pub const IMPACT_S_PER_PERIOD: f64 = 20e-6;
+/// CPU seconds of the nonlinear analysis of one point (measured: 43 ms mean, 2000 periods).
+pub const ANALYSIS_S: f64 = 0.1;
+/// DEM particle-steps per CPU second (measured 4.4e6 for scene B with real steel,
+/// `data/reference/tradeoff_scene_b.csv`, one thread; `pdamp slurm` adds its safety factor).
+pub const DEM_PARTICLE_STEPS_PER_S: f64 = 4.4e6;
+/// Memory of a process besides the DEM's particles (bytes).
+const BASE_MEMORY: f64 = 200e6;
+/// Memory per DEM grain (state, neighbour lists, contacts) (bytes).
+const GRAIN_MEMORY: f64 = 20e3;
+
+/// The estimated cost of one sweep point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointCost {
+    /// CPU seconds.
+    pub cpu_s: f64,
+    /// Peak memory (bytes).
+    pub memory_bytes: f64,
+}
+
+/// The cost of running `scene` (with the analysis if `analyze`).
+///
+/// # Errors
+/// The scene's resolve errors (naming the key).
+pub fn point_cost(scene: &Scene, analyze: bool) -> Result<PointCost, SceneError> {
+    let resolved = scene.resolve()?;
+    let analysis = if analyze { ANALYSIS_S } else { 0.0 };
+    Ok(match &resolved.setup {
+        Setup::Impact(_) => PointCost {
+            cpu_s: scene.duration_s() * scene.frequency_hz() * IMPACT_S_PER_PERIOD + analysis,
+            memory_bytes: BASE_MEMORY,
+        },
+        Setup::Dem(d) => {
+            let explicit = match d.dt {
+                crate::dem::DtChoice::Auto => None,
+                crate::dem::DtChoice::Seconds(s) => Some(s),
+            };
+            let (dt, _) =
+                crate::dem::stability::choose_dt(&d.model, &d.drive, explicit, d.dt_fraction)
+                    .map_err(crate::setup::scene_error)?;
+            let grains = d.model.grains.len() as f64;
+            let steps = (d.window.duration_s + d.model.settle_time_s) / dt;
+            PointCost {
+                cpu_s: grains * steps / DEM_PARTICLE_STEPS_PER_S + analysis,
+                memory_bytes: BASE_MEMORY + grains * GRAIN_MEMORY,
+            }
+        }
+    })
+}
+
+/// The cost of every point of shard `k` of `n` (interleaved, as [`super::Shard`]) summed, the
+/// largest over the shards, and the whole sweep's.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SweepCost {
+    /// Points in the grid.
+    pub points: usize,
+    /// CPU seconds of the whole sweep.
+    pub total_cpu_s: f64,
+    /// CPU seconds of the most expensive shard.
+    pub max_shard_cpu_s: f64,
+    /// Largest memory of a point (bytes).
+    pub memory_bytes: f64,
+}
+
+/// The cost of `spec` split into `shards` interleaved shards.
+///
+/// # Errors
+/// A point's scene errors (naming the key and the point).
+pub fn sweep_cost(spec: &SweepSpec, shards: usize) -> Result<SweepCost, SceneError> {
+    let n = super::vary::grid_len(&spec.varies).unwrap_or(0);
+    let shards = shards.max(1);
+    let mut per_shard = vec![0.0; shards];
+    let mut memory: f64 = 0.0;
+    for i in 0..n {
+        let c = point_cost(&super::runner::point_scene(spec, i)?, spec.analyze)?;
+        per_shard[i % shards] += c.cpu_s;
+        memory = memory.max(c.memory_bytes);
+    }
+    Ok(SweepCost {
+        points: n,
+        total_cpu_s: per_shard.iter().sum(),
+        max_shard_cpu_s: per_shard.iter().copied().fold(0.0, f64::max),
+        memory_bytes: memory,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn impact_cost_scales_with_periods_and_dem_with_grain_steps() {
+        let mut s = Scene::thesis_b_impact();
+        s.run.duration = None;
+        s.run.periods = Some(2000.0);
+        let c = point_cost(&s, false).unwrap();
+        // 2000 periods × 20 µs = 40 ms
+        assert!((c.cpu_s - 0.04).abs() < 1e-9, "{c:?}");
+        let a = point_cost(&s, true).unwrap();
+        assert!((a.cpu_s - c.cpu_s - ANALYSIS_S).abs() < 1e-12);
+        // the DEM: twice the duration costs twice the driven steps (settling aside)
+        let dem = |d: f64| {
+            let mut s =
+                Scene::from_toml(include_str!("../../data/scenes/thesis_b_soft.toml")).unwrap();
+            s.run.periods = None;
+            s.run.duration = Some(d);
+            point_cost(&s, false).unwrap().cpu_s
+        };
+        let (one, two, three) = (dem(1.0), dem(2.0), dem(3.0));
+        assert!(one > 0.0 && ((three - two) - (two - one)).abs() < 1e-9 * three);
+    }
+}
