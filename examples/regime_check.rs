@@ -11,11 +11,9 @@ fn main() {
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
     let nrm = Normal::new(0.0, 1.0).unwrap();
     let mut cases: Vec<(String, Vec<f64>, f64)> = Vec::new();
-    cases.push((
-        "roessler dt0.05 n20000".into(),
-        roessler_x(20_000, 0.05),
-        0.05,
-    ));
+    for (n, dt) in [(20_000, 0.05), (80_000, 0.05), (20_000, 0.1), (10_000, 0.1)] {
+        cases.push((format!("roessler dt{dt} n{n}"), roessler_x(n, dt), dt));
+    }
     let lx = lorenz_x(20_000, 0.01);
     let sd = {
         let m = lx.iter().sum::<f64>() / lx.len() as f64;
@@ -52,7 +50,7 @@ fn main() {
             },
         )
         .unwrap();
-        if std::env::var("DEBUG_SCAN").is_ok() {
+        if std::env::var("DEBUG_KANTZ").is_ok() {
             debug_scan(&x, r.embedding_dim.unwrap_or(3), r.lag.unwrap_or(1));
         }
         println!(
@@ -66,6 +64,35 @@ fn main() {
             r.reason,
             t.elapsed().as_secs_f64()
         );
+        if let Some(rm) = &r.return_map_exponent {
+            println!(
+                "    return map: {} returns, cv {:.3}, λ {:.4} ± {:.4} per time unit (Kantz {:.4})",
+                rm.points,
+                rm.return_cv,
+                rm.per_sample / dt,
+                rm.stderr_per_sample / dt,
+                r.evidence.mle_per_sample.unwrap_or(f64::NAN) / dt
+            );
+            if std::env::var("DEBUG_SCAN").is_ok() {
+                println!(
+                    "    size {:.3} floor {:.4}",
+                    rm.section.size, rm.section.noise_floor
+                );
+                for c in &rm.section.curves {
+                    let s: Vec<String> =
+                        c.s.iter()
+                            .map(|v| v.map_or("-".into(), |v| format!("{v:.2}")))
+                            .collect();
+                    println!(
+                        "    eps {:.4} slope {:?} end {} S {}",
+                        c.eps,
+                        c.slope.map(|v| v / rm.mean_return_samples / dt),
+                        c.fit_end,
+                        s.join(" ")
+                    );
+                }
+            }
+        }
     }
 }
 

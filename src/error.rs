@@ -243,7 +243,7 @@ pub enum PlotError {
         hint: String,
     },
     /// The output file name has an extension no backend handles.
-    #[error("{path}: unsupported figure format (use .png)")]
+    #[error("{path}: unsupported figure format (use .png or .svg)")]
     Format {
         /// Requested output path.
         path: String,

@@ -108,9 +108,10 @@ fn explicit_dt_above_the_limit_is_a_scene_error() {
 }
 
 #[test]
-fn snapshots_are_written_as_csv_and_vtk() {
+fn snapshots_are_written_as_csv_and_vtk_xml() {
     let dir = scratch::tempdir().unwrap();
-    let snaps = dir.path().join("snaps");
+    // the default `damper.snapshot_dir` is `snapshots` under the run's output directory
+    let snaps = dir.path().join("o").join("snapshots");
     let st = std::process::Command::new(env!("CARGO_BIN_EXE_pdamp"))
         .args(["simulate", "data/scenes/thesis_b_soft.toml", "--out"])
         .arg(dir.path().join("o"))
@@ -122,8 +123,6 @@ fn snapshots_are_written_as_csv_and_vtk() {
             "--set",
             "damper.snapshot_interval=0.01",
         ])
-        .arg("--set")
-        .arg(format!("damper.snapshot_dir=\"{}\"", snaps.display()))
         .status()
         .unwrap();
     assert!(st.success());
@@ -131,7 +130,23 @@ fn snapshots_are_written_as_csv_and_vtk() {
     for k in 0..3 {
         let csv = std::fs::read_to_string(snaps.join(format!("grains_{k:06}.csv"))).unwrap();
         assert_eq!(csv.lines().count(), 41, "header + 40 grains");
-        let vtk = std::fs::read_to_string(snaps.join(format!("grains_{k:06}.vtk"))).unwrap();
-        assert!(vtk.starts_with("# vtk DataFile Version 3.0") && vtk.contains("POINTS 40 double"));
+        let vtp = std::fs::read_to_string(snaps.join(format!("grains_{k:06}.vtp"))).unwrap();
+        assert!(
+            vtp.contains("<VTKFile type=\"PolyData\"") && vtp.contains("NumberOfPoints=\"40\"")
+        );
+        for array in ["id", "radius", "velocity", "angular_velocity", "force"] {
+            assert!(vtp.contains(&format!("Name=\"{array}\"")), "{array}");
+        }
+        let vbox = std::fs::read_to_string(snaps.join(format!("box_{k:06}.vtp"))).unwrap();
+        assert!(vbox.contains("NumberOfPoints=\"8\"") && vbox.contains("NumberOfPolys=\"6\""));
+    }
+    // the time series lists the three snapshots with their times
+    for part in ["grains", "box"] {
+        let pvd = std::fs::read_to_string(snaps.join(format!("{part}.pvd"))).unwrap();
+        assert_eq!(pvd.matches("<DataSet ").count(), 3, "{part}");
+        assert!(
+            pvd.contains(&format!("file=\"{part}_000002.vtp\"")),
+            "{part}"
+        );
     }
 }

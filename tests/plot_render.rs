@@ -684,3 +684,43 @@ fn d2_local_slopes_with_plateau() {
     // the m = 1 curve is drawn in the first palette colour
     check_renders(&fig, "d2", BLUE, 200);
 }
+
+#[test]
+fn svg_output_is_the_same_drawing_as_vectors() {
+    // `-o x.svg` draws the figure with plotters' SVG backend: a standalone <svg> document of
+    // the requested size, the caption as text, the data as vector primitives; written through a
+    // temporary sibling, so nothing else is left in the directory.
+    let dir = std::env::temp_dir().join(format!("pdamp_svg_{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let x: Vec<f64> = (0..50).map(|i| (i as f64 * 0.3).sin()).collect();
+    let y: Vec<f64> = (0..50).map(|i| (i as f64 * 0.3).cos()).collect();
+    let fig = PoincareFigure {
+        x: &x,
+        y: &y,
+        x_label: "z (m)".into(),
+        y_label: "v (m/s)".into(),
+    };
+    let path = dir.join("section.SVG");
+    let o = FigureOptions {
+        title: Some("An SVG section".into()),
+        ..opts()
+    };
+    render(&fig, &path, &o).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(text.starts_with("<svg"), "{}", &text[..text.len().min(80)]);
+    assert!(text.trim_end().ends_with("</svg>"));
+    assert!(text.contains(&format!("width=\"{}\"", o.width)), "size");
+    assert!(text.contains("An SVG section"), "caption as text");
+    assert!(text.contains("z (m)"), "axis label as text");
+    // 50 points drawn as vector marks (circles or paths), not a raster image
+    assert!(!text.contains("<image"), "no embedded raster");
+    let marks = text.matches("<circle").count() + text.matches("<path").count();
+    assert!(marks >= 50, "{marks} vector marks");
+    let left: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(left.len(), 1, "only the figure remains: {left:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

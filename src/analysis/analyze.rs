@@ -1,7 +1,11 @@
 //! The whole analysis chain with automatic choices and a regime verdict (SPEC §4):
 //! spectrum and lines → recurrence → mutual information (lag) → false nearest neighbours
 //! (dimension) → Kantz (exponent, automatic scaling region) → stroboscopic section (with a
-//! forcing frequency) → 0–1 test → [`crate::analysis::regime::classify`].
+//! forcing frequency) → 0–1 test → [`crate::analysis::regime::classify`]. The verdict's
+//! evidence is Kantz's; for an autonomous series judged chaotic whose mean crossings return at
+//! nearly constant times (a phase-coherent flow such as Rössler's), the exponent's value is
+//! that of the first-return map ([`crate::analysis::return_map_lyapunov`]), with Kantz's
+//! value kept in the evidence and the notes.
 //!
 //! [`analyze_series`] is the library entry point used by `pdamp analyze`, the simulators'
 //! `summary.json` and the sweeps. It never panics on user data: estimators that cannot run on a
@@ -23,6 +27,9 @@ use crate::analysis::regime::{
     classify, harmonic_fundamental, recurrence_period, Evidence, Regime, RegimeThresholds,
 };
 use crate::analysis::regime::{classify_forced, Exponent, ForcedEvidence, LOCKED_FRACTION_MIN};
+use crate::analysis::return_map_lyapunov::{
+    return_map_lyapunov, ReturnMapLyapunov, ReturnMapOptions,
+};
 use crate::analysis::section::{analyze_section, SectionAnalysis, SectionOptions};
 use crate::analysis::section_lyapunov::{
     section_lyapunov, SectionLyapunov, SectionLyapunovOptions,
@@ -187,6 +194,10 @@ pub struct AnalysisReport {
     pub phase_lock: Option<PhaseLock>,
     /// Sampling interval of the series analysed (s), after any decimation.
     pub series_dt_s: Option<f64>,
+    /// The exponent of the first-return map of a phase-coherent chaotic flow, when it gave the
+    /// reported exponent ([`crate::analysis::return_map_lyapunov`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub return_map_exponent: Option<ReturnMapLyapunov>,
     /// All evidence given to the classifier.
     pub evidence: Evidence,
     /// Fallbacks taken and estimators that could not run.
@@ -446,10 +457,52 @@ pub fn analyze_series(x: &[f64], opts: &AnalyzeOptions) -> Result<AnalysisReport
             report.regime = verdict.regime;
             report.period = verdict.period;
             report.reason = verdict.reason;
+            if report.regime == Regime::Chaotic {
+                return_map_value(x, opts, &mut report);
+            }
         }
     }
     report.evidence = evidence;
     Ok(report)
+}
+
+/// For an autonomous chaotic series of a phase-coherent flow, the exponent's value from the
+/// first-return map ([`return_map_lyapunov`]) replaces Kantz's in the report, when it is
+/// resolved (positive, at least twice its standard error); Kantz's stays in the evidence and
+/// a note gives both. Otherwise a note says why the return map was not used.
+fn return_map_value(x: &[f64], opts: &AnalyzeOptions, report: &mut AnalysisReport) {
+    let (Some(lag), Some(dim)) = (report.lag, report.embedding_dim) else {
+        return;
+    };
+    let ropts = ReturnMapOptions {
+        m: dim.max(2),
+        tau: lag,
+        ..ReturnMapOptions::default()
+    };
+    match return_map_lyapunov(x, &ropts) {
+        Ok(r) if r.per_sample > 0.0 && r.per_sample >= 2.0 * r.stderr_per_sample => {
+            let kantz = report.mle_per_sample;
+            report.notes.push(format!(
+                "phase-coherent flow (return times {:.1} ± {:.0} % samples, {} returns): exponent from the first-return map, {:.4e} ± {:.1e} per sample (Kantz on the series: {})",
+                r.mean_return_samples,
+                100.0 * r.return_cv,
+                r.points,
+                r.per_sample,
+                r.stderr_per_sample,
+                kantz.map_or("—".into(), |k| format!("{k:.4e}")),
+            ));
+            report.mle_per_sample = Some(r.per_sample);
+            report.mle_per_time = opts.dt_s.map(|dt| r.per_sample / dt);
+            report.data_mle_per_s = report.mle_per_time;
+            report.data_mle_stderr_per_s = opts.dt_s.map(|dt| r.stderr_per_sample / dt);
+            report.return_map_exponent = Some(r);
+        }
+        Ok(r) => report.notes.push(format!(
+            "return map not used: its exponent {:.3e} ± {:.1e} per sample is not resolved",
+            r.per_sample, r.stderr_per_sample
+        )),
+        Err(e) => report.notes.push(format!("return map not used: {e}")),
+    }
 }
 
 /// A forced run as the simulators deliver it: the steady-state series of the observed
@@ -665,6 +718,7 @@ fn empty_report(n: usize, dt_s: Option<f64>) -> AnalysisReport {
         section_exponent: None,
         phase_lock: None,
         series_dt_s: dt_s,
+        return_map_exponent: None,
         evidence: Evidence::default(),
         notes: Vec::new(),
     }

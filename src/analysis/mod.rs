@@ -28,6 +28,7 @@ pub mod poincare;
 pub mod prediction_error;
 pub mod recurrence;
 pub mod regime;
+pub mod return_map_lyapunov;
 pub mod rosenstein;
 pub mod section;
 pub mod section_lyapunov;

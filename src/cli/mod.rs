@@ -11,7 +11,7 @@ use clap::{Parser, Subcommand};
 
 /// pdamp — particle vibration dampers: simulate, sweep, analyse and plot.
 ///
-/// Simulation: `simulate`, `sweep`, `check-scene`, `tradeoff`.
+/// Simulation: `simulate`, `sweep`, `merge`, `check-scene`, `scene`, `tradeoff`.
 /// Series analysis (TISEAN-like, reads plain text/CSV columns): `mutual`, `fnn`, `embed`,
 /// `spectrum`, `poincare`, `lyap-k`, `lyap-r`, `d2`, `cao`, `rqa`, `analyze`, `surrogates`,
 /// `surrogate-test`, `nrlazy`.
@@ -31,8 +31,12 @@ pub enum Command {
     Simulate(commands::simulate::Args),
     /// [simulation] Run a parameter sweep in parallel (resumable) and write sweep.csv, strobe.csv.
     Sweep(commands::sweep::Args),
+    /// [simulation] Merge the shards of a sweep (`sweep --shard K/N`) into sweep.csv, strobe.csv.
+    Merge(commands::merge::Args),
     /// [simulation] Validate a scene file without running it.
     CheckScene(commands::check_scene::Args),
+    /// [simulation] Write a commented starting scene (--template primary|impact|dem).
+    Scene(commands::scene::Args),
     /// [simulation] Measure speed against accuracy for a scene's cheaper settings.
     Tradeoff(commands::tradeoff::Args),
     /// [analysis] Time-delayed mutual information I(τ) and its first minimum (TISEAN `mutual`).
@@ -88,7 +92,9 @@ pub fn run() -> anyhow::Result<()> {
     match cli.command {
         Command::Simulate(a) => commands::simulate::run(a),
         Command::Sweep(a) => commands::sweep::run(a),
+        Command::Merge(a) => commands::merge::run(a),
         Command::CheckScene(a) => commands::check_scene::run(a),
+        Command::Scene(a) => commands::scene::run(a),
         Command::Tradeoff(a) => commands::tradeoff::run(a),
         Command::Mutual(a) => commands::mutual::run(a),
         Command::Fnn(a) => commands::fnn::run(a),

@@ -280,6 +280,9 @@ impl DemWorld {
             omega: &self.omega,
             radius: &self.radius,
             orientation: self.orientation.as_deref(),
+            force: &self.force,
+            box_size: self.box_size,
+            box_z: self.box_z,
         }
     }
 

@@ -191,6 +191,18 @@ struct State {
     departing: u8,
 }
 
+/// One closed-form segment [t, b] of the box motion, as the event search sees it.
+struct Segment<'a> {
+    motion: &'a BoxMotion,
+    an: &'a Anchor,
+    /// End of the segment (s).
+    b: f64,
+    /// Box state (z, z') at `b`.
+    end: (f64, f64),
+    /// (sin Ωt, cos Ωt) at the start and at `b`, for a spring-mounted box.
+    phases: Option<((f64, f64), (f64, f64))>,
+}
+
 /// Which event ended a segment.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Event {
@@ -548,7 +560,13 @@ impl ImpactWorld {
             } else {
                 self.free
             };
-            let an = motion.anchor(st.t, st.z, st.v);
+            // (sin Ωt, cos Ωt) at the segment start: one sin_cos per segment serves the
+            // anchor, the end state, the quadrature and the sticking condition
+            let sc0 = (self.omega * st.t).sin_cos();
+            let an = match &motion {
+                BoxMotion::Spring(sd) => sd.anchor_parts(st.t, st.z, st.v, sc0),
+                BoxMotion::Kinematic { .. } => motion.anchor(st.t, st.z, st.v),
+            };
             // segment [t, b] of nominal length h (kept exact so that the node cache is reused;
             // b = t + h up to one rounding of t)
             let limit = if st.t < self.steady_start {
@@ -566,10 +584,10 @@ impl ImpactWorld {
             let (end, cached) = match &motion {
                 BoxMotion::Spring(sd) => {
                     cache.prepare(sd, self.omega, h, st.mode.stuck());
-                    let sc0 = (self.omega * st.t).sin_cos();
+                    let sc_b = rotate(sc0, cache.sc[8]);
                     (
-                        sd.eval_parts(&an, cache.basis[8], rotate(sc0, cache.sc[8])),
-                        Some(sc0),
+                        sd.eval_parts(&an, cache.basis[8], sc_b),
+                        Some((sc0, sc_b)),
                     )
                 }
                 BoxMotion::Kinematic { .. } => (motion.eval(&an, b), None),
@@ -577,7 +595,14 @@ impl ImpactWorld {
             let (te, event) = if forced_stick {
                 (b.min(st.t + 1e-6 * self.period), Event::None)
             } else {
-                self.find_event(&st, &motion, &an, b, end)
+                let seg = Segment {
+                    motion: &motion,
+                    an: &an,
+                    b,
+                    end,
+                    phases: cached,
+                };
+                self.find_event(&st, &seg)
             };
             // samples and strobe points in [t, te)
             while let Some(d) = ds {
@@ -613,7 +638,7 @@ impl ImpactWorld {
             let (zb, vb) = if te == b { end } else { motion.eval(&an, te) };
             if te > st.t {
                 match (te == b, cached, &motion) {
-                    (true, Some(sc0), BoxMotion::Spring(sd)) => {
+                    (true, Some((sc0, _)), BoxMotion::Spring(sd)) => {
                         self.integrate_cached(&mut led, sd, &an, &cache, sc0, st.t)
                     }
                     _ => self.integrate(&mut led, &motion, &an, st.t, te),
@@ -720,14 +745,8 @@ impl ImpactWorld {
     }
 
     /// First event in (st.t, b], or (b, None).
-    fn find_event(
-        &self,
-        st: &State,
-        motion: &BoxMotion,
-        an: &Anchor,
-        b: f64,
-        end: (f64, f64),
-    ) -> (f64, Event) {
+    fn find_event(&self, st: &State, seg: &Segment) -> (f64, Event) {
+        let (motion, an, b, end) = (seg.motion, seg.an, seg.b, seg.end);
         let Some(p) = self.particle else {
             return (b, Event::None);
         };
@@ -781,7 +800,17 @@ impl ImpactWorld {
                     let a = motion.accel(t, z, v);
                     (sign * (a + g), sign * motion.jerk(t, v, a))
                 };
-                let fa = f(st.t);
+                // the start from the segment's known phase and state (no transcendental; the
+                // same value as f(t)); the end freshly evaluated, as the event search sees it
+                let fa = match (seg.phases, motion) {
+                    (Some((sc0, _)), BoxMotion::Spring(sd)) => {
+                        // eval(an, t0) = particular + the anchor's homogeneous part, exactly
+                        let (zp, vp) = sd.particular_parts(sc0);
+                        let (a, j) = sd.accel_jerk_parts(sc0, zp + an.y0, vp + an.w0);
+                        (sign * (a + g), sign * j)
+                    }
+                    _ => f(st.t),
+                };
                 let fb = f(b);
                 match first_crossing(&mut f, st.t, b, fa, fb, false) {
                     Some(t) => (t, Event::Detach),

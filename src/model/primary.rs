@@ -195,11 +195,7 @@ impl Sdof {
     /// Particular (steady-state) solution (z_p, z_p') at time t.
     #[inline]
     pub fn particular(&self, t: f64) -> (f64, f64) {
-        let (s, c) = (self.omega * t).sin_cos();
-        let u = self.base_amplitude;
-        let z = u * (self.hr * c - self.hi * s) + self.zs;
-        let v = -u * self.omega * (self.hr * s + self.hi * c);
-        (z, v)
+        self.particular_parts((self.omega * t).sin_cos())
     }
 
     /// Steady-state amplitude of the particular solution |H| U (m), = (2.1.21).
@@ -207,10 +203,27 @@ impl Sdof {
         self.base_amplitude * self.hr.hypot(self.hi)
     }
 
+    /// [`Sdof::particular`] from (sin Ωt, cos Ωt).
+    #[inline]
+    pub fn particular_parts(&self, sin_cos_wt: (f64, f64)) -> (f64, f64) {
+        let (s, c) = sin_cos_wt;
+        let u = self.base_amplitude;
+        let z = u * (self.hr * c - self.hi * s) + self.zs;
+        let v = -u * self.omega * (self.hr * s + self.hi * c);
+        (z, v)
+    }
+
     /// Anchor a segment at time `t0` with state (z0, v0).
     #[inline]
     pub fn anchor(&self, t0: f64, z0: f64, v0: f64) -> Anchor {
-        let (zp, vp) = self.particular(t0);
+        self.anchor_parts(t0, z0, v0, (self.omega * t0).sin_cos())
+    }
+
+    /// [`Sdof::anchor`] with (sin Ωt0, cos Ωt0) given (the same result; saves the caller who
+    /// has them a `sin_cos`).
+    #[inline]
+    pub fn anchor_parts(&self, t0: f64, z0: f64, v0: f64, sin_cos_wt0: (f64, f64)) -> Anchor {
+        let (zp, vp) = self.particular_parts(sin_cos_wt0);
         Anchor {
             t0_s: t0,
             y0: z0 - zp,
@@ -272,6 +285,21 @@ impl Sdof {
     pub fn accel(&self, t: f64, z: f64, v: f64) -> f64 {
         let (u, du, _) = self.base(t);
         (self.stiffness * (u - z) + self.damping * (du - v) + self.constant_force) / self.mass
+    }
+
+    /// [`Sdof::accel`] and [`Sdof::jerk`] from (sin Ωt, cos Ωt) at (z, z').
+    #[inline]
+    pub fn accel_jerk_parts(&self, sin_cos_wt: (f64, f64), z: f64, v: f64) -> (f64, f64) {
+        let (s, c) = sin_cos_wt;
+        let (u, du, ddu) = (
+            self.base_amplitude * c,
+            -self.base_amplitude * self.omega * s,
+            -self.base_amplitude * self.omega * self.omega * c,
+        );
+        let acc = (self.stiffness * (u - z) + self.damping * (du - v) + self.constant_force)
+            / self.mass;
+        let jerk = (self.stiffness * (du - v) + self.damping * (ddu - acc)) / self.mass;
+        (acc, jerk)
     }
 
     /// Jerk z''' at (t, z, z', z'') (time derivative of the equation of motion).

@@ -5,6 +5,7 @@
 pub mod collector;
 pub mod csv_recorder;
 pub mod snapshot;
+pub mod vtk_xml;
 
 pub use collector::{SteadyCollector, StrobeCollector};
 pub use csv_recorder::CsvRecorder;
@@ -193,6 +194,12 @@ pub struct GrainState<'a> {
     pub radius: &'a [f64],
     /// Orientations, when tracked.
     pub orientation: Option<&'a [nalgebra::UnitQuaternion<f64>]>,
+    /// Total force on each grain at the last force evaluation (N).
+    pub force: &'a [[f64; 3]],
+    /// Inner size of the container [Lx, Ly, Lz] (m).
+    pub box_size: [f64; 3],
+    /// Position of the container's floor z (m); its side walls are at x ∈ {0, Lx}, y ∈ {0, Ly}.
+    pub box_z: f64,
 }
 
 /// Receives what a run emits: its samples, stroboscopic points, particle snapshots and

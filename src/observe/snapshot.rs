@@ -1,11 +1,12 @@
 //! Particle snapshots as an observer: [`SnapshotWriter`] writes `grains_NNNNNN.csv` (one row
-//! per grain) and/or legacy VTK polydata `grains_NNNNNN.vtk` for ParaView at every snapshot
-//! the DEM emits ([`Observer::snapshot`]).
+//! per grain) and/or VTK XML for ParaView — `grains_NNNNNN.vtp` and `box_NNNNNN.vtp` with the
+//! time series `grains.pvd` and `box.pvd` ([`super::vtk_xml`]) — at every snapshot the DEM
+//! emits ([`Observer::snapshot`]).
 
 use std::io::Write;
 use std::path::Path;
 
-use super::{GrainState, Observer, Sample};
+use super::{vtk_xml, GrainState, Observer, Sample};
 use crate::error::SimError;
 
 /// Writes every snapshot of a run into `dir` as CSV and/or VTK, numbered from 0.
@@ -15,10 +16,12 @@ pub struct SnapshotWriter {
     pub dir: std::path::PathBuf,
     /// Write `grains_NNNNNN.csv`.
     pub csv: bool,
-    /// Write `grains_NNNNNN.vtk`.
+    /// Write `grains_NNNNNN.vtp`, `box_NNNNNN.vtp` and the `.pvd` series.
     pub vtk: bool,
     /// Snapshots written so far.
     pub count: usize,
+    /// (time, file) of the VTK snapshots so far, for the `.pvd` series.
+    times: Vec<f64>,
 }
 
 impl SnapshotWriter {
@@ -29,6 +32,7 @@ impl SnapshotWriter {
             csv,
             vtk,
             count: 0,
+            times: Vec::new(),
         }
     }
 }
@@ -53,16 +57,25 @@ pub fn remove_snapshots(dir: &Path) -> std::io::Result<()> {
     Ok(())
 }
 
-/// `grains_` + six or more digits + `.csv` / `.vtk`: the names [`SnapshotWriter`] writes.
+/// The names [`SnapshotWriter`] writes: `grains_` or `box_` + six or more digits + `.csv`,
+/// `.vtp` (or an earlier version's `.vtk`), and the series `grains.pvd` / `box.pvd`.
 fn is_snapshot_file(path: &Path) -> bool {
-    let (Some(stem), Some(ext)) = (
-        path.file_stem().and_then(|s| s.to_str()),
-        path.extension().and_then(|s| s.to_str()),
-    ) else {
+    let Some(name) = path.file_name().and_then(|s| s.to_str()) else {
         return false;
     };
-    let digits = stem.strip_prefix("grains_").unwrap_or("");
-    matches!(ext, "csv" | "vtk") && digits.len() >= 6 && digits.bytes().all(|b| b.is_ascii_digit())
+    if name == "grains.pvd" || name == "box.pvd" {
+        return true;
+    }
+    let Some((stem, ext)) = name.rsplit_once('.') else {
+        return false;
+    };
+    let digits = stem
+        .strip_prefix("grains_")
+        .or_else(|| stem.strip_prefix("box_"))
+        .unwrap_or("");
+    matches!(ext, "csv" | "vtp" | "vtk")
+        && digits.len() >= 6
+        && digits.bytes().all(|b| b.is_ascii_digit())
 }
 
 impl Observer for SnapshotWriter {
@@ -90,7 +103,7 @@ impl Observer for SnapshotWriter {
             write_csv(g, &dir.join(format!("{stem}.csv"))).map_err(io)?;
         }
         if self.vtk {
-            write_vtk(g, &dir.join(format!("{stem}.vtk"))).map_err(io)?;
+            write_vtk_series(g, dir, self.count, &mut self.times).map_err(io)?;
         }
         self.count += 1;
         Ok(())
@@ -128,34 +141,27 @@ pub fn write_csv(world: &GrainState<'_>, path: &Path) -> std::io::Result<()> {
     f.flush()
 }
 
-/// Writes legacy VTK polydata (points with `radius` and `velocity` arrays); in ParaView use
-/// the Glyph filter with a sphere scaled by `radius`.
+/// Writes snapshot number `k` of the grains and the box as VTK XML into `dir` and rewrites the
+/// `grains.pvd` / `box.pvd` series with `times` (the earlier snapshots' times, extended here).
 ///
 /// # Errors
 /// I/O errors.
-pub fn write_vtk(world: &GrainState<'_>, path: &Path) -> std::io::Result<()> {
-    let n = world.pos.len();
-    let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
-    writeln!(f, "# vtk DataFile Version 3.0")?;
-    writeln!(f, "pdamp grains t = {:e} s", world.time_s)?;
-    writeln!(f, "ASCII\nDATASET POLYDATA\nPOINTS {n} double")?;
-    for p in world.pos {
-        writeln!(f, "{} {} {}", p[0], p[1], p[2])?;
+pub fn write_vtk_series(
+    g: &GrainState<'_>,
+    dir: &Path,
+    k: usize,
+    times: &mut Vec<f64>,
+) -> std::io::Result<()> {
+    vtk_xml::write_grains_vtp(g, &dir.join(format!("grains_{k:06}.vtp")))?;
+    vtk_xml::write_box_vtp(g, &dir.join(format!("box_{k:06}.vtp")))?;
+    times.push(g.time_s);
+    for part in ["grains", "box"] {
+        let entries: Vec<(f64, String)> = times
+            .iter()
+            .enumerate()
+            .map(|(i, &t)| (t, format!("{part}_{i:06}.vtp")))
+            .collect();
+        vtk_xml::write_pvd(&dir.join(format!("{part}.pvd")), &entries)?;
     }
-    writeln!(f, "VERTICES {n} {}", 2 * n)?;
-    for i in 0..n {
-        writeln!(f, "1 {i}")?;
-    }
-    writeln!(
-        f,
-        "POINT_DATA {n}\nSCALARS radius double 1\nLOOKUP_TABLE default"
-    )?;
-    for r in world.radius {
-        writeln!(f, "{r}")?;
-    }
-    writeln!(f, "VECTORS velocity double")?;
-    for v in world.vel {
-        writeln!(f, "{} {} {}", v[0], v[1], v[2])?;
-    }
-    f.flush()
+    Ok(())
 }

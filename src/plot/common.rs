@@ -94,7 +94,35 @@ fn check_size(opts: &FigureOptions) -> Result<(), PlotError> {
     Ok(())
 }
 
-/// Draws `fig` into the file `path`; the format follows the extension (`.png`).
+/// Output formats of [`render`], chosen by the file extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FigureFormat {
+    /// Raster PNG (`.png`), at the requested pixel size.
+    Png,
+    /// Vector SVG (`.svg`), the same drawing with text as `<text>` elements (font family
+    /// `sans-serif`): for papers and for editing in Inkscape or Illustrator.
+    Svg,
+}
+
+impl FigureFormat {
+    /// The format of `path` from its extension (case-insensitive), `None` for any other.
+    pub fn of_path(path: &Path) -> Option<Self> {
+        match path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(|e| e.to_ascii_lowercase())
+            .as_deref()
+        {
+            Some("png") => Some(Self::Png),
+            Some("svg") => Some(Self::Svg),
+            _ => None,
+        }
+    }
+}
+
+/// Draws `fig` into the file `path`; the format follows the extension (`.png` or `.svg`).
+/// The figure is drawn into a temporary sibling (same extension) and renamed onto `path`, so
+/// an interrupted run never leaves a truncated figure under the final name.
 ///
 /// # Errors
 /// [`PlotError::BadData`] from the figure's validation, [`PlotError::Format`] for another
@@ -102,15 +130,11 @@ fn check_size(opts: &FigureOptions) -> Result<(), PlotError> {
 pub fn render<F: Figure>(fig: &F, path: &Path, opts: &FigureOptions) -> Result<(), PlotError> {
     fig.validate()?;
     check_size(opts)?;
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(|e| e.to_ascii_lowercase());
-    if ext.as_deref() != Some("png") {
+    let Some(format) = FigureFormat::of_path(path) else {
         return Err(PlotError::Format {
             path: path.display().to_string(),
         });
-    }
+    };
     ensure_font();
     let with_path = |e: PlotError| match e {
         PlotError::Draw { message, .. } => PlotError::Draw {
@@ -119,11 +143,49 @@ pub fn render<F: Figure>(fig: &F, path: &Path, opts: &FigureOptions) -> Result<(
         },
         other => other,
     };
-    let root = BitMapBackend::new(path, (opts.width, opts.height)).into_drawing_area();
+    let tmp = temporary_sibling(path);
     let title = opts.title.clone().unwrap_or_else(|| fig.default_title());
-    root.fill(&WHITE).map_err(draw_err).map_err(with_path)?;
-    fig.draw(&root, &title).map_err(with_path)?;
-    root.present().map_err(draw_err).map_err(with_path)
+    let size = (opts.width, opts.height);
+    let drawn = match format {
+        FigureFormat::Png => draw_on(
+            BitMapBackend::new(&tmp, size).into_drawing_area(),
+            fig,
+            &title,
+        ),
+        FigureFormat::Svg => draw_on(SVGBackend::new(&tmp, size).into_drawing_area(), fig, &title),
+    };
+    let result = drawn.and_then(|()| {
+        std::fs::rename(&tmp, path).map_err(|e| PlotError::Draw {
+            path: String::new(),
+            message: format!("cannot move the finished figure into place: {e}"),
+        })
+    });
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result.map_err(with_path)
+}
+
+/// Clears `root` to white, draws `fig` with the caption `title` and writes the backend out.
+fn draw_on<DB: DrawingBackend, F: Figure>(
+    root: DrawingArea<DB, Shift>,
+    fig: &F,
+    title: &str,
+) -> Result<(), PlotError> {
+    root.fill(&WHITE).map_err(draw_err)?;
+    fig.draw(&root, title)?;
+    root.present().map_err(draw_err)
+}
+
+/// `dir/.name.<pid>.tmp.ext` beside `path`: the same extension, so that the backend picks the
+/// same encoder.
+fn temporary_sibling(path: &Path) -> std::path::PathBuf {
+    let stem = path
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("figure");
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("png");
+    path.with_file_name(format!(".{stem}.{}.tmp.{ext}", std::process::id()))
 }
 
 /// Draws `fig` into an in-memory RGB buffer (3 bytes per pixel, row-major) of the requested

@@ -71,7 +71,8 @@ pub enum RadiusDistributionKind {
 pub enum SnapshotFormat {
     /// `snapshots/grains_NNNNNN.csv`.
     Csv,
-    /// Legacy VTK polydata `snapshots/grains_NNNNNN.vtk` (ParaView).
+    /// VTK XML for ParaView: `grains_NNNNNN.vtp`, `box_NNNNNN.vtp` and the time series
+    /// `grains.pvd`, `box.pvd`.
     Vtk,
     /// Both.
     #[default]

@@ -1,13 +1,17 @@
-//! The sweep runner: parallel, atomic, resumable (see the module docs of [`crate::sweep`]).
+//! The sweep runner: parallel, atomic, resumable, sharded (see the module docs of
+//! [`crate::sweep`]).
 
-use super::vary::{grid, Vary};
+use super::budget::{available_memory_bytes, free_disk_bytes, Budget};
+use super::shard::Shard;
+use super::tables::{out_err, point_path, read_record, stream_name, write_tables, StreamLog};
+use super::vary::{grid_len, grid_point, Vary};
 use crate::error::{SceneError, SimError};
 use crate::model::{RunOptions, RunSummary};
 use crate::observe::{fmt_num, NullObserver};
 use crate::scene::{Scene, SceneSource};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
@@ -38,54 +42,74 @@ pub struct SweepReport {
     pub failed: Vec<(usize, String)>,
 }
 
-/// Summary columns of sweep.csv after the varied keys (model-specific extras are inserted
-/// before `impacts_per_cycle`).
-const HEAD: [&str; 6] = [
-    "frequency_hz",
-    "amplitude_m",
-    "reference_amplitude_m",
-    "energy_input_j_per_cycle",
-    "energy_viscous_j_per_cycle",
-    "energy_impact_j_per_cycle",
-];
-const TAIL: [&str; 9] = [
-    "impacts_per_cycle",
-    "energy_balance_relative_error",
-    "regime",
-    "period",
-    "mle_per_s",
-    "mle_stderr_per_s",
-    "model_mle_per_s",
-    "model_mle_stderr_per_s",
-    "section_points",
-];
-
 /// One finished point, as stored in `points/<i>.json`. Cells are pre-formatted so that the CSV
 /// is byte-identical however and whenever it is rebuilt.
 #[derive(Debug, Clone, Serialize, Deserialize)]
-struct PointRecord {
-    point: usize,
+pub(super) struct PointRecord {
+    pub(super) point: usize,
     /// (key, value) of the varied keys.
-    values: Vec<(String, String)>,
+    pub(super) values: Vec<(String, String)>,
     /// Column name → formatted cell.
-    cells: BTreeMap<String, String>,
-    /// Strobe rows `cycle,grain_z_m,box_z_m`.
-    strobe: Vec<String>,
+    pub(super) cells: BTreeMap<String, String>,
+    /// Strobe rows `cycle,grain_z_m,box_z_m,grain_v_m_s,box_v_m_s`.
+    pub(super) strobe: Vec<String>,
     /// The full run summary.
-    summary: serde_json::Value,
+    pub(super) summary: serde_json::Value,
 }
 
 /// Identity of a sweep, stored in `DIR/sweep.json` so that a rerun resumes only the same sweep.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-struct Manifest {
+pub(super) struct Manifest {
     scene: String,
     set: Vec<(String, String)>,
     vary: Vec<(String, Vec<String>)>,
     analysis: bool,
 }
 
-fn out_err(path: &Path, e: impl std::fmt::Display) -> SimError {
-    SimError::Output(format!("{}: {e}", path.display()))
+impl Manifest {
+    fn of(spec: &SweepSpec) -> Manifest {
+        Manifest {
+            scene: spec.base.to_toml(),
+            set: spec
+                .set
+                .iter()
+                .map(|(k, v)| (k.clone(), value_str(v)))
+                .collect(),
+            vary: spec
+                .varies
+                .iter()
+                .map(|v| (v.key.clone(), v.values.iter().map(value_str).collect()))
+                .collect(),
+            analysis: spec.analyze,
+        }
+    }
+
+    /// The manifest `DIR/sweep.json`.
+    pub(super) fn read(dir: &Path) -> Result<Manifest, SimError> {
+        let path = dir.join("sweep.json");
+        let text = std::fs::read_to_string(&path).map_err(|e| {
+            out_err(
+                &path,
+                format!("{e} (not a sweep directory: `pdamp sweep` writes sweep.json first)"),
+            )
+        })?;
+        serde_json::from_str(&text).map_err(|e| out_err(&path, e))
+    }
+
+    pub(super) fn write(&self, dir: &Path) -> Result<(), SimError> {
+        let json = serde_json::to_vec_pretty(self).map_err(|e| SimError::Output(e.to_string()))?;
+        atomic_write(&dir.join("sweep.json"), &json)
+    }
+
+    /// Points in the grid.
+    pub(super) fn points(&self) -> usize {
+        self.vary.iter().map(|(_, v)| v.len()).product()
+    }
+
+    /// The varied keys, slowest first.
+    pub(super) fn keys(&self) -> Vec<String> {
+        self.vary.iter().map(|(k, _)| k.clone()).collect()
+    }
 }
 
 /// [`crate::io::atomic_write`] with the sweep's error type ([`SimError::Output`] naming the path).
@@ -93,6 +117,23 @@ fn atomic_write(path: &Path, data: &[u8]) -> Result<(), SimError> {
     crate::io::atomic_write(path, data).map_err(|e| match e {
         crate::error::DataError::Io { source, .. } => out_err(path, source),
         other => SimError::Output(other.to_string()),
+    })
+}
+
+/// Writes a point record atomically (temporary file + rename; the temporary file is removed
+/// on error, e.g. a full disk) but without [`crate::io::atomic_write`]'s sync: a sweep's
+/// cost per point would be the disk's flush latency, and a record lost or cut by an
+/// operating-system crash is recomputed anyway, since every record is parsed and checked
+/// before a rerun skips its point.
+fn write_point(path: &Path, data: &[u8]) -> Result<(), SimError> {
+    let name = path
+        .file_name()
+        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    let tmp = path.with_file_name(format!(".{name}.tmp{}", std::process::id()));
+    let result = std::fs::write(&tmp, data).and_then(|()| std::fs::rename(&tmp, path));
+    result.map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        out_err(path, e)
     })
 }
 
@@ -107,69 +148,86 @@ fn fmt_opt(x: Option<f64>) -> String {
     x.filter(|v| v.is_finite()).map(fmt_num).unwrap_or_default()
 }
 
-/// Run (or resume) a sweep into `out`. `on_point` is called after each point finishes (from
-/// worker threads) with the number of points done so far.
+/// Run (or resume) a sweep into `out`: [`run_shard`] of the whole sweep, which also writes
+/// `sweep.csv`, `strobe.csv` and `timings.csv`.
 ///
 /// # Errors
-/// [`SimError::Scene`] if a point's scene is invalid (checked for every point before any
-/// runs, naming the key); [`SimError::Output`] for file-system errors or when `out` holds a
-/// different sweep.
+/// As [`run_shard`].
 pub fn run_sweep(
     spec: &SweepSpec,
     out: &Path,
     on_point: &(dyn Fn(usize) + Sync),
 ) -> Result<SweepReport, SimError> {
-    let points = grid(&spec.varies);
-    let mut scenes = Vec::with_capacity(points.len());
-    for (i, p) in points.iter().enumerate() {
-        let mut ov = spec.set.clone();
-        ov.extend(p.iter().cloned());
-        let s = spec.base.scene(&ov).map_err(|e| match e {
-            SceneError::Invalid { field, value, hint } => SceneError::Invalid {
-                field,
-                value,
-                hint: format!("{hint} (sweep point {i})"),
-            },
-            other => other,
-        })?;
-        scenes.push(s);
+    run_shard(spec, out, Shard::WHOLE, on_point)
+}
+
+/// Run (or resume) shard `shard` of a sweep into `out`. `on_point` is called after each point
+/// finishes (from worker threads) with the number of this shard's points done so far.
+///
+/// Each finished point is written atomically to `out/points/<i>.json` (the source of truth:
+/// a rerun skips the points found there) and appended as one line to the stream log
+/// (`stream.csv`, or `stream.shard-K-of-N.csv`), so that the cost of a point does not depend
+/// on the size of the sweep. The whole sweep then rebuilds `sweep.csv`, `strobe.csv` and
+/// `timings.csv` in point order; a shard leaves that to [`super::merge`] once all shards
+/// are done.
+///
+/// # Errors
+/// [`SimError::Scene`] if the grid is too large for the disk or memory (with its size, the
+/// estimate and the key, before anything runs) or if a point's scene is invalid (checked for
+/// every point of the shard before any runs, naming the key); [`SimError::Output`] for
+/// file-system errors or when `out` holds a different sweep.
+pub fn run_shard(
+    spec: &SweepSpec,
+    out: &Path,
+    shard: Shard,
+    on_point: &(dyn Fn(usize) + Sync),
+) -> Result<SweepReport, SimError> {
+    let n = check_budget(spec, out)?;
+    for i in shard.points(n) {
+        point_scene(spec, i)?;
     }
     let points_dir = out.join("points");
     std::fs::create_dir_all(&points_dir).map_err(|e| out_err(&points_dir, e))?;
     check_manifest(spec, out)?;
 
-    // finished points from an earlier run
-    let mut records: Vec<Option<PointRecord>> = vec![None; points.len()];
-    for (i, slot) in records.iter_mut().enumerate() {
-        let path = point_path(&points_dir, i);
-        if let Ok(text) = std::fs::read_to_string(&path) {
-            match serde_json::from_str::<PointRecord>(&text) {
-                Ok(r) if r.point == i => *slot = Some(r),
-                _ => {} // unreadable (e.g. a crash mid-write of an old version): recompute
-            }
-        }
-    }
-    let skipped = records.iter().filter(|r| r.is_some()).count();
-    let pending: Vec<usize> = (0..points.len())
-        .filter(|i| records[*i].is_none())
+    // finished points from an earlier run (unreadable ones, e.g. from a crash mid-write of an
+    // old version, are recomputed)
+    let mine: Vec<usize> = shard.points(n).collect();
+    let pending: Vec<usize> = mine
+        .iter()
+        .copied()
+        .filter(|&i| read_record(&point_path(out, i), i).is_none())
         .collect();
-    let state = Mutex::new((records, skipped));
+    let skipped = mine.len() - pending.len();
+    let keys: Vec<String> = spec.varies.iter().map(|v| v.key.clone()).collect();
+    let label = (!shard.is_whole()).then(|| shard.label());
+    let log = StreamLog::open(&out.join(stream_name(label.as_deref())), &keys)?;
+    let state = Mutex::new((log, skipped));
     let failed = Mutex::new(Vec::new());
     if skipped > 0 {
         on_point(skipped);
     }
 
     pending.par_iter().for_each(|&i| {
-        let result =
-            run_point(&scenes[i], &points[i], i, spec.analyze, &points_dir).and_then(|rec| {
+        let started = std::time::Instant::now();
+        let result = point_scene(spec, i)
+            .map_err(SimError::from)
+            .and_then(|scene| {
+                run_point(
+                    &scene,
+                    &grid_point(&spec.varies, i),
+                    i,
+                    spec.analyze,
+                    &points_dir,
+                )
+            })
+            .and_then(|rec| {
                 let json =
                     serde_json::to_vec_pretty(&rec).map_err(|e| SimError::Output(e.to_string()))?;
-                atomic_write(&point_path(&points_dir, i), &json)?;
+                write_point(&point_path(out, i), &json)?;
                 let mut guard = state.lock().unwrap_or_else(|p| p.into_inner());
-                guard.0[i] = Some(rec);
+                guard.0.append(&rec, started.elapsed().as_secs_f64())?;
                 guard.1 += 1;
-                let csv = sweep_csv(&spec.varies, &guard.0);
-                atomic_write(&out.join("sweep.csv"), csv.as_bytes())?;
                 on_point(guard.1);
                 Ok(())
             });
@@ -181,48 +239,57 @@ pub fn run_sweep(
         }
     });
 
-    let (records, _) = state.into_inner().unwrap_or_else(|p| p.into_inner());
-    atomic_write(
-        &out.join("sweep.csv"),
-        sweep_csv(&spec.varies, &records).as_bytes(),
-    )?;
-    atomic_write(
-        &out.join("strobe.csv"),
-        strobe_csv(&spec.varies, &records).as_bytes(),
-    )?;
+    if shard.is_whole() {
+        let present: Vec<(usize, PathBuf)> = (0..n)
+            .map(|i| (i, point_path(out, i)))
+            .filter(|(_, p)| p.is_file())
+            .collect();
+        write_tables(&keys, &present, &[out.to_path_buf()], out)?;
+    }
     let mut failed = failed.into_inner().unwrap_or_else(|p| p.into_inner());
     failed.sort();
     Ok(SweepReport {
-        points: points.len(),
+        points: mine.len(),
         skipped,
         computed: pending.len() - failed.len(),
         failed,
     })
 }
 
-fn point_path(dir: &Path, i: usize) -> PathBuf {
-    dir.join(format!("{i}.json"))
+/// The scene of point `i`, with the point named in a scene error.
+fn point_scene(spec: &SweepSpec, i: usize) -> Result<Scene, SceneError> {
+    let mut ov = spec.set.clone();
+    ov.extend(grid_point(&spec.varies, i));
+    spec.base.scene(&ov).map_err(|e| match e {
+        SceneError::Invalid { field, value, hint } => SceneError::Invalid {
+            field,
+            value,
+            hint: format!("{hint} (sweep point {i})"),
+        },
+        other => other,
+    })
+}
+
+/// The number of points, after checking that the sweep fits the disk and memory
+/// ([`Budget`]); the stroboscopic rows per point are taken as the larger of the first and last
+/// point's.
+fn check_budget(spec: &SweepSpec, out: &Path) -> Result<usize, SimError> {
+    let rows = |i: usize| -> f64 {
+        point_scene(spec, i).map_or(0.0, |s| {
+            (s.duration_s() - s.analysis_start_s()).max(0.0) * s.frequency_hz() + 1.0
+        })
+    };
+    let n = grid_len(&spec.varies);
+    let strobe_rows = n.map_or(0.0, |n| rows(0).max(rows(n.saturating_sub(1))));
+    let budget = Budget::estimate(&spec.varies, strobe_rows, spec.analyze);
+    budget.check(&spec.varies, free_disk_bytes(out), available_memory_bytes())?;
+    Ok(n.unwrap_or(0))
 }
 
 fn check_manifest(spec: &SweepSpec, out: &Path) -> Result<(), SimError> {
-    let manifest = Manifest {
-        scene: spec.base.to_toml(),
-        set: spec
-            .set
-            .iter()
-            .map(|(k, v)| (k.clone(), value_str(v)))
-            .collect(),
-        vary: spec
-            .varies
-            .iter()
-            .map(|v| (v.key.clone(), v.values.iter().map(value_str).collect()))
-            .collect(),
-        analysis: spec.analyze,
-    };
-    let path = out.join("sweep.json");
-    if let Ok(text) = std::fs::read_to_string(&path) {
-        let old: Option<Manifest> = serde_json::from_str(&text).ok();
-        if old.as_ref() != Some(&manifest) {
+    let manifest = Manifest::of(spec);
+    if out.join("sweep.json").is_file() {
+        if Manifest::read(out).ok().as_ref() != Some(&manifest) {
             return Err(SimError::Output(format!(
                 "{} holds a different sweep (scene, --set, --vary or --no-analysis differ); \
                  choose another --out directory or delete it to start over",
@@ -231,8 +298,7 @@ fn check_manifest(spec: &SweepSpec, out: &Path) -> Result<(), SimError> {
         }
         return Ok(());
     }
-    let json = serde_json::to_vec_pretty(&manifest).map_err(|e| SimError::Output(e.to_string()))?;
-    atomic_write(&path, &json)
+    manifest.write(out)
 }
 
 fn run_point(
@@ -336,58 +402,4 @@ fn run_in_point_dir(scene: &Scene, dir: &Path, analyze: bool) -> Result<RunSumma
         d.finish().map_err(|e| out_err(dir, e))?;
     }
     Ok(s)
-}
-
-fn sweep_csv(varies: &[Vary], records: &[Option<PointRecord>]) -> String {
-    let known: BTreeSet<&str> = HEAD.iter().chain(TAIL.iter()).copied().collect();
-    let extras: BTreeSet<String> = records
-        .iter()
-        .flatten()
-        .flat_map(|r| r.cells.keys())
-        .filter(|k| !known.contains(k.as_str()))
-        .cloned()
-        .collect();
-    let mut cols: Vec<String> = vec!["point".into()];
-    cols.extend(varies.iter().map(|v| v.key.clone()));
-    cols.extend(HEAD.iter().map(|s| s.to_string()));
-    cols.extend(extras.iter().cloned());
-    cols.extend(TAIL.iter().map(|s| s.to_string()));
-    let mut out = cols.join(",");
-    out.push('\n');
-    for r in records.iter().flatten() {
-        let mut row = vec![r.point.to_string()];
-        row.extend(r.values.iter().map(|(_, v)| v.clone()));
-        for c in &cols[1 + varies.len()..] {
-            row.push(r.cells.get(c).cloned().unwrap_or_default());
-        }
-        out.push_str(&row.join(","));
-        out.push('\n');
-    }
-    out
-}
-
-fn strobe_csv(varies: &[Vary], records: &[Option<PointRecord>]) -> String {
-    let mut cols: Vec<String> = vec!["point".into(), "frequency_hz".into()];
-    cols.extend(varies.iter().map(|v| v.key.clone()));
-    cols.extend(["cycle", "grain_z_m", "box_z_m", "grain_v_m_s", "box_v_m_s"].map(String::from));
-    let mut out = cols.join(",");
-    out.push('\n');
-    for r in records.iter().flatten() {
-        let mut prefix = format!(
-            "{},{}",
-            r.point,
-            r.cells.get("frequency_hz").map_or("", |s| s.as_str())
-        );
-        for (_, v) in &r.values {
-            prefix.push(',');
-            prefix.push_str(v);
-        }
-        for row in &r.strobe {
-            out.push_str(&prefix);
-            out.push(',');
-            out.push_str(row);
-            out.push('\n');
-        }
-    }
-    out
 }

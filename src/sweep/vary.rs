@@ -18,7 +18,7 @@ impl Vary {
     ///
     /// # Errors
     /// [`SceneError::Invalid`] naming the key for a malformed, empty or non-finite range, or a
-    /// range of more than 10⁷ points.
+    /// range of more than [`MAX_VALUES`] values.
     pub fn parse(arg: &str) -> Result<Vary, SceneError> {
         let (key, spec) = arg.split_once('=').ok_or_else(|| {
             SceneError::invalid(
@@ -54,9 +54,26 @@ impl Vary {
     }
 }
 
+/// Most values one `--vary` may give (a larger grid is refused before any value is made;
+/// [`super::budget`] then checks the whole grid against memory and disk).
+pub const MAX_VALUES: usize = 10_000_000;
+
+fn too_many(key: &str, spec: &str, n: f64) -> SceneError {
+    SceneError::invalid(
+        key,
+        spec,
+        format!(
+            "the --vary range gives {n:.0} values, more than the {MAX_VALUES} one key may \
+             have; coarsen STEP or narrow START:STOP"
+        ),
+    )
+}
+
 fn range(key: &str, start: &str, stop: &str, step: &str) -> Result<Vec<toml::Value>, SceneError> {
     let ints = [start, stop, step].map(|s| s.trim().parse::<i64>());
     if let [Ok(a), Ok(b), Ok(s)] = ints {
+        // in i128: STOP − START and the count overflow i64 at the extremes (i64::MIN / −1)
+        let (a, b, s) = (a as i128, b as i128, s as i128);
         if s == 0 || (b - a).signum() * s.signum() < 0 {
             return Err(SceneError::invalid(
                 key,
@@ -65,14 +82,13 @@ fn range(key: &str, start: &str, stop: &str, step: &str) -> Result<Vec<toml::Val
             ));
         }
         let n = (b - a) / s + 1;
-        if n > 10_000_000 {
-            return Err(SceneError::invalid(
-                key,
-                format!("{a}:{b}:{s}"),
-                "more than 1e7 points",
-            ));
+        if n > MAX_VALUES as i128 {
+            return Err(too_many(key, &format!("{a}:{b}:{s}"), n as f64));
         }
-        return Ok((0..n).map(|i| toml::Value::Integer(a + i * s)).collect());
+        // every value lies between START and STOP, so it fits in i64
+        return Ok((0..n)
+            .map(|i| toml::Value::Integer((a + i * s) as i64))
+            .collect());
     }
     let num = |name: &str, s: &str| -> Result<f64, SceneError> {
         match s.trim().parse::<f64>() {
@@ -94,12 +110,32 @@ fn range(key: &str, start: &str, stop: &str, step: &str) -> Result<Vec<toml::Val
         ));
     }
     let n = ((b - a) / s + 1e-9).floor() + 1.0;
-    if n > 1e7 {
-        return Err(SceneError::invalid(key, spec, "more than 1e7 points"));
+    if !(n <= MAX_VALUES as f64) {
+        return Err(too_many(key, &spec, n));
     }
     Ok((0..n as usize)
         .map(|i| toml::Value::Float(a + i as f64 * s))
         .collect())
+}
+
+/// Number of points of the grid spanned by `varies`, or `None` if it overflows `usize`.
+pub fn grid_len(varies: &[Vary]) -> Option<usize> {
+    varies
+        .iter()
+        .try_fold(1usize, |n, v| n.checked_mul(v.values.len()))
+}
+
+/// Point `i` of the grid spanned by `varies` (the first key varies slowest; the same order
+/// as [`grid`]), without building the grid. `i` must be below [`grid_len`].
+pub fn grid_point(varies: &[Vary], mut i: usize) -> Vec<(String, toml::Value)> {
+    let mut point = Vec::with_capacity(varies.len());
+    for v in varies.iter().rev() {
+        let n = v.values.len();
+        point.push((v.key.clone(), v.values[i % n].clone()));
+        i /= n;
+    }
+    point.reverse();
+    point
 }
 
 /// All points of the grid spanned by several [`Vary`] (the first key varies slowest).
@@ -151,5 +187,39 @@ mod tests {
         assert_eq!(g.len(), 6);
         assert_eq!(g[1][1].1, toml::Value::Integer(2));
         assert_eq!(g[3][0].1, toml::Value::Integer(2));
+        let (a, b) = (
+            Vary::parse("a=1,2").unwrap(),
+            Vary::parse("b=1:3:1").unwrap(),
+        );
+        let varies = [a, b];
+        assert_eq!(grid_len(&varies), Some(6));
+        for (i, p) in g.iter().enumerate() {
+            assert_eq!(&grid_point(&varies, i), p, "point {i}");
+        }
+    }
+
+    #[test]
+    fn extreme_integer_ranges_are_refused_without_overflow() {
+        // i64::MIN / −1 overflowed (a panic in debug builds) before the count was checked
+        for bad in [
+            "k=0:-9223372036854775808:-1",
+            "k=-9223372036854775808:9223372036854775807:1",
+            "k=1:30:0.000001",
+        ] {
+            let err = Vary::parse(bad).unwrap_err().to_string();
+            assert!(err.contains("k") && err.contains("values"), "{bad}: {err}");
+        }
+        let v = Vary::parse("k=9223372036854775806:9223372036854775807:1").unwrap();
+        assert_eq!(v.values[1], toml::Value::Integer(i64::MAX));
+    }
+
+    #[test]
+    fn grid_len_overflow_is_none() {
+        let v = Vary {
+            key: "k".into(),
+            values: vec![toml::Value::Integer(0); 1 << 16],
+        };
+        let many = vec![v; 5];
+        assert_eq!(grid_len(&many), None);
     }
 }

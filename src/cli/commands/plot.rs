@@ -1,4 +1,4 @@
-//! `pdamp plot KIND INPUT... -o FILE.png`: draw one figure kind of SPEC §7 from the CSV files
+//! `pdamp plot KIND INPUT... -o FILE.png|FILE.svg`: draw one figure kind of SPEC §7 from the CSV files
 //! of the output contract (series.csv, sweep.csv, strobe.csv, fit-frf output) or plain series.
 
 use std::path::{Path, PathBuf};
@@ -100,8 +100,8 @@ pub struct Args {
     /// Input file(s): CSV with a header row (see the kind for the columns).
     #[arg(required = true)]
     pub inputs: Vec<PathBuf>,
-    /// Output image (.png).
-    #[arg(short, long, value_name = "FILE.png")]
+    /// Output image: .png (raster) or .svg (vector), by the extension.
+    #[arg(short, long, value_name = "FILE.png|FILE.svg")]
     pub output: PathBuf,
     /// Figure options (size, labels, columns, reference parameters).
     #[command(flatten)]

@@ -1,0 +1,460 @@
+//! The sweep's files besides the point records: the append-only stream logs written while a
+//! sweep runs, and `sweep.csv`, `strobe.csv` and `timings.csv` rebuilt in point order from
+//! the point records (at the end of an unsharded run, or by [`merge`] over the directories of
+//! a sharded one).
+//!
+//! `sweep.csv` and `strobe.csv` hold only simulated quantities, so they are byte-identical for
+//! any thread count, shard count and machine; wall times and throughputs go to `timings.csv`.
+
+use super::runner::{Manifest, PointRecord};
+use crate::error::SimError;
+use std::collections::{BTreeMap, BTreeSet};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// Summary columns of sweep.csv after the varied keys (model-specific extras are inserted
+/// before `impacts_per_cycle`).
+pub(super) const HEAD: [&str; 6] = [
+    "frequency_hz",
+    "amplitude_m",
+    "reference_amplitude_m",
+    "energy_input_j_per_cycle",
+    "energy_viscous_j_per_cycle",
+    "energy_impact_j_per_cycle",
+];
+pub(super) const TAIL: [&str; 9] = [
+    "impacts_per_cycle",
+    "energy_balance_relative_error",
+    "regime",
+    "period",
+    "mle_per_s",
+    "mle_stderr_per_s",
+    "model_mle_per_s",
+    "model_mle_stderr_per_s",
+    "section_points",
+];
+
+/// Model figures that measure the machine, not the system: they go to `timings.csv`, never to
+/// `sweep.csv` (keys of `RunSummary::extra`, and the name of their `timings.csv` column).
+pub(super) const TIMING_KEYS: [(&str, &str); 3] = [
+    ("wall_time_s", "run_wall_time_s"),
+    ("particle_steps_per_s", "particle_steps_per_s"),
+    ("particle_steps_per_cpu_s", "particle_steps_per_cpu_s"),
+];
+
+fn is_timing(key: &str) -> bool {
+    TIMING_KEYS.iter().any(|(k, _)| *k == key)
+}
+
+pub(super) fn out_err(path: &Path, e: impl std::fmt::Display) -> SimError {
+    SimError::Output(format!("{}: {e}", path.display()))
+}
+
+/// `points/<i>.json` of `dir`.
+pub(super) fn point_path(dir: &Path, i: usize) -> PathBuf {
+    dir.join("points").join(format!("{i}.json"))
+}
+
+/// The point record of `path`, if it is a complete record of point `i`.
+pub(super) fn read_record(path: &Path, i: usize) -> Option<PointRecord> {
+    let text = std::fs::read_to_string(path).ok()?;
+    serde_json::from_str::<PointRecord>(&text)
+        .ok()
+        .filter(|r| r.point == i)
+}
+
+// ---------------------------------------------------------------- stream log
+
+/// Name of the stream log of `shard_label` (`stream.csv` for the whole sweep).
+pub(super) fn stream_name(shard_label: Option<&str>) -> String {
+    match shard_label {
+        None => "stream.csv".into(),
+        Some(l) => format!("stream.shard-{l}.csv"),
+    }
+}
+
+/// The append-only log of the points a process finished, in the order they finished:
+/// `point,wall_time_s,<varied keys>,<the fixed sweep.csv columns>`. Each point is one
+/// `write` of one line, so the cost per point does not depend on the sweep's size; a line
+/// cut by a crash is dropped when the log is reopened.
+pub(super) struct StreamLog {
+    path: PathBuf,
+    file: std::fs::File,
+}
+
+impl StreamLog {
+    /// Opens (creating with its header) the log at `path`; a last line without its newline
+    /// (a crash mid-write) is cut off.
+    pub(super) fn open(path: &Path, keys: &[String]) -> Result<StreamLog, SimError> {
+        let err = |e: std::io::Error| out_err(path, e);
+        let mut text = std::fs::read(path).unwrap_or_default();
+        let whole = text.iter().rposition(|&b| b == b'\n').map_or(0, |p| p + 1);
+        if whole != text.len() || text.is_empty() {
+            text.truncate(whole);
+            if text.is_empty() {
+                text = stream_header(keys).into_bytes();
+            }
+            crate::io::atomic_write(path, &text).map_err(|e| SimError::Output(e.to_string()))?;
+        }
+        let file = std::fs::OpenOptions::new()
+            .append(true)
+            .open(path)
+            .map_err(err)?;
+        Ok(StreamLog {
+            path: path.to_path_buf(),
+            file,
+        })
+    }
+
+    /// Appends the line of a finished point.
+    pub(super) fn append(&mut self, rec: &PointRecord, wall_time_s: f64) -> Result<(), SimError> {
+        let mut row = vec![rec.point.to_string(), crate::observe::fmt_num(wall_time_s)];
+        row.extend(rec.values.iter().map(|(_, v)| v.clone()));
+        for c in HEAD.iter().chain(TAIL.iter()) {
+            row.push(rec.cells.get(*c).cloned().unwrap_or_default());
+        }
+        let mut line = row.join(",");
+        line.push('\n');
+        self.file
+            .write_all(line.as_bytes())
+            .map_err(|e| out_err(&self.path, e))
+    }
+}
+
+fn stream_header(keys: &[String]) -> String {
+    let mut cols: Vec<&str> = vec!["point", "wall_time_s"];
+    cols.extend(keys.iter().map(String::as_str));
+    cols.extend(HEAD.iter().chain(TAIL.iter()));
+    let mut h = cols.join(",");
+    h.push('\n');
+    h
+}
+
+/// Wall time of every point in the stream logs of `dirs` (the last entry of a point wins).
+fn stream_wall_times(dirs: &[PathBuf]) -> BTreeMap<usize, String> {
+    let mut out = BTreeMap::new();
+    for dir in dirs {
+        let Ok(entries) = std::fs::read_dir(dir) else {
+            continue;
+        };
+        let mut logs: Vec<PathBuf> = entries
+            .flatten()
+            .map(|e| e.path())
+            .filter(|p| {
+                p.file_name()
+                    .and_then(|n| n.to_str())
+                    .is_some_and(|n| n.starts_with("stream") && n.ends_with(".csv"))
+            })
+            .collect();
+        logs.sort();
+        for log in logs {
+            let text = std::fs::read_to_string(&log).unwrap_or_default();
+            for line in text.lines().skip(1) {
+                let mut cells = line.split(',');
+                if let (Some(Ok(i)), Some(w)) =
+                    (cells.next().map(str::parse::<usize>), cells.next())
+                {
+                    out.insert(i, w.to_string());
+                }
+            }
+        }
+    }
+    out
+}
+
+// ---------------------------------------------------------------- tables
+
+/// A file written in pieces and renamed into place when complete (removed on error), so that
+/// a failed or interrupted rebuild leaves the old file or none, never a partial one.
+struct AtomicFile {
+    tmp: PathBuf,
+    path: PathBuf,
+    out: std::io::BufWriter<std::fs::File>,
+}
+
+impl AtomicFile {
+    fn create(path: &Path) -> Result<AtomicFile, SimError> {
+        let name = path
+            .file_name()
+            .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+        let tmp = path.with_file_name(format!(".{name}.tmp{}", std::process::id()));
+        let file = std::fs::File::create(&tmp).map_err(|e| out_err(&tmp, e))?;
+        Ok(AtomicFile {
+            tmp,
+            path: path.to_path_buf(),
+            out: std::io::BufWriter::new(file),
+        })
+    }
+
+    fn write(&mut self, text: &str) -> Result<(), SimError> {
+        let r = self.out.write_all(text.as_bytes());
+        r.map_err(|e| self.fail(e))
+    }
+
+    fn fail(&self, e: std::io::Error) -> SimError {
+        let _ = std::fs::remove_file(&self.tmp);
+        out_err(&self.path, e)
+    }
+
+    fn commit(self) -> Result<(), SimError> {
+        let AtomicFile { tmp, path, out } = self;
+        let done = out
+            .into_inner()
+            .map_err(|e| e.into_error())
+            .and_then(|f| f.sync_all())
+            .and_then(|()| std::fs::rename(&tmp, &path));
+        done.map_err(|e| {
+            let _ = std::fs::remove_file(&tmp);
+            out_err(&path, e)
+        })
+    }
+}
+
+/// Writes `sweep.csv`, `strobe.csv` and `timings.csv` into `out` from the point records
+/// `present` (point index and file, increasing), for a sweep whose varied keys are `keys`.
+/// Each point file is read once; only its `sweep.csv` cells stay in memory.
+///
+/// # Errors
+/// [`SimError::Output`] naming the file that could not be read or written.
+pub(super) fn write_tables(
+    keys: &[String],
+    present: &[(usize, PathBuf)],
+    stream_dirs: &[PathBuf],
+    out: &Path,
+) -> Result<(), SimError> {
+    let mut strobe = AtomicFile::create(&out.join("strobe.csv"))?;
+    strobe.write(&strobe_header(keys))?;
+    let mut rows: Vec<(usize, Vec<String>, BTreeMap<String, String>)> =
+        Vec::with_capacity(present.len());
+    for (i, path) in present {
+        let Some(rec) = read_record(path, *i) else {
+            let _ = std::fs::remove_file(&strobe.tmp);
+            return Err(out_err(path, "not a complete record of this point"));
+        };
+        strobe.write(&strobe_rows(&rec))?;
+        let values = rec.values.into_iter().map(|(_, v)| v).collect();
+        rows.push((*i, values, rec.cells));
+    }
+    let walls = stream_wall_times(stream_dirs);
+    write_timings(&rows, &walls, out)?;
+    let mut sweep = AtomicFile::create(&out.join("sweep.csv"))?;
+    sweep.write(&sweep_csv(keys, &rows))?;
+    sweep.commit()?;
+    strobe.commit()
+}
+
+fn sweep_csv(keys: &[String], rows: &[(usize, Vec<String>, BTreeMap<String, String>)]) -> String {
+    let known: BTreeSet<&str> = HEAD.iter().chain(TAIL.iter()).copied().collect();
+    let extras: BTreeSet<&str> = rows
+        .iter()
+        .flat_map(|(_, _, cells)| cells.keys())
+        .map(String::as_str)
+        .filter(|k| !known.contains(k) && !is_timing(k))
+        .collect();
+    let mut cols: Vec<&str> = vec!["point"];
+    cols.extend(keys.iter().map(String::as_str));
+    cols.extend(HEAD);
+    cols.extend(extras);
+    cols.extend(TAIL);
+    let mut out = cols.join(",");
+    out.push('\n');
+    for (i, values, cells) in rows {
+        let mut row = vec![i.to_string()];
+        row.extend(values.iter().cloned());
+        for c in &cols[1 + keys.len()..] {
+            row.push(cells.get(*c).cloned().unwrap_or_default());
+        }
+        out.push_str(&row.join(","));
+        out.push('\n');
+    }
+    out
+}
+
+fn write_timings(
+    rows: &[(usize, Vec<String>, BTreeMap<String, String>)],
+    walls: &BTreeMap<usize, String>,
+    out: &Path,
+) -> Result<(), SimError> {
+    let present: Vec<(&str, &str)> = TIMING_KEYS
+        .iter()
+        .copied()
+        .filter(|(k, _)| rows.iter().any(|(_, _, c)| c.contains_key(*k)))
+        .collect();
+    let mut text = String::from("point,wall_time_s");
+    for (_, col) in &present {
+        text.push(',');
+        text.push_str(col);
+    }
+    text.push('\n');
+    for (i, _, cells) in rows {
+        text.push_str(&i.to_string());
+        text.push(',');
+        text.push_str(walls.get(i).map_or("", String::as_str));
+        for (k, _) in &present {
+            text.push(',');
+            text.push_str(cells.get(*k).map_or("", String::as_str));
+        }
+        text.push('\n');
+    }
+    let mut f = AtomicFile::create(&out.join("timings.csv"))?;
+    f.write(&text)?;
+    f.commit()
+}
+
+fn strobe_header(keys: &[String]) -> String {
+    let mut cols: Vec<&str> = vec!["point", "frequency_hz"];
+    cols.extend(keys.iter().map(String::as_str));
+    cols.extend(["cycle", "grain_z_m", "box_z_m", "grain_v_m_s", "box_v_m_s"]);
+    let mut h = cols.join(",");
+    h.push('\n');
+    h
+}
+
+fn strobe_rows(r: &PointRecord) -> String {
+    let mut prefix = format!(
+        "{},{}",
+        r.point,
+        r.cells.get("frequency_hz").map_or("", |s| s.as_str())
+    );
+    for (_, v) in &r.values {
+        prefix.push(',');
+        prefix.push_str(v);
+    }
+    let mut out = String::new();
+    for row in &r.strobe {
+        out.push_str(&prefix);
+        out.push(',');
+        out.push_str(row);
+        out.push('\n');
+    }
+    out
+}
+
+// ---------------------------------------------------------------- merge
+
+/// What [`merge`] wrote.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MergeReport {
+    /// Points in the sweep's grid.
+    pub points: usize,
+    /// How many points each directory contributed (in the order given).
+    pub per_dir: Vec<usize>,
+}
+
+/// Merges the shards of one sweep: checks that every directory in `dirs` holds the same
+/// sweep (its `sweep.json` manifest), that every point of the grid is finished in one of
+/// them, and writes `sweep.csv`, `strobe.csv` and `timings.csv` (and the manifest) into `out`
+/// — byte-identical `sweep.csv` and `strobe.csv` to an unsharded run of the same sweep.
+///
+/// # Errors
+/// [`SimError::Output`] if a directory has no manifest or a different one, if points are
+/// missing (listing them, nothing is written), or for file-system errors.
+pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<MergeReport, SimError> {
+    let Some(first) = dirs.first() else {
+        return Err(SimError::Output("merge: no sweep directories given".into()));
+    };
+    let manifest = Manifest::read(first)?;
+    for d in &dirs[1..] {
+        if Manifest::read(d)? != manifest {
+            return Err(SimError::Output(format!(
+                "{} holds a different sweep than {} (scene, --set, --vary or --no-analysis \
+                 differ): only shards of one sweep can be merged",
+                d.display(),
+                first.display()
+            )));
+        }
+    }
+    let n = manifest.points();
+    let mut per_dir = vec![0; dirs.len()];
+    let mut present = Vec::with_capacity(n);
+    let mut missing = Vec::new();
+    for i in 0..n {
+        let found = dirs
+            .iter()
+            .enumerate()
+            .find(|(_, d)| point_path(d, i).is_file());
+        match found {
+            Some((k, d)) => {
+                per_dir[k] += 1;
+                present.push((i, point_path(d, i)));
+            }
+            None => missing.push(i),
+        }
+    }
+    if !missing.is_empty() {
+        return Err(SimError::Output(format!(
+            "{} of {n} points are not finished in {}: {}; run (or rerun) the shards that \
+             hold them — point i belongs to shard i mod N of --shard K/N — then merge again",
+            missing.len(),
+            dirs.iter()
+                .map(|d| d.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+            ranges(&missing)
+        )));
+    }
+    std::fs::create_dir_all(out).map_err(|e| out_err(out, e))?;
+    if !out.join("sweep.json").is_file() {
+        manifest.write(out)?;
+    }
+    write_tables(&manifest.keys(), &present, dirs, out)?;
+    Ok(MergeReport { points: n, per_dir })
+}
+
+/// `0-3, 7, 9-12`.
+pub(super) fn ranges(points: &[usize]) -> String {
+    let mut parts: Vec<String> = Vec::new();
+    let mut i = 0;
+    while i < points.len() {
+        let mut j = i;
+        while j + 1 < points.len() && points[j + 1] == points[j] + 1 {
+            j += 1;
+        }
+        parts.push(if i == j {
+            points[i].to_string()
+        } else {
+            format!("{}-{}", points[i], points[j])
+        });
+        i = j + 1;
+    }
+    if parts.len() > 20 {
+        let n = parts.len();
+        parts.truncate(20);
+        parts.push(format!("… ({} more ranges)", n - 20));
+    }
+    parts.join(", ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ranges_compress_runs() {
+        assert_eq!(ranges(&[0, 1, 2, 3, 7, 9, 10]), "0-3, 7, 9-10");
+        assert_eq!(ranges(&[]), "");
+    }
+
+    #[test]
+    fn stream_log_drops_a_cut_line_and_appends() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("stream.csv");
+        let keys = vec!["k".to_string()];
+        std::fs::write(&path, format!("{}0,1,2\n1,0.", stream_header(&keys))).unwrap();
+        let mut log = StreamLog::open(&path, &keys).unwrap();
+        let rec = PointRecord {
+            point: 5,
+            values: vec![("k".into(), "3".into())],
+            cells: BTreeMap::new(),
+            strobe: vec![],
+            summary: serde_json::Value::Null,
+        };
+        log.append(&rec, 0.25).unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len(), 3, "{text}");
+        assert_eq!(lines[1], "0,1,2");
+        assert!(lines[2].starts_with("5,0.25,3,"), "{}", lines[2]);
+        assert_eq!(stream_wall_times(&[dir.path().to_path_buf()])[&5], "0.25");
+    }
+}
