@@ -585,10 +585,7 @@ impl ImpactWorld {
                 BoxMotion::Spring(sd) => {
                     cache.prepare(sd, self.omega, h, st.mode.stuck());
                     let sc_b = rotate(sc0, cache.sc[8]);
-                    (
-                        sd.eval_parts(&an, cache.basis[8], sc_b),
-                        Some((sc0, sc_b)),
-                    )
+                    (sd.eval_parts(&an, cache.basis[8], sc_b), Some((sc0, sc_b)))
                 }
                 BoxMotion::Kinematic { .. } => (motion.eval(&an, b), None),
             };

@@ -296,8 +296,8 @@ impl Sdof {
             -self.base_amplitude * self.omega * s,
             -self.base_amplitude * self.omega * self.omega * c,
         );
-        let acc = (self.stiffness * (u - z) + self.damping * (du - v) + self.constant_force)
-            / self.mass;
+        let acc =
+            (self.stiffness * (u - z) + self.damping * (du - v) + self.constant_force) / self.mass;
         let jerk = (self.stiffness * (du - v) + self.damping * (ddu - acc)) / self.mass;
         (acc, jerk)
     }

@@ -246,7 +246,7 @@ pub fn advancing_front_packing(
         .iter()
         .map(|l| (l / (2.0 * r_max)).ceil().max(1.0))
         .product();
-    if !(cells <= MAX_GRID_CELLS) {
+    if cells.is_nan() || cells > MAX_GRID_CELLS {
         return Err(ModelError::new(
             Quantity::GrainCount,
             n,

@@ -4,7 +4,7 @@ use crate::error::{ModelError, Quantity};
 use rand::{RngExt, SeedableRng};
 
 /// Most lattice cells per horizontal layer [`fcc_lattice`] enumerates.
-pub const MAX_CELLS_PER_LAYER: f64 = 1e7;
+pub const MAX_CELLS_PER_LAYER: f64 = 1e6;
 
 /// Centres (m) of `n` sites of an FCC lattice in the box (box frame: floor at z = 0), filled
 /// from the floor up, for spheres up to `r_max` (m), nearest-neighbour spacing
@@ -36,7 +36,7 @@ pub fn fcc_lattice(
     let (nx, ny, nz) = (cells(box_m[0]), cells(box_m[1]), cells(box_m[2]));
     // a layer of cells is enumerated whole; more than this per layer is a box far too wide
     // for its grains (and would take ages or all memory)
-    if !(nx * ny <= MAX_CELLS_PER_LAYER) || !nz.is_finite() {
+    if (nx * ny).is_nan() || nx * ny > MAX_CELLS_PER_LAYER || !nz.is_finite() {
         return Err(ModelError::new(
             Quantity::GrainCount,
             n,

@@ -268,6 +268,16 @@ fn dem_plan(d: &super::DemSetup, duration_s: f64) -> Result<RunPlan, SceneError>
         d.dt_fraction,
     )
     .map_err(super::scene_error)?;
+    if !(dt_s > 0.0 && dt_s.is_finite() && ts.is_finite()) {
+        return Err(SceneError::invalid(
+            keys::DAMPER_YOUNGS_MODULUS,
+            format!("{:e} Pa", d.model.grains.material.youngs_modulus),
+            format!(
+                "gives a Hertz contact time t_s = {ts:e} s and time step {dt_s:e} s: both must be \
+                 finite and > 0; check damper.youngs_modulus, damper.density and damper.radius"
+            ),
+        ));
+    }
     // the neighbour grid and the packing's search grid have about one cell per grain diameter
     let r_max = d.model.grains.r_max_m;
     let cells: f64 = d
@@ -276,7 +286,7 @@ fn dem_plan(d: &super::DemSetup, duration_s: f64) -> Result<RunPlan, SceneError>
         .iter()
         .map(|l| (l / (2.0 * r_max)).ceil().max(1.0))
         .product();
-    if !(cells <= MAX_BOX_CELLS) {
+    if cells.is_nan() || cells > MAX_BOX_CELLS {
         return Err(SceneError::invalid(
             "damper.box",
             format!("{:?}", d.model.box_size_m),
