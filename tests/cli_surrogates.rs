@@ -110,11 +110,19 @@ fn bad_input_gives_clear_errors() {
         .collect();
     let timed = write(&dir, "timed.csv", &format!("time_s,x\n{timed}"));
     for verb in ["surrogates", "surrogate-test", "nrlazy"] {
-        let (_, err, ok) = pdamp(&[verb, &timed]);
+        // the time column selected explicitly: refused
+        let (_, err, ok) = pdamp(&[verb, &timed, "-c", "1"]);
         assert!(
             !ok && err.contains("time or index column") && err.contains("-c"),
             "{verb}: {err}"
         );
+        // by default the column after the time column is read, and said so (issue 14)
+        let mut args = vec![verb, &timed];
+        if verb != "surrogates" {
+            args.extend(["-m", "2"]);
+        }
+        let (_, err, ok) = pdamp(&args);
+        assert!(ok && err.contains("reading column 2 `x`"), "{verb}: {err}");
         // selecting the signal column works
         let mut args = vec![verb, &timed, "-c", "x"];
         if verb != "surrogates" {

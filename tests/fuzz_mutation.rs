@@ -185,7 +185,7 @@ fn mutate(rng: &mut ChaCha8Rng, input: &[u8], pool: &[Vec<u8>]) -> Vec<u8> {
 /// Per-target result.
 struct Outcome {
     execs: u64,
-    panics: Vec<Vec<u8>>,
+    panics: Vec<(String, Vec<u8>)>,
     hangs: Vec<(f64, Vec<u8>)>,
     elapsed: Duration,
 }
@@ -210,8 +210,13 @@ fn run_target(name: &str, f: fn(&[u8]), execs: u64, seed: u64) -> Outcome {
         let t0 = Instant::now();
         let r = std::panic::catch_unwind(|| f(&input));
         let dt = t0.elapsed().as_secs_f64();
-        if r.is_err() {
-            out.panics.push(input.clone());
+        if let Err(payload) = r {
+            let msg = payload
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_default();
+            out.panics.push((msg, input.clone()));
         }
         if dt > HANG_S {
             out.hangs.push((dt, input));
@@ -252,19 +257,32 @@ fn mutation_fuzz_every_target() {
             o.hangs.len(),
             o.elapsed.as_secs_f64()
         );
-        for p in o.panics.iter().take(3) {
+        for (k, (msg, p)) in o.panics.iter().enumerate().take(3) {
             failed.push(format!(
-                "{name}: panic on {:?}",
-                String::from_utf8_lossy(&p[..p.len().min(400)])
+                "{name}: panic `{}` on {:?} (whole input: {})",
+                &msg[..msg.floor_char_boundary(600)],
+                String::from_utf8_lossy(&p[..p.len().min(400)]),
+                save_finding(name, "panic", k, p)
             ));
         }
-        for (dt, p) in o.hangs.iter().take(3) {
+        for (k, (dt, p)) in o.hangs.iter().enumerate().take(3) {
             failed.push(format!(
-                "{name}: {dt:.1} s on {:?}",
-                String::from_utf8_lossy(&p[..p.len().min(400)])
+                "{name}: {dt:.1} s on {:?} (whole input: {})",
+                String::from_utf8_lossy(&p[..p.len().min(400)]),
+                save_finding(name, "hang", k, p)
             ));
         }
     }
     std::panic::set_hook(hook);
     assert!(failed.is_empty(), "{}", failed.join("\n"));
+}
+
+/// Saves the whole input of a finding to `target/fuzz-findings/<target>-<kind>-<n>` and
+/// returns the path.
+fn save_finding(target: &str, kind: &str, n: usize, input: &[u8]) -> String {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/fuzz-findings");
+    let _ = std::fs::create_dir_all(&dir);
+    let path = dir.join(format!("{target}-{kind}-{n}"));
+    let _ = std::fs::write(&path, input);
+    path.display().to_string()
 }

@@ -229,6 +229,16 @@ fn exit_status_tells_failure_kinds_apart() {
         ]),
         Some(3)
     );
+    // fuzzing regression: a box a million metres wide is refused at once, not packed
+    assert_eq!(
+        code(&[
+            "check-scene",
+            &data("data/scenes/thesis_b_soft.toml"),
+            "--set",
+            "damper.box=[1e6, 1e6, 0.1]"
+        ]),
+        Some(3)
+    );
     std::fs::write(dir.path().join("dc.txt"), "-4,408e0\n-3,1e0\n").unwrap();
     assert_eq!(code(&["mutual", "dc.txt"]), Some(3));
     assert_eq!(code(&["mutual", "-c", "3", s]), Some(3));

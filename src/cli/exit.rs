@@ -72,6 +72,22 @@ fn kind_of(e: &(dyn std::error::Error + 'static)) -> Option<Kind> {
     None
 }
 
+/// The error and its causes joined by `: `, leaving out a cause whose text the message
+/// already ends with (a data error that prints its I/O source would otherwise say it twice).
+pub fn message(err: &anyhow::Error) -> String {
+    let mut msg = String::new();
+    for cause in err.chain() {
+        let text = cause.to_string();
+        if msg.is_empty() {
+            msg = text;
+        } else if !msg.ends_with(&text) {
+            msg.push_str(": ");
+            msg.push_str(&text);
+        }
+    }
+    msg
+}
+
 /// Whether `err` is a write to a closed pipe (the reader of our output has gone).
 pub fn is_broken_pipe(err: &anyhow::Error) -> bool {
     err.chain().any(|e| {

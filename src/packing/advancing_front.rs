@@ -212,6 +212,9 @@ impl Ord for FrontItem {
     }
 }
 
+/// Most cells (one grain diameter wide) of the search grid of [`advancing_front_packing`].
+pub const MAX_GRID_CELLS: f64 = 1e8;
+
 /// Packs spheres of the given radii (m, in placement order) on the floor of a box (box frame,
 /// floor at z = 0). Returns the centres (m), same order as `radii`.
 ///
@@ -221,7 +224,8 @@ impl Ord for FrontItem {
 ///
 /// # Errors
 /// [`ModelError`] on [`Quantity::GrainCount`] when the box cannot hold all spheres (the
-/// front empties first; the resolve step, [`crate::setup`], names the scene keys).
+/// front empties first; the resolve step, [`crate::setup`], names the scene keys), or when
+/// the box is more than [`MAX_GRID_CELLS`] grain diameters in volume.
 ///
 /// # Example
 /// ```
@@ -238,6 +242,22 @@ pub fn advancing_front_packing(
         return Ok(Vec::new());
     }
     let r_max = radii.iter().cloned().fold(0.0, f64::max);
+    let cells: f64 = box_m
+        .iter()
+        .map(|l| (l / (2.0 * r_max)).ceil().max(1.0))
+        .product();
+    if cells.is_nan() || cells > MAX_GRID_CELLS {
+        return Err(ModelError::new(
+            Quantity::GrainCount,
+            n,
+            format!(
+                "the box [{:e}, {:e}, {:e}] m is {cells:.1e} grain diameters in volume, more than \
+                 {MAX_GRID_CELLS:.0e}: a box that large is not a damper; make it smaller or the \
+                 grains larger",
+                box_m[0], box_m[1], box_m[2]
+            ),
+        ));
+    }
     let mut grid = Grid::new(box_m, 2.0 * r_max);
     let mut centres: Vec<[f64; 3]> = Vec::with_capacity(n);
     let planes = [
@@ -396,6 +416,14 @@ pub fn advancing_front_packing(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Fuzzing regression (issue 14): the search grid of a box 1e6 m wide would not fit in
+    /// memory; refused.
+    #[test]
+    fn a_huge_box_is_refused() {
+        let e = advancing_front_packing([1e6, 1e6, 1e6], &[0.003; 10]).unwrap_err();
+        assert!(e.hint.contains("grain diameters in volume"), "{e}");
+    }
 
     #[test]
     fn trilateration_touches_all_three() {

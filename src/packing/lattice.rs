@@ -3,6 +3,9 @@
 use crate::error::{ModelError, Quantity};
 use rand::{RngExt, SeedableRng};
 
+/// Most lattice cells per horizontal layer [`fcc_lattice`] enumerates.
+pub const MAX_CELLS_PER_LAYER: f64 = 1e6;
+
 /// Centres (m) of `n` sites of an FCC lattice in the box (box frame: floor at z = 0), filled
 /// from the floor up, for spheres up to `r_max` (m), nearest-neighbour spacing
 /// 2 r_max (1 + `gap`), each site jittered by up to `gap`·r_max/2 (seeded) so that the
@@ -11,6 +14,7 @@ use rand::{RngExt, SeedableRng};
 /// # Errors
 /// [`ModelError`] on [`Quantity::GrainCount`] when fewer than `n` sites fit below the
 /// ceiling (the resolve step, [`crate::setup`], names the scene keys).
+/// (or when the box holds more than [`MAX_CELLS_PER_LAYER`] cells per layer).
 pub fn fcc_lattice(
     box_m: [f64; 3],
     n: usize,
@@ -28,8 +32,26 @@ pub fn fcc_lattice(
         [0.0, 0.5, 0.5],
     ];
     let mut sites = Vec::new();
-    let cells = |l: f64| ((l - 2.0 * lo) / a).floor() as i64 + 2;
+    let cells = |l: f64| ((l - 2.0 * lo) / a).floor() + 2.0;
     let (nx, ny, nz) = (cells(box_m[0]), cells(box_m[1]), cells(box_m[2]));
+    // a layer of cells is enumerated whole; more than this per layer is a box far too wide
+    // for its grains (and would take ages or all memory)
+    if (nx * ny).is_nan() || nx * ny > MAX_CELLS_PER_LAYER || !nz.is_finite() {
+        return Err(ModelError::new(
+            Quantity::GrainCount,
+            n,
+            format!(
+                "the box [{:e}, {:e}, {:e}] m holds {:.1e} lattice cells per layer for R_max = \
+                 {r_max:.3e} m, more than {MAX_CELLS_PER_LAYER:.0e}: a box that wide is not a \
+                 damper; make it smaller or the grains larger",
+                box_m[0],
+                box_m[1],
+                box_m[2],
+                nx * ny
+            ),
+        ));
+    }
+    let (nx, ny, nz) = (nx as i64, ny as i64, nz as i64);
     for k in 0..nz {
         for j in 0..ny {
             for i in 0..nx {
@@ -44,6 +66,11 @@ pub fn fcc_lattice(
                     }
                 }
             }
+        }
+        // every site of a later layer lies higher than all of this one's: with n sites
+        // found, the n lowest (the ones kept below) are among them
+        if sites.len() >= n {
+            break;
         }
     }
     if sites.len() < n {
@@ -76,6 +103,23 @@ pub fn fcc_lattice(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Fuzzing regression (issue 14): a box 1e6 m wide made the lattice enumerate ~1e16
+    /// sites (a hang); a tall box is filled layer by layer and stops once n sites are found.
+    #[test]
+    fn huge_boxes_are_refused_or_filled_without_enumerating_them() {
+        let t = std::time::Instant::now();
+        let e = fcc_lattice([1e6, 1e6, 0.1], 10, 0.003, 0.05, 1).unwrap_err();
+        assert!(e.hint.contains("lattice cells per layer"), "{e}");
+        assert!(fcc_lattice([f64::INFINITY, 0.03, 0.1], 10, 0.003, 0.05, 1).is_err());
+        let tall = fcc_lattice([0.03, 0.03, 1e12], 50, 0.003, 0.05, 1).unwrap();
+        let short = fcc_lattice([0.03, 0.03, 0.2], 50, 0.003, 0.05, 1).unwrap();
+        assert_eq!(
+            tall, short,
+            "the same lowest sites whatever the height above them"
+        );
+        assert!(t.elapsed().as_secs_f64() < 5.0);
+    }
 
     #[test]
     fn sites_do_not_overlap_and_fit() {

@@ -13,7 +13,8 @@
 //! - duration: finite and > 0, at least one sample interval;
 //! - integration steps ≤ [`MAX_STEPS`]; samples ≤ [`MAX_SAMPLES`]; snapshot files ≤
 //!   [`MAX_SNAPSHOT_FILES`];
-//! - the DEM's grains fit the box by the scene's packing (the packing is built here);
+//! - the DEM's box at most [`MAX_BOX_CELLS`] grain diameters in volume, and its grains fit it
+//!   by the scene's packing (the packing is built here);
 //! - output ≤ `--max-output` (default [`DEFAULT_MAX_OUTPUT_BYTES`]).
 
 use crate::error::SceneError;
@@ -28,6 +29,8 @@ pub const MAX_STEPS: f64 = 1e11;
 pub const MAX_SAMPLES: f64 = 1e10;
 /// Most snapshot files of one run.
 pub const MAX_SNAPSHOT_FILES: f64 = 1e5;
+/// Most grain-diameter cells in a DEM box (the neighbour grid has about one per diameter).
+pub const MAX_BOX_CELLS: f64 = 1e8;
 /// Default limit of a run's output (bytes): 4 GB.
 pub const DEFAULT_MAX_OUTPUT_BYTES: f64 = 4e9;
 
@@ -265,6 +268,35 @@ fn dem_plan(d: &super::DemSetup, duration_s: f64) -> Result<RunPlan, SceneError>
         d.dt_fraction,
     )
     .map_err(super::scene_error)?;
+    if !(dt_s > 0.0 && dt_s.is_finite() && ts.is_finite()) {
+        return Err(SceneError::invalid(
+            keys::DAMPER_YOUNGS_MODULUS,
+            format!("{:e} Pa", d.model.grains.material.youngs_modulus),
+            format!(
+                "gives a Hertz contact time t_s = {ts:e} s and time step {dt_s:e} s: both must be \
+                 finite and > 0; check damper.youngs_modulus, damper.density and damper.radius"
+            ),
+        ));
+    }
+    // the neighbour grid and the packing's search grid have about one cell per grain diameter
+    let r_max = d.model.grains.r_max_m;
+    let cells: f64 = d
+        .model
+        .box_size_m
+        .iter()
+        .map(|l| (l / (2.0 * r_max)).ceil().max(1.0))
+        .product();
+    if cells.is_nan() || cells > MAX_BOX_CELLS {
+        return Err(SceneError::invalid(
+            "damper.box",
+            format!("{:?}", d.model.box_size_m),
+            format!(
+                "is {cells:.1e} grain diameters (2 × {r_max:e} m) in volume, more than \
+                 {MAX_BOX_CELLS:.0e}: the neighbour grid would not fit in memory; make the box \
+                 smaller or the grains larger"
+            ),
+        ));
+    }
     crate::dem::initial_positions(&d.model).map_err(super::scene_error)?;
     let n = d.model.grains.radius_m.len() as f64;
     let steps = (duration_s + d.model.settle_time_s) / dt_s;
