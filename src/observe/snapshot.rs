@@ -37,7 +37,7 @@ impl SnapshotWriter {
     }
 }
 
-/// Removes the snapshot files (`grains_NNNNNN.csv` / `.vtk`) from `dir`, so that a run never
+/// Removes the snapshot files (`grains_NNNNNN.csv` / `.vtp`, `box_NNNNNN.vtp`, the `.pvd` series) from `dir`, so that a run never
 /// leaves an earlier run's snapshots beside its own; other files are kept, a missing
 /// directory is fine.
 ///

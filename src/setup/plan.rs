@@ -48,8 +48,10 @@ const DEM_GRAIN_STEPS_PER_S: f64 = 2e7;
 /// Bytes per number in `series.csv` (shortest round-trip formatting and a comma; measured 16
 /// for the impact model's rows, 20 for the DEM's).
 const BYTES_PER_NUMBER: f64 = 20.0;
-/// Bytes per grain in one snapshot (CSV row and VTK point, both formats).
-const BYTES_PER_GRAIN_SNAPSHOT: f64 = 400.0;
+/// Bytes per grain in one CSV snapshot row (measured ≈ 200 on scene B's soft bed).
+const BYTES_PER_GRAIN_CSV: f64 = 200.0;
+/// Bytes per grain in one VTK XML snapshot (`grains_NNNNNN.vtp`, five arrays; measured ≈ 350).
+const BYTES_PER_GRAIN_VTP: f64 = 350.0;
 
 /// The derived figures of one run (see the module documentation).
 #[derive(Debug, Clone, PartialEq)]
@@ -308,16 +310,22 @@ fn dem_plan(d: &super::DemSetup, duration_s: f64) -> Result<RunPlan, SceneError>
         .iter()
         .map(|r| 4.0 / 3.0 * std::f64::consts::PI * r.powi(3))
         .sum();
-    let snapshot_files = match (d.model.snapshot_interval_s, &d.snapshots) {
-        (Some(every), Some((_, format))) => {
-            let per = match format {
-                crate::scene::dem::SnapshotFormat::Both => 2.0,
-                _ => 1.0,
-            };
-            per * ((duration_s / every).floor() + 1.0)
-        }
-        _ => 0.0,
-    };
+    // per snapshot: the CSV file and/or the grains' and the box's .vtp (plus the two .pvd
+    // series once); bytes per grain of each snapshot
+    let (snapshot_files, snapshot_bytes_per_grain) =
+        match (d.model.snapshot_interval_s, &d.snapshots) {
+            (Some(every), Some((_, format))) => {
+                use crate::scene::dem::SnapshotFormat;
+                let count = (duration_s / every).floor() + 1.0;
+                let (files, series, bytes) = match format {
+                    SnapshotFormat::Csv => (1.0, 0.0, BYTES_PER_GRAIN_CSV),
+                    SnapshotFormat::Vtk => (2.0, 2.0, BYTES_PER_GRAIN_VTP),
+                    SnapshotFormat::Both => (3.0, 2.0, BYTES_PER_GRAIN_CSV + BYTES_PER_GRAIN_VTP),
+                };
+                (files * count + series, bytes * count)
+            }
+            _ => (0.0, 0.0),
+        };
     Ok(RunPlan {
         duration_s,
         dt_s,
@@ -326,7 +334,7 @@ fn dem_plan(d: &super::DemSetup, duration_s: f64) -> Result<RunPlan, SceneError>
         samples: 0.0,
         snapshot_files,
         fill_fraction: Some(solid / (lx * ly * lz)),
-        output_bytes: snapshot_files * n * BYTES_PER_GRAIN_SNAPSHOT / 2.0,
+        output_bytes: snapshot_bytes_per_grain * n,
         run_time_s: steps * n.max(1.0) / DEM_GRAIN_STEPS_PER_S,
         sample_interval_s: 0.0,
     })
