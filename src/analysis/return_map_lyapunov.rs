@@ -51,7 +51,7 @@
 use crate::analysis::section_lyapunov::{
     section_lyapunov, SectionLyapunov, SectionLyapunovOptions,
 };
-use crate::analysis::validate_series;
+use crate::analysis::{min_max, validate_series};
 use crate::error::AnalysisError;
 use serde::{Deserialize, Serialize};
 
@@ -190,12 +190,8 @@ pub fn return_map_lyapunov(
     }
     let scales: Vec<f64> = (0..opts.m - 1)
         .map(|d| {
-            let (lo, hi) = states
-                .iter()
-                .map(|s| s[d])
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
-                    (l.min(v), h.max(v))
-                });
+            let column: Vec<f64> = states.iter().map(|s| s[d]).collect();
+            let (lo, hi) = min_max(&column);
             (hi - lo).max(f64::MIN_POSITIVE)
         })
         .collect();

@@ -27,7 +27,7 @@
 //! *Wireframe*; press play.
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use super::GrainState;
 
@@ -162,15 +162,7 @@ fn vector_array(s: &mut String, name: &str, v: &[[f64; 3]]) {
     s.push_str("        </DataArray>\n");
 }
 
-/// Writes `text` to a temporary sibling and renames it onto `path`.
+/// Writes `text` through [`crate::io::atomic_write`] (temporary sibling, synced, renamed).
 fn write_atomically(path: &Path, text: &str) -> std::io::Result<()> {
-    let name = path
-        .file_name()
-        .and_then(|n| n.to_str())
-        .unwrap_or("snapshot");
-    let tmp: PathBuf = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
-    std::fs::write(&tmp, text)?;
-    std::fs::rename(&tmp, path).inspect_err(|_| {
-        let _ = std::fs::remove_file(&tmp);
-    })
+    crate::io::atomic_write(path, text.as_bytes()).map_err(std::io::Error::other)
 }
