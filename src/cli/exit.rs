@@ -30,6 +30,17 @@ pub enum Kind {
     Io = 5,
 }
 
+/// Some points of a sweep failed (the others are written; a rerun retries the failed ones):
+/// exit code 1, as the points' failures may be of different kinds.
+#[derive(Debug, thiserror::Error)]
+#[error("{failed} of {points} sweep points failed (rerun to retry them)")]
+pub struct PointsFailed {
+    /// Points that failed.
+    pub failed: usize,
+    /// Points in the sweep.
+    pub points: usize,
+}
+
 /// The exit code of `err`: the kind of the outermost typed error in its chain; an error
 /// with no typed cause (an option checked by the CLI itself) is a usage error.
 pub fn code(err: &anyhow::Error) -> Kind {
@@ -65,6 +76,9 @@ fn kind_of(e: &(dyn std::error::Error + 'static)) -> Option<Kind> {
     }
     if e.is::<SceneError>() || e.is::<ModelError>() || e.is::<AnalysisError>() {
         return Some(Kind::Input);
+    }
+    if e.is::<PointsFailed>() {
+        return Some(Kind::Other);
     }
     if e.is::<std::io::Error>() {
         return Some(Kind::Io);

@@ -66,21 +66,31 @@ impl Resolved {
     }
 
     /// Places the run's own files under its output directory `dir`: a relative
-    /// `damper.snapshot_dir` (default `snapshots`) becomes `dir/…`; an absolute one gets
-    /// `dir`'s last component appended, so that two runs (two sweep points) never share
-    /// snapshot files. Without this call snapshots go to the relative path as given (from
-    /// the current directory), as a library caller without an output directory expects.
+    /// `damper.snapshot_dir` (default `snapshots`) becomes `dir/…`; an absolute one is kept
+    /// as the user gave it. Without this call snapshots go to the relative path as given
+    /// (from the current directory), as a library caller without an output directory expects.
     pub fn place_outputs_in(&mut self, dir: &std::path::Path) {
+        self.place_snapshots(dir, false);
+    }
+
+    /// As [`Resolved::place_outputs_in`] for one point of a sweep, whose directory `dir` is
+    /// the point's own: an absolute `damper.snapshot_dir` gets `dir`'s last component
+    /// appended, so that two points never share snapshot files.
+    pub fn place_point_outputs_in(&mut self, dir: &std::path::Path) {
+        self.place_snapshots(dir, true);
+    }
+
+    fn place_snapshots(&mut self, dir: &std::path::Path, per_point: bool) {
         if let Setup::Dem(DemSetup {
             snapshots: Some((snap, _)),
             ..
         }) = &mut self.setup
         {
-            *snap = if snap.is_absolute() {
-                snap.join(dir.file_name().unwrap_or_default())
-            } else {
-                dir.join(&*snap)
-            };
+            if !snap.is_absolute() {
+                *snap = dir.join(&*snap);
+            } else if per_point {
+                *snap = snap.join(dir.file_name().unwrap_or_default());
+            }
         }
     }
 

@@ -391,7 +391,7 @@ fn run_point(
 /// attempt's files when it starts.
 fn run_in_point_dir(scene: &Scene, dir: &Path, analyze: bool) -> Result<RunSummary, SimError> {
     let mut resolved = scene.resolve()?;
-    resolved.place_outputs_in(dir);
+    resolved.place_point_outputs_in(dir);
     let run_dir = match resolved.snapshot_dir() {
         Some(_) => Some(crate::io::RunDir::create(dir).map_err(|e| out_err(dir, e))?),
         None => None,

@@ -102,10 +102,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         for (i, why) in &report.failed {
             eprintln!("point {i}: {why}");
         }
-        anyhow::bail!(
-            "{} sweep points failed (rerun to retry them)",
-            report.failed.len()
-        );
+        return Err(crate::cli::exit::PointsFailed {
+            failed: report.failed.len(),
+            points: report.points,
+        }
+        .into());
     }
     Ok(())
 }

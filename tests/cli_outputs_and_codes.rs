@@ -1,0 +1,126 @@
+//! Where a run's snapshots go when `damper.snapshot_dir` is absolute, the exit status of a
+//! sweep whose points fail, and the guard on an infinite contact time (issue 14).
+
+mod scratch;
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn pdamp(args: &[&str], extra: &[&Path]) -> Output {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_pdamp"));
+    cmd.args(args);
+    for p in extra {
+        cmd.arg(p);
+    }
+    cmd.output().unwrap()
+}
+
+/// A 40-grain DEM scene of 0.02 s with a snapshot every 0.01 s into `snap`.
+fn small_dem_sets(snap: &Path) -> Vec<String> {
+    vec![
+        "--set".into(),
+        "run.duration=0.02".into(),
+        "--set".into(),
+        "damper.count=40".into(),
+        "--set".into(),
+        "damper.snapshot_interval=0.01".into(),
+        "--set".into(),
+        format!("damper.snapshot_dir=\"{}\"", snap.display()),
+    ]
+}
+
+#[test]
+fn simulate_writes_snapshots_into_the_absolute_dir_as_given() {
+    let dir = scratch::tempdir().unwrap();
+    let snap = dir.path().join("my_snaps");
+    let out = dir.path().join("run");
+    let sets = small_dem_sets(&snap);
+    let mut args = vec!["simulate", "data/scenes/thesis_b_soft.toml"];
+    args.extend(sets.iter().map(String::as_str));
+    args.push("--out");
+    let o = pdamp(&args, &[&out]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // exactly the directory the user named: not `my_snaps/run/`
+    assert!(snap.join("grains_000000.vtp").is_file());
+    assert!(snap.join("grains.pvd").is_file());
+    assert!(!snap.join("run").exists());
+}
+
+#[test]
+fn sweep_points_with_an_absolute_snapshot_dir_never_share_files() {
+    let dir = scratch::tempdir().unwrap();
+    let snap = dir.path().join("snaps");
+    let out = dir.path().join("sw");
+    let sets = small_dem_sets(&snap);
+    let mut args = vec![
+        "sweep",
+        "data/scenes/thesis_b_soft.toml",
+        "--vary",
+        "excitation.frequency=14,16",
+    ];
+    args.extend(sets.iter().map(String::as_str));
+    args.push("--out");
+    let o = pdamp(&args, &[&out]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for point in ["0", "1"] {
+        let pvd = snap.join(point).join("grains.pvd");
+        assert!(pvd.is_file(), "{}", pvd.display());
+        assert!(snap.join(point).join("grains_000002.vtp").is_file());
+    }
+}
+
+#[test]
+fn a_sweep_whose_points_fail_exits_1_and_names_the_count() {
+    let dir = scratch::tempdir().unwrap();
+    // a snapshot directory that cannot be created: every point fails on output
+    let sets = small_dem_sets(Path::new("/proc/pdamp-cannot-write-here"));
+    let out = dir.path().join("sw");
+    let mut args = vec![
+        "sweep",
+        "data/scenes/thesis_b_soft.toml",
+        "--vary",
+        "excitation.frequency=14,16",
+    ];
+    args.extend(sets.iter().map(String::as_str));
+    args.push("--out");
+    let o = pdamp(&args, &[&out]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("2 of 2 sweep points failed"), "{err}");
+    assert!(
+        err.contains("point 0:") && err.contains("point 1:"),
+        "{err}"
+    );
+}
+
+#[test]
+fn an_infinite_contact_time_is_refused_naming_the_keys() {
+    // E = 2.5e-324 Pa (parses as the smallest subnormal): t_s ∝ E^(-2/5) overflows to inf
+    let dir = scratch::tempdir().unwrap();
+    let o = pdamp(
+        &[
+            "simulate",
+            "data/scenes/thesis_b_soft.toml",
+            "--set",
+            "damper.youngs_modulus=2.5e-324",
+            "--out",
+        ],
+        &[&dir.path().join("o")],
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(3), "input error expected: {err}");
+    assert!(
+        err.contains("damper.youngs_modulus") && err.contains("contact time"),
+        "{err}"
+    );
+    assert!(!dir.path().join("o").join("series.csv").exists());
+    // check-scene refuses it the same way
+    let scene = dir.path().join("s.toml");
+    let text = std::fs::read_to_string("data/scenes/thesis_b_soft.toml").unwrap();
+    let text = text.replace("youngs_modulus = 2.03e8", "youngs_modulus = 2.5e-324");
+    assert!(text.contains("2.5e-324"));
+    std::fs::write(&scene, text).unwrap();
+    let o = pdamp(&["check-scene"], &[&scene]);
+    assert_eq!(o.status.code(), Some(3));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("contact time"));
+}
