@@ -108,6 +108,11 @@ pub struct DemParams {
     /// Table for `discrete` ([radius_m, weight]) or `empirical` ([radius_m, cumulative]) radii.
     #[serde(default)]
     pub radius_table: Option<Vec<[f64; 2]>>,
+    /// Grain material preset (`"steel"`, `"glass"`, `"lead"`, `"aluminium"`): fills
+    /// `density`, `youngs_modulus`, `poisson`, `friction` and `restitution` where the scene
+    /// leaves them out ([`crate::scene::material`], sources cited there).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<crate::scene::material::MaterialPreset>,
     /// Grain density (kg/m³).
     pub density: f64,
     /// Grain Young's modulus E (Pa).
@@ -119,7 +124,9 @@ pub struct DemParams {
     /// Kuwabara–Kono normal damping γ_n (kg s⁻¹ m^-1/2), (2.2.8). Unused by `linear`.
     #[serde(default)]
     pub gamma_n: f64,
-    /// Tangential damping γ_s (kg s⁻¹ m^-1/2), (2.2.12). Unused by `linear`.
+    /// Tangential damping γ_s (kg s⁻¹ m^-1/2), (2.2.12). Unused by `linear`. A `hertz-kk`
+    /// scene that gives `restitution` instead of `gamma_n` and no `gamma_s` gets 3 γ_n, the
+    /// ratio of the thesis's parameter sets.
     #[serde(default)]
     pub gamma_s: f64,
     /// Contact law: `"hertz-kk"` (Hertz + Kuwabara–Kono, default) or `"linear"`.
@@ -178,7 +185,8 @@ pub struct DemParams {
     pub snapshot_interval: Option<f64>,
     /// Directory of the snapshots (default `snapshots`); a relative path is under the run's
     /// output directory (`pdamp simulate --out DIR`: `DIR/snapshots`; a sweep point `i`:
-    /// `OUT/points/i/snapshots`), an absolute one gets the run directory's name appended.
+    /// `OUT/points/i/snapshots`); an absolute one is used as given by `simulate` and gets the
+    /// point's number appended in a sweep (`/abs/dir/i`).
     #[serde(default)]
     pub snapshot_dir: Option<String>,
     /// Snapshot files: `"csv"`, `"vtk"` or `"both"` (default).
@@ -255,6 +263,7 @@ impl DemParams {
             radius_distribution: None,
             radius_std: None,
             radius_table: None,
+            material: None,
             density: 8030.0,
             youngs_modulus: 2.03e11,
             poisson: 0.28,

@@ -32,6 +32,7 @@ pub mod damper;
 pub mod dem;
 pub mod excitation;
 pub mod keys;
+pub mod material;
 pub mod outputs;
 pub mod overrides;
 pub mod presets;
@@ -92,8 +93,17 @@ impl Scene {
 
     /// Deserialize and validate (no syntax pre-pass, no `kind = "none"` check).
     pub(crate) fn parse_validated(text: &str) -> Result<Scene, SceneError> {
-        let scene: Scene =
-            toml::from_str(text).map_err(|e| SceneError::Parse(clean_toml_error(&e)))?;
+        let parse_err = |e: toml::de::Error| SceneError::Parse(clean_toml_error(&e));
+        let mut table: toml::Table = text.parse().map_err(parse_err)?;
+        let scene: Scene = match table.get_mut("damper") {
+            // a material preset fills the keys the scene leaves out
+            Some(toml::Value::Table(d)) if d.contains_key("material") => {
+                material::fill_from_preset(d)?;
+                table.try_into().map_err(parse_err)?
+            }
+            // straight from the text, so that errors name the line
+            _ => toml::from_str(text).map_err(parse_err)?,
+        };
         scene.validate()?;
         Ok(scene)
     }

@@ -206,6 +206,36 @@ pub fn hertz_kk_gamma_n(params: &DemParams, wall: bool) -> Result<f64, SceneErro
     })
 }
 
+/// Ratio γ_s/γ_n of the thesis's parameter sets (10980/3660 and 59.76/19.99, SPEC §6): the
+/// tangential damping of a `hertz-kk` scene that gives a restitution and no `gamma_s`.
+pub const GAMMA_S_PER_GAMMA_N: f64 = 3.0;
+
+/// γ_s of the Hertz–Kuwabara–Kono law's Coulomb–viscous tangential force for grain–grain
+/// (`wall = false`) or grain–wall contacts (kg s⁻¹ m^-1/2): the scene's `gamma_s` /
+/// `wall_gamma_s` when given (> 0); for a scene whose γ_n comes from a restitution
+/// ([`hertz_kk_gamma_n`]), [`GAMMA_S_PER_GAMMA_N`] × γ_n, so that its friction acts;
+/// otherwise 0 (no tangential force).
+///
+/// # Errors
+/// Those of [`hertz_kk_gamma_n`].
+pub fn hertz_kk_gamma_s(params: &DemParams, wall: bool) -> Result<f64, SceneError> {
+    let explicit = if wall {
+        params.wall_gamma_s.unwrap_or(params.gamma_s)
+    } else {
+        params.gamma_s
+    };
+    let from_restitution = if wall {
+        params.wall_gamma_n.is_none()
+            && (params.wall_restitution.is_some() || params.restitution.is_some())
+    } else {
+        params.restitution.is_some()
+    };
+    if explicit > 0.0 || !from_restitution || params.contact != ContactKind::HertzKk {
+        return Ok(explicit);
+    }
+    Ok(GAMMA_S_PER_GAMMA_N * hertz_kk_gamma_n(params, wall)?)
+}
+
 /// The contact model of `params` ([`DemParams::validate`] passed): grain–grain and
 /// grain–wall laws selected by `damper.contact`, wall values defaulting to the grains'.
 ///
@@ -237,6 +267,10 @@ pub fn contact_model(params: &DemParams) -> Result<ContactModel, SceneError> {
             }
         })
     };
+    let gamma_s = [
+        hertz_kk_gamma_s(params, false)?,
+        hertz_kk_gamma_s(params, true)?,
+    ];
     let tangential = |wall: bool| -> TangentialLaw {
         let mu = if wall {
             params.wall_friction.unwrap_or(params.friction)
@@ -248,11 +282,7 @@ pub fn contact_model(params: &DemParams) -> Result<ContactModel, SceneError> {
         }
         match params.contact {
             ContactKind::HertzKk => {
-                let gamma_s = if wall {
-                    params.wall_gamma_s.unwrap_or(params.gamma_s)
-                } else {
-                    params.gamma_s
-                };
+                let gamma_s = gamma_s[usize::from(wall)];
                 if gamma_s > 0.0 {
                     TangentialLaw::CoulombViscous {
                         gamma_s,

@@ -63,6 +63,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         ),
         Damper::Dem(d) => {
             println!("damper: dem, {} grains, box {:?} m", d.count, d.r#box);
+            println!(
+                "grains: {}ρ = {} kg/m³, E = {:e} Pa, ν = {}, μ = {}",
+                d.material
+                    .map(|m| format!("material {} (keys not in the scene), ", m.name()))
+                    .unwrap_or_default(),
+                d.density,
+                d.youngs_modulus,
+                d.poisson,
+                d.friction
+            );
             if d.contact == pdamp::scene::dem::ContactKind::HertzKk {
                 let gamma = |wall| pdamp::setup::dem::hertz_kk_gamma_n(d, wall);
                 println!(
@@ -77,6 +87,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                         ),
                         None => String::new(),
                     }
+                );
+                let gamma_s = |wall| pdamp::setup::dem::hertz_kk_gamma_s(d, wall);
+                println!(
+                    "tangential: γ_s = {:.6e} (grain–grain), {:.6e} (grain–wall) kg s⁻¹ m^-1/2",
+                    gamma_s(false)?,
+                    gamma_s(true)?
                 );
             }
         }
