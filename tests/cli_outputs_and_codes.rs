@@ -124,3 +124,59 @@ fn an_infinite_contact_time_is_refused_naming_the_keys() {
     assert_eq!(o.status.code(), Some(3));
     assert!(String::from_utf8_lossy(&o.stderr).contains("contact time"));
 }
+
+#[test]
+fn quiet_and_verbose_change_only_what_goes_to_stderr() {
+    let dir = scratch::tempdir().unwrap();
+    let run = |flag: Option<&str>, out: &str| {
+        let mut args: Vec<&str> = flag.into_iter().collect();
+        args.extend([
+            "simulate",
+            "data/scenes/thesis_b_impact.toml",
+            "--set",
+            "run.duration=1",
+            "--out",
+        ]);
+        pdamp(&args, &[&dir.path().join(out)])
+    };
+    let normal = run(None, "n");
+    let quiet = run(Some("-q"), "q");
+    let verbose = run(Some("-v"), "v");
+    for o in [&normal, &quiet, &verbose] {
+        assert!(o.status.success());
+    }
+    let err = |o: &Output| String::from_utf8_lossy(&o.stderr).to_string();
+    assert!(err(&normal).contains("plan: dt ="), "{}", err(&normal));
+    assert!(!err(&quiet).contains("plan:"), "{}", err(&quiet));
+    assert!(err(&verbose).contains("[pdamp::setup] resolved event-driven scene"));
+    // the results on stdout and in the files are the same whatever the level
+    let results = |o: &Output| {
+        String::from_utf8_lossy(&o.stdout)
+            .lines()
+            .filter(|l| !l.starts_with("wrote "))
+            .map(String::from)
+            .collect::<Vec<_>>()
+    };
+    assert!(!results(&normal).is_empty());
+    assert_eq!(results(&normal), results(&quiet));
+    assert_eq!(results(&normal), results(&verbose));
+    let series = |d: &str| std::fs::read(dir.path().join(d).join("series.csv")).unwrap();
+    assert_eq!(series("n"), series("q"));
+    assert_eq!(series("n"), series("v"));
+}
+
+#[test]
+fn completions_and_man_pages_cover_every_subcommand() {
+    let o = pdamp(&["completions", "bash"], &[]);
+    assert!(o.status.success());
+    let script = String::from_utf8_lossy(&o.stdout);
+    for sub in ["simulate", "sweep", "lyap-k", "check-scene", "completions"] {
+        assert!(script.contains(sub), "{sub}");
+    }
+    let dir = scratch::tempdir().unwrap();
+    let o = pdamp(&["man", "-o"], &[dir.path()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let page = std::fs::read_to_string(dir.path().join("pdamp-simulate.1")).unwrap();
+    assert!(page.contains(".TH pdamp-simulate") && page.contains("\\-\\-out"));
+    assert!(dir.path().join("pdamp.1").is_file());
+}

@@ -93,7 +93,7 @@ fn surrogate_test_json_rejects_henon() {
 fn nrlazy_writes_one_column() {
     let dir = scratch::tempdir().unwrap();
     let f = henon_file(&dir, 1000);
-    let (out, err, ok) = pdamp(&["nrlazy", &f, "-m", "5", "-v", "0.1", "-i", "2"]);
+    let (out, err, ok) = pdamp(&["nrlazy", &f, "-m", "5", "--radius-sd", "0.1", "-i", "2"]);
     assert!(ok, "{err}");
     assert!(err.contains("neighbours per vector"), "{err}");
     assert_eq!(out.lines().count(), 1000);

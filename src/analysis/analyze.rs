@@ -463,6 +463,14 @@ pub fn analyze_series(x: &[f64], opts: &AnalyzeOptions) -> Result<AnalysisReport
         }
     }
     report.evidence = evidence;
+    tracing::debug!(
+        "analysis of {} samples: lag {:?}, m {:?}, verdict {} ({})",
+        x.len(),
+        report.lag,
+        report.embedding_dim,
+        report.verdict(),
+        report.reason
+    );
     Ok(report)
 }
 

@@ -5,6 +5,7 @@
 
 pub mod commands;
 pub mod exit;
+pub mod log;
 pub mod progress;
 
 use clap::{Parser, Subcommand};
@@ -19,6 +20,13 @@ use clap::{Parser, Subcommand};
 #[derive(Debug, Parser)]
 #[command(name = "pdamp", version, about, long_about = None, propagate_version = true)]
 pub struct Cli {
+    /// Say more on standard error: -v adds the library's debug events, -vv trace events.
+    #[arg(short, long, action = clap::ArgAction::Count, global = true)]
+    pub verbose: u8,
+    /// Say less on standard error: -q keeps warnings and errors only (no notes, no progress
+    /// bars), -qq errors only.
+    #[arg(short, long, action = clap::ArgAction::Count, global = true)]
+    pub quiet: u8,
     /// The subcommand to run.
     #[command(subcommand)]
     pub command: Command,
@@ -78,6 +86,10 @@ pub enum Command {
     Plot(commands::plot::Args),
     /// [figures] Regenerate the whole figure set for the source's scenes.
     Reproduce(commands::reproduce::Args),
+    /// [shell] Print a completion script for bash, zsh, fish, elvish or PowerShell.
+    Completions(commands::shell::CompletionArgs),
+    /// [shell] Write man pages (pdamp.1 and one per subcommand) into a directory.
+    Man(commands::shell::ManArgs),
 }
 
 /// With this environment variable set (to anything), `pdamp` parses its arguments, reports a
@@ -91,6 +103,7 @@ pub fn run() -> anyhow::Result<()> {
     if std::env::var_os(PARSE_ONLY_ENV).is_some() {
         return Ok(());
     }
+    log::init(log::level(cli.verbose, cli.quiet));
     match cli.command {
         Command::Simulate(a) => commands::simulate::run(a),
         Command::Sweep(a) => commands::sweep::run(a),
@@ -116,5 +129,7 @@ pub fn run() -> anyhow::Result<()> {
         Command::FitFrf(a) => commands::fit_frf::run(a),
         Command::Plot(a) => commands::plot::run(a),
         Command::Reproduce(a) => commands::reproduce::run(a),
+        Command::Completions(a) => commands::shell::completions(a),
+        Command::Man(a) => commands::shell::man(a),
     }
 }

@@ -1,4 +1,5 @@
-//! Progress bar observer (indicatif), hidden when stderr is not a terminal (CI, pipes).
+//! Progress bar observer (indicatif), hidden when stderr is not a terminal (CI, pipes) or
+//! with `-q`.
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use pdamp::error::SimError;
@@ -25,9 +26,10 @@ impl ProgressObserver {
     }
 }
 
-/// The draw target: stderr when it is a terminal, hidden otherwise.
+/// The draw target: stderr when it is a terminal and notes are on (not `-q`), hidden
+/// otherwise.
 pub fn draw_target() -> ProgressDrawTarget {
-    if std::io::stderr().is_terminal() {
+    if std::io::stderr().is_terminal() && tracing::enabled!(tracing::Level::INFO) {
         ProgressDrawTarget::stderr()
     } else {
         ProgressDrawTarget::hidden()

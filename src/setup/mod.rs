@@ -126,6 +126,20 @@ impl Scene {
             _ => Setup::Impact(impact::impact_setup(&scene)?),
         };
         let resolved = Resolved { scene, auto, setup };
+        match &resolved.setup {
+            Setup::Dem(d) => tracing::debug!(
+                "resolved DEM scene: {} grains, dt {:?} (fraction {} of t_s), window {:?}",
+                d.model.grains.len(),
+                d.dt,
+                d.dt_fraction,
+                d.window
+            ),
+            Setup::Impact(_) => tracing::debug!(
+                "resolved event-driven scene ({}), window {:?}",
+                resolved.scene.damper.kind(),
+                resolved.window()
+            ),
+        }
         // the bounds on derived quantities that do not depend on what is written
         RunPlan::new(&resolved, &RunOptions::summary_only())?;
         Ok(resolved)

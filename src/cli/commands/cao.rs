@@ -74,14 +74,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     out.flush()?;
     match r.dimension {
-        Some(m) => eprintln!("minimum embedding dimension (E1 saturated): m = {m}"),
-        None => eprintln!(
+        Some(m) => tracing::info!("minimum embedding dimension (E1 saturated): m = {m}"),
+        None => tracing::info!(
             "E1 does not saturate up to m = {} (noise, or raise -M)",
             args.m_max
         ),
     }
     if r.e2.iter().all(|e| (e - 1.0).abs() < 0.05) {
-        eprintln!("E2 ≈ 1 for every m: the series looks random (Cao's test)");
+        tracing::info!("E2 ≈ 1 for every m: the series looks random (Cao's test)");
     }
     Ok(())
 }

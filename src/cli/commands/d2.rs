@@ -122,7 +122,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     match estimate_d2(&sums, &plateau) {
         Ok(est) => {
             for p in &est.plateaus {
-                eprintln!(
+                tracing::info!(
                     "m {}: plateau {:.4e}..{:.4e} ({} radii{}): slope {:.4} ± {:.4}",
                     p.m,
                     p.eps_lo,
@@ -133,7 +133,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                     p.std
                 );
             }
-            eprintln!(
+            tracing::info!(
                 "correlation dimension D2 = {:.4} ± {:.4} (m = {:?}{})",
                 est.d2,
                 est.spread,
@@ -145,7 +145,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 }
             );
         }
-        Err(e) => eprintln!("no D2 estimate: {e}"),
+        Err(e) => tracing::info!("no D2 estimate: {e}"),
     }
     Ok(())
 }

@@ -90,7 +90,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         vectors: base.vectors,
     };
     if args.tisean && opts.tau > 1 {
-        eprintln!(
+        tracing::info!(
             "note: as TISEAN 3.0.1 false_nearest, --tisean compares vectors of consecutive samples \
              (s_n, s_n+1, …) and ignores -d {} inside them (it only shortens the ranges); \
              drop --tisean for delay vectors",
@@ -114,8 +114,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     out.flush()?;
     match suggested_dimension(&fnn, 0.01) {
-        Some(m) => eprintln!("suggested embedding dimension: m = {m} (≤ 1 % false neighbours)"),
-        None => eprintln!("no tested dimension has ≤ 1 % false neighbours (noise, or raise -M)"),
+        Some(m) => {
+            tracing::info!("suggested embedding dimension: m = {m} (≤ 1 % false neighbours)")
+        }
+        None => {
+            tracing::info!("no tested dimension has ≤ 1 % false neighbours (noise, or raise -M)")
+        }
     }
     Ok(())
 }

@@ -151,7 +151,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     };
     for c in &result.curves {
         if let Some(f) = fit_scaling_region(&c.s, &scaling) {
-            eprintln!(
+            tracing::info!(
                 "eps {:.4e} m {}: slope {:.6} per sample over dn {}..={} (R² {:.4}{})",
                 c.eps,
                 c.m,
@@ -167,7 +167,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let per_s = args.dt_s.map_or(String::new(), |dt| {
         format!(" = {:.6} per second", est.per_sample / dt)
     });
-    eprintln!(
+    tracing::info!(
         "maximal Lyapunov exponent (median of {} curves): {:.6} per sample{per_s}; slopes spread {:.2e}",
         est.curves_used, est.per_sample, est.spread
     );

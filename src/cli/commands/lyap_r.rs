@@ -94,7 +94,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         let per_s = args.dt_s.map_or(String::new(), |dt| {
             format!(" = {:.6} per second", f.slope / dt)
         });
-        eprintln!(
+        tracing::info!(
             "maximal Lyapunov exponent (Rosenstein, {} references): {:.6} per sample{per_s} \
              over dn {}..={} (R² {:.4}{})",
             r.references,

@@ -16,6 +16,7 @@ pub mod poincare;
 pub mod reproduce;
 pub mod rqa;
 pub mod scene;
+pub mod shell;
 pub mod simulate;
 pub mod slurm;
 pub mod spectrum;

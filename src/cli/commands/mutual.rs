@@ -61,7 +61,7 @@ impl SeriesInput {
             &self.options(self.column.iter().cloned().collect()),
         )?;
         if table.time.is_some() {
-            eprintln!("{}: reading {}", self.file, table.describe_choice());
+            tracing::info!("{}: reading {}", self.file, table.describe_choice());
         }
         Ok(table)
     }
@@ -130,8 +130,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let bias = small_sample_bias(x.len() - max_lag, mi.bins);
     let unreliable = bias > 0.05 * mi.values[0];
     if unreliable {
-        eprintln!(
-            "warning: {} samples are too few for {b}×{b} bins: the small-sample bias of I(tau), \
+        tracing::warn!(
+            "{} samples are too few for {b}×{b} bins: the small-sample bias of I(tau), \
              (b−1)²/(2(N−D)) = {bias:.3} nats, exceeds 5 % of I(0) = {:.3} nats, so the curve and \
              its minimum reflect the estimator, not the data; use a longer series or fewer bins (-b)",
             x.len(),
@@ -141,10 +141,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     match mi.first_minimum {
         Some(t) if unreliable => {
-            eprintln!("first minimum of I(tau) at tau = {t} samples (unreliable: see the warning)")
+            tracing::info!(
+                "first minimum of I(tau) at tau = {t} samples (unreliable: see the warning)"
+            )
         }
-        Some(t) => eprintln!("first minimum of I(tau) at tau = {t} samples"),
-        None => eprintln!(
+        Some(t) => tracing::info!("first minimum of I(tau) at tau = {t} samples"),
+        None => tracing::info!(
             "no first minimum up to D = {}: raise -D (the curve still decreases)",
             mi.values.len() - 1
         ),

@@ -15,7 +15,7 @@ use pdamp::analysis::noise_reduction::{
 /// Output: the cleaned series, one value per line (data units), on stdout or in the `-o`
 /// file; ε used, the mean neighbourhood size and the RMS correction of each pass go to
 /// stderr. Defaults as TISEAN 3.0.1 `nrlazy`: m = 5, d = 1, one pass, ε = (max − min)/1000
-/// (almost always too small: set -r to 2–3 noise amplitudes, or -v as a fraction of the
+/// (almost always too small: set -r to 2–3 noise amplitudes, or --radius-sd as a fraction of the
 /// standard deviation, which overrides -r). By default only the middle coordinate of each
 /// delay vector is corrected (Schreiber 1993, TISEAN `lazy`); --all corrects every coordinate
 /// as TISEAN's `nrlazy` does.
@@ -43,8 +43,9 @@ pub struct Args {
     /// Neighbourhood radius in data units, maximum norm (TISEAN -r).
     #[arg(short = 'r', long = "radius", help_heading = "Noise reduction")]
     pub radius: Option<f64>,
-    /// Neighbourhood radius as a fraction of the standard deviation (TISEAN -v; overrides -r).
-    #[arg(short = 'v', long = "radius-sd", help_heading = "Noise reduction")]
+    /// Neighbourhood radius as a fraction of the standard deviation (TISEAN's -v, long-only
+    /// here since -v is pdamp's --verbose; overrides -r).
+    #[arg(long = "radius-sd", help_heading = "Noise reduction")]
     pub radius_sd: Option<f64>,
     /// Number of passes (TISEAN -i).
     #[arg(
@@ -80,15 +81,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     };
     let r = nonlinear_noise_reduction(&x, &opts)
         .with_context(|| format!("noise reduction of {}", args.input.file))?;
-    eprintln!(
+    tracing::info!(
         "epsilon = {:.6e} (data units), {:.1} neighbours per vector in the last pass, RMS correction per pass: {}",
         r.epsilon,
         r.mean_neighbors,
         r.rms_correction.iter().map(|v| format!("{v:.4e}")).collect::<Vec<_>>().join(", ")
     );
     if r.mean_neighbors < 1.5 {
-        eprintln!(
-            "warning: almost no neighbours within epsilon; raise -r or -v (2-3 noise levels)"
+        tracing::warn!(
+            "almost no neighbours within epsilon; raise -r or --radius-sd (2-3 noise levels)"
         );
     }
     let mut text = String::with_capacity(x.len() * 18);

@@ -670,7 +670,7 @@ fn estimator(args: &Args, opts: &FigureOptions) -> anyhow::Result<()> {
             let per_s = o.dt.map_or(String::new(), |dt| {
                 format!(" = {:.6} per second", est.per_sample / dt)
             });
-            eprintln!(
+            tracing::info!(
                 "maximal Lyapunov exponent (median of {} curves): {:.6} per sample{per_s}{}",
                 est.curves_used,
                 est.per_sample,
@@ -695,8 +695,8 @@ fn estimator(args: &Args, opts: &FigureOptions) -> anyhow::Result<()> {
             let mi = mutual_information(&x, &mo)
                 .with_context(|| format!("mutual information of {file}"))?;
             match mi.first_minimum {
-                Some(t) => eprintln!("first minimum of I(tau) at tau = {t} samples"),
-                None => eprintln!(
+                Some(t) => tracing::info!("first minimum of I(tau) at tau = {t} samples"),
+                None => tracing::info!(
                     "no first minimum up to D = {}: raise -D",
                     mi.values.len() - 1
                 ),
@@ -730,10 +730,14 @@ fn estimator(args: &Args, opts: &FigureOptions) -> anyhow::Result<()> {
             };
             match pdamp::analysis::false_nearest_neighbors::suggested_dimension(&points, 0.01) {
                 Some(m) => {
-                    eprintln!("suggested embedding dimension: m = {m} (≤ 1 % false neighbours)")
+                    tracing::info!(
+                        "suggested embedding dimension: m = {m} (≤ 1 % false neighbours)"
+                    )
                 }
                 None => {
-                    eprintln!("no tested dimension has ≤ 1 % false neighbours (noise, or raise -M)")
+                    tracing::info!(
+                        "no tested dimension has ≤ 1 % false neighbours (noise, or raise -M)"
+                    )
                 }
             }
             draw(&fig, out, opts)
@@ -815,7 +819,7 @@ fn d2_curves(t: &Table) -> anyhow::Result<CorrelationSums> {
 
 fn draw<F: Figure>(fig: &F, out: &Path, opts: &FigureOptions) -> anyhow::Result<()> {
     render(fig, out, opts)?;
-    eprintln!("wrote {}", out.display());
+    tracing::info!("wrote {}", out.display());
     Ok(())
 }
 

@@ -146,7 +146,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         ),
         SectionShape::TooFew => "too few points to tell".to_string(),
     };
-    eprintln!(
+    tracing::info!(
         "{} section points, period {period:.6} samples; the section is {shape}",
         summary.n_points
     );

@@ -58,7 +58,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     opts.figure.height = args.height;
     let started = std::time::Instant::now();
     let progress = move |msg: &str| {
-        eprintln!("[{:7.1} s] {msg}", started.elapsed().as_secs_f64());
+        tracing::info!("[{:7.1} s] {msg}", started.elapsed().as_secs_f64());
     };
     let readme = args.out.join(opts.readme_name());
     let report = reproduce(&opts, &progress)

@@ -59,7 +59,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             }
             pdamp::io::atomic_write(path, text.as_bytes())
                 .with_context(|| format!("writing {}", path.display()))?;
-            eprintln!(
+            tracing::info!(
                 "wrote {} — check it with: pdamp check-scene {}",
                 path.display(),
                 path.display()

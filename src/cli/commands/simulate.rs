@@ -91,10 +91,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let mut resolved = scene.resolve()?;
     resolved.place_outputs_in(&args.out);
     let plan = plan_full_run(&resolved, args.max_output)?;
-    eprintln!("plan: {}", plan.describe());
+    tracing::info!("plan: {}", plan.describe());
     let auto_choice = resolved.auto.as_ref().map(|c| {
         let why = pdamp::tradeoff::auto::describe(c);
-        eprintln!("{why}");
+        tracing::info!("{why}");
         why
     });
     let dir = RunDir::create(&args.out)

@@ -85,7 +85,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     match &args.script {
         Some(path) => {
             pdamp::io::atomic_write(path, script.as_bytes())?;
-            eprintln!(
+            tracing::info!(
                 "{} points, estimated {:.3} core-hours ({:.0} CPU-s in the largest of {} shards); \
                  submit with: bash {}",
                 cost.points,

@@ -122,7 +122,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
     }
     out.flush()?;
-    eprintln!(
+    tracing::info!(
         "{} samples, bin width {:.6e} {}, {} line(s) carrying {:.1} % of the power",
         spec.n_samples,
         spec.bin_width,

@@ -116,12 +116,7 @@ pub struct Args {
     )]
     pub horizon: usize,
     /// Starting neighbourhood radius as a fraction of the standard deviation.
-    #[arg(
-        short = 'v',
-        long = "epsilon",
-        default_value_t = 0.1,
-        help_heading = "Statistic"
-    )]
+    #[arg(long = "epsilon", default_value_t = 0.1, help_heading = "Statistic")]
     pub epsilon: f64,
     /// Smallest number of neighbours per prediction (ε grows by 1.2 until reached).
     #[arg(

@@ -98,7 +98,7 @@ pub(crate) fn select_segment(x: Vec<f64>, fraction: Option<f64>) -> anyhow::Resu
     }
     let min_len = ((f * x.len() as f64).ceil() as usize).clamp(3, x.len());
     let seg = end_to_end_segment(&x, min_len).context("end-to-end segment selection")?;
-    eprintln!(
+    tracing::info!(
         "end-to-end: using samples {}..{} ({} of {}), mismatch {:.3e} (whole series {:.3e})",
         seg.start,
         seg.start + seg.len,
@@ -125,7 +125,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .with_context(|| format!("surrogates of {}", args.input.file))?;
     for (k, s) in surr.iter().enumerate() {
         if args.method == SurrogateMethod::Iaaft {
-            eprintln!(
+            tracing::info!(
                 "surrogate {}: {} iterations{}, discrepancy {:.3e}",
                 k + 1,
                 s.iterations,

@@ -100,7 +100,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     );
     if !report.failed.is_empty() {
         for (i, why) in &report.failed {
-            eprintln!("point {i}: {why}");
+            tracing::error!("point {i}: {why}");
         }
         return Err(crate::cli::exit::PointsFailed {
             failed: report.failed.len(),

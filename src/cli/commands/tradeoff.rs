@@ -78,7 +78,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     };
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
-    let study = run_study(&params, &rig, &opts, &|line| eprintln!("{line}"))?;
+    let study = run_study(&params, &rig, &opts, &|line| tracing::info!("{line}"))?;
     let header = vec![
         "pdamp tradeoff: speed against accuracy, one row per setting (errors against the reference row)".to_string(),
         format!("generator: pdamp {} `pdamp tradeoff {}`", env!("CARGO_PKG_VERSION"), std::env::args().skip(2).collect::<Vec<_>>().join(" ")),
