@@ -118,6 +118,15 @@ fn frf_with_reference_curves() {
             particle_mass_kg: Some(common::SCENE_B_PARTICLE_MASS_KG),
             base_amplitude_m: common::SCENE_B_AMPLITUDE_M,
         }),
+        fitted: vec![pdamp::plot::frf::FrfFitted {
+            series: 0,
+            system: pdamp::model::PrimarySystem {
+                mass_kg: 2.5,
+                stiffness_n_m: 21500.0,
+                damping_n_s_m: 14.0,
+            },
+            base_amplitude_m: 4.5e-3,
+        }],
     };
     check_renders(&fig, "frf", BLUE, 200);
 }
@@ -553,6 +562,7 @@ fn render_rgb_has_requested_size_and_custom_title() {
             y: &z,
         }],
         reference: None,
+        fitted: Vec::new(),
     };
     let o = FigureOptions {
         width: 400,
@@ -577,6 +587,7 @@ fn nan_in_data_is_an_error_naming_the_field() {
             y: &z,
         }],
         reference: None,
+        fitted: Vec::new(),
     };
     let dir = scratch::tempdir().unwrap();
     let path = dir.path().join("bad.png");

@@ -209,8 +209,9 @@ pub fn render_rgb<F: Figure>(fig: &F, opts: &FigureOptions) -> Result<Vec<u8>, P
     Ok(buf)
 }
 
-/// Colour-blind-friendly qualitative palette (Okabe & Ito 2008), for series.
-pub const PALETTE: [RGBColor; 8] = [
+/// Colour-blind-friendly qualitative palette (Okabe & Ito 2008), for series, extended by a
+/// grey and a brown so that figures of up to ten curves (the DEM energy ledger) repeat none.
+pub const PALETTE: [RGBColor; 10] = [
     RGBColor(0, 114, 178),   // blue
     RGBColor(213, 94, 0),    // vermillion
     RGBColor(0, 158, 115),   // bluish green
@@ -219,6 +220,8 @@ pub const PALETTE: [RGBColor; 8] = [
     RGBColor(86, 180, 233),  // sky blue
     RGBColor(0, 0, 0),       // black
     RGBColor(240, 228, 66),  // yellow
+    RGBColor(128, 128, 128), // grey
+    RGBColor(140, 80, 20),   // brown
 ];
 
 /// The i-th palette colour (cycling).

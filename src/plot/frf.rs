@@ -1,10 +1,15 @@
 //! Frequency response Z(f) of one or more runs, with the reference curves (2.1.21) of the
-//! primary alone (mass M) and with the grains frozen to it (M + m_p) (SPEC §7).
+//! primary alone (mass M) and with the grains frozen to it (M + m_p), and the curves of
+//! fitted effective systems (M_ef, C_ef; `pdamp plot frf --fit`) (SPEC §7). The legend sits in
+//! a panel beside the plot, never on the data.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::common::{self, check_finite, draw_err, padded_range, series_color, Figure, Series};
+use super::common::{
+    self, check_finite, draw_err, padded_range, series_color, Figure, LegendEntry, LegendMark,
+    Series,
+};
 use crate::error::PlotError;
 use crate::model::PrimarySystem;
 
@@ -19,14 +24,27 @@ pub struct FrfReference {
     pub base_amplitude_m: f64,
 }
 
+/// The curve (2.1.21) of a fitted effective system, drawn over the series it was fitted to.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrfFitted {
+    /// Index of the fitted series in [`FrfFigure::series`] (its colour).
+    pub series: usize,
+    /// The effective system M_ef, K, C_ef.
+    pub system: PrimarySystem,
+    /// Base amplitude U (m).
+    pub base_amplitude_m: f64,
+}
+
 /// FRF figure: amplitude (mm) versus frequency (Hz), markers and lines per series, dashed
-/// reference curves.
+/// reference curves, dotted fitted curves.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FrfFigure<'a> {
     /// Simulated or measured curves: x = `frequency_hz`, y = `amplitude_m`.
     pub series: Vec<Series<'a>>,
     /// Reference curves (2.1.21), if given.
     pub reference: Option<FrfReference>,
+    /// Fitted effective systems (may be empty).
+    pub fitted: Vec<FrfFitted>,
 }
 
 impl FrfReference {
@@ -110,6 +128,15 @@ impl Figure for FrfFigure<'_> {
         if let Some(r) = &self.reference {
             r.validate()?;
         }
+        for f in &self.fitted {
+            if f.series >= self.series.len() {
+                return Err(PlotError::bad(
+                    "frf",
+                    "fitted",
+                    format!("series index {} out of range", f.series),
+                ));
+            }
+        }
         Ok(())
     }
 
@@ -147,42 +174,64 @@ impl Figure for FrfFigure<'_> {
         // an almost undamped reference peak would squash the data: cap at 3× the data maximum
         let (_, data_hi) = padded_range(data_mm.iter().map(|v| v.as_slice()), 0.05);
         z_hi = z_hi.min(3.0 * data_hi);
-        let mut chart = ChartBuilder::on(root)
-            .caption(title, common::caption_font())
+        let (plot, panel) = common::with_side_panel(root, title, 0.26, 200)?;
+        let mut chart = ChartBuilder::on(&plot)
             .margin(common::scaled(root, 0.02, 8))
             .x_label_area_size(common::scaled(root, 0.08, 40))
             .y_label_area_size(common::scaled(root, 0.1, 55))
             .build_cartesian_2d(f_lo..f_hi, 0.0..z_hi)
             .map_err(draw_err)?;
         common::mesh(&mut chart, "frequency f (Hz)", "amplitude Z (mm)")?;
+        let mut legend = Vec::new();
         for (i, (label, pts)) in refs.into_iter().enumerate() {
             let color = if i == 0 {
-                BLACK.mix(0.7)
+                RGBColor(60, 60, 60)
             } else {
-                RGBColor(120, 120, 120).mix(0.9)
+                RGBColor(130, 130, 130)
             };
             let style = ShapeStyle::from(color).stroke_width(2);
             let clipped: Vec<(f64, f64)> = pts.into_iter().filter(|p| p.1 <= z_hi).collect();
             chart
                 .draw_series(DashedLineSeries::new(clipped, 8 + 4 * i as u32, 5, style))
-                .map_err(draw_err)?
-                .label(label)
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
+                .map_err(draw_err)?;
+            legend.push(LegendEntry::new(label, color, LegendMark::Dashed(2)));
         }
         for (i, (s, y)) in self.series.iter().zip(&data_mm).enumerate() {
             let color = series_color(i);
             let pts: Vec<(f64, f64)> = s.x.iter().copied().zip(y.iter().copied()).collect();
             chart
                 .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
-                .map_err(draw_err)?
-                .label(s.label)
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
+                .map_err(draw_err)?;
             chart
                 .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
                 .map_err(draw_err)?;
+            legend.push(LegendEntry::new(s.label, color, LegendMark::Line(2)));
         }
-        common::legend(&mut chart, SeriesLabelPosition::UpperRight)
+        for fit in &self.fitted {
+            let color = series_color(fit.series);
+            let n = 600;
+            let pts: Vec<(f64, f64)> = (0..=n)
+                .map(|k| {
+                    let f = f_lo.max(1e-3) + (f_hi - f_lo.max(1e-3)) * k as f64 / n as f64;
+                    let z = fit.system.steady_amplitude_at_hz(fit.base_amplitude_m, f);
+                    (f, 1e3 * z)
+                })
+                .filter(|p| p.1 <= z_hi)
+                .collect();
+            let style = ShapeStyle::from(color).stroke_width(2);
+            chart
+                .draw_series(DashedLineSeries::new(pts, 4, 4, style))
+                .map_err(draw_err)?;
+            legend.push(LegendEntry::new(
+                format!("fit (2.1.21) to {}:", self.series[fit.series].label),
+                color,
+                LegendMark::Dashed(2),
+            ));
+            legend.push(LegendEntry::note(format!(
+                "M_ef = {:.4} kg, C_ef = {:.4} N s/m",
+                fit.system.mass_kg, fit.system.damping_n_s_m
+            )));
+        }
+        common::side_legend(&panel, &legend)
     }
 }

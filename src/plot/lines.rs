@@ -4,7 +4,9 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::common::{self, draw_err, padded_range, series_color, Figure, Series};
+use super::common::{
+    self, draw_err, padded_range, series_color, Figure, LegendEntry, LegendMark, Series,
+};
 use crate::error::PlotError;
 
 /// Several curves sharing axes, drawn as lines with markers and a legend.
@@ -66,8 +68,9 @@ impl Figure for LinesFigure<'_> {
         if ys.iter().flatten().all(|&v| v >= 0.0) {
             y_lo = y_lo.max(0.0);
         }
-        let mut chart = ChartBuilder::on(root)
-            .caption(title, common::caption_font())
+        // the legend in a panel beside the plot, never on the curves
+        let (plot, panel) = common::with_side_panel(root, title, 0.26, 200)?;
+        let mut chart = ChartBuilder::on(&plot)
             .margin(common::scaled(root, 0.02, 8))
             .x_label_area_size(common::scaled(root, 0.08, 40))
             .y_label_area_size(common::scaled(root, 0.11, 60))
@@ -75,18 +78,20 @@ impl Figure for LinesFigure<'_> {
             .map_err(draw_err)?;
         common::mesh(&mut chart, &self.x_label, &self.y_label)?;
         let shapes = self.series.len();
+        let mut legend = Vec::new();
         for (i, (s, y)) in self.series.iter().zip(&ys).enumerate() {
             let color = series_color(i);
             let mut pts: Vec<(f64, f64)> = s.x.iter().copied().zip(y.iter().copied()).collect();
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));
             chart
                 .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
-                .map_err(draw_err)?
-                .label(s.label)
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
-            // alternate marker shapes so curves differ without colour too
+                .map_err(draw_err)?;
+            legend.push(LegendEntry::new(s.label, color, LegendMark::Line(2)));
+            // markers on sampled points (a sweep), not on a dense time series; alternate
+            // marker shapes so curves differ without colour too
+            if pts.len() > MAX_MARKED_POINTS {
+                continue;
+            }
             if i % 2 == 0 || shapes == 1 {
                 chart
                     .draw_series(pts.iter().map(|&p| Circle::new(p, 4, color.filled())))
@@ -100,6 +105,9 @@ impl Figure for LinesFigure<'_> {
                     .map_err(draw_err)?;
             }
         }
-        common::legend(&mut chart, SeriesLabelPosition::UpperRight)
+        common::side_legend(&panel, &legend)
     }
 }
+
+/// Curves with more points than this are drawn without markers.
+const MAX_MARKED_POINTS: usize = 200;

@@ -205,10 +205,11 @@ fn energy_vs_frequency(
         })
         .collect();
     ctx.write_csv(name, &header, &rows)?;
-    let pairs: Vec<(&str, &[f64])> = cols
+    let labels: Vec<String> = cols.iter().map(|c| energy_label(c)).collect();
+    let pairs: Vec<(&str, &[f64])> = labels
         .iter()
         .zip(&values)
-        .map(|(c, v)| (energy_label(c), v.as_slice()))
+        .map(|(c, v)| (c.as_str(), v.as_slice()))
         .collect();
     let size = ctx.render(name, &energy_figure(&f, "frequency f (Hz)", &pairs))?;
     Ok(FigureRecord {

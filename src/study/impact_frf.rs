@@ -125,6 +125,7 @@ pub(super) fn frf_figure(
         &FrfFigure {
             series,
             reference: Some(SCENE_B.reference()),
+            fitted: Vec::new(),
         },
     )?;
     let mut commands = [e0.commands.clone(), e8.commands.clone()].concat();

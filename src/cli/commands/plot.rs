@@ -260,6 +260,10 @@ pub struct PlotOptions {
     /// Base amplitude U (m) for the FRF reference curves.
     #[arg(long)]
     pub base_amplitude: Option<f64>,
+    /// `frf`: fit the effective mass and damping (2.1.21) to each input, K and U held at
+    /// --stiffness and --base-amplitude (as `pdamp fit-frf`), and draw the fitted curves.
+    #[arg(long)]
+    pub fit: bool,
     /// Embedding dimension for recurrence (default 1).
     #[arg(long)]
     pub dim: Option<usize>,
@@ -316,8 +320,25 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 .zip(&labels)
                 .map(|((x, y), l)| Series { label: l, x, y })
                 .collect();
-            let reference = frf_reference(o)?;
-            draw(&FrfFigure { series, reference }, out, &opts)
+            let reference = if o.fit && o.mass.is_none() && o.damping.is_none() {
+                None
+            } else {
+                frf_reference(o)?
+            };
+            let fitted = if o.fit {
+                frf_fits(o, &cols, &labels)?
+            } else {
+                Vec::new()
+            };
+            draw(
+                &FrfFigure {
+                    series,
+                    reference,
+                    fitted,
+                },
+                out,
+                &opts,
+            )
         }
         Kind::BedMotion => {
             one()?;
@@ -443,6 +464,28 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         Kind::Effective => {
             one()?;
             let xn = o.x.clone().unwrap_or_else(|| first.headers[0].clone());
+            // an ungrouped fit (one row, no group column) has no parameter to put on x
+            const FIT_COLUMNS: [&str; 4] = [
+                "mass_ef_kg",
+                "mass_ef_stderr_kg",
+                "damping_ef_ns_per_m",
+                "damping_ef_stderr_ns_per_m",
+            ];
+            if FIT_COLUMNS.contains(&xn.as_str()) || first.rows.len() < 2 {
+                let msg = format!(
+                    "{}: `effective` plots M_ef and C_ef against the parameter the fits were \
+                     grouped by, and this table has {} (x column `{xn}`): run \
+                     `pdamp fit-frf SWEEP.csv --group COLUMN …` on a sweep over that parameter \
+                     (e.g. --vary damper.gap=… --vary excitation.frequency=…)",
+                    first.path,
+                    if first.rows.len() < 2 {
+                        "a single fit".to_string()
+                    } else {
+                        "no group column".to_string()
+                    }
+                );
+                return Err(pdamp::error::PlotError::bad("effective", "x", msg).into());
+            }
             let x = first.f64_column(&xn)?;
             let c = |n: &str| first.f64_column(n);
             let (m, ms, d, ds) = (
@@ -463,6 +506,33 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             };
             draw(&fig, out, &opts)
         }
+        Kind::Energy if first.has("time_s") => {
+            one()?;
+            // one run's series.csv: the ledger over time
+            let t = first.f64_column("time_s")?;
+            let present: Vec<(&str, &str)> = pdamp::plot::energy::LEDGER_COLUMNS
+                .into_iter()
+                .filter(|(c, _)| first.has(c))
+                .collect();
+            if present.is_empty() {
+                let msg = format!(
+                    "{}: no energy ledger (`e_*_j` columns): only DEM runs write one; for a \
+                     sweep, pass its sweep.csv (energy per cycle against frequency)",
+                    first.path
+                );
+                return Err(pdamp::error::PlotError::bad("energy", "series", msg).into());
+            }
+            let cols = present
+                .iter()
+                .map(|(c, _)| first.f64_column(c))
+                .collect::<Result<Vec<_>, _>>()?;
+            let pairs: Vec<(&str, &[f64])> = present
+                .iter()
+                .zip(&cols)
+                .map(|((_, label), v)| (*label, v.as_slice()))
+                .collect();
+            draw(&pdamp::plot::energy::ledger_figure(&t, &pairs), out, &opts)
+        }
         Kind::Energy => {
             one()?;
             let xn = o.x.clone().unwrap_or_else(|| "frequency_hz".into());
@@ -479,10 +549,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 .iter()
                 .map(|n| first.f64_column(n))
                 .collect::<Result<Vec<_>, _>>()?;
-            let pairs: Vec<(&str, &[f64])> = names
+            let labels: Vec<String> = names.iter().map(|n| energy_label(n)).collect();
+            let pairs: Vec<(&str, &[f64])> = labels
                 .iter()
                 .zip(&cols)
-                .map(|(n, c)| (energy_label(n), c.as_slice()))
+                .map(|(n, c)| (n.as_str(), c.as_slice()))
                 .collect();
             draw(&energy_figure(&x, &axis_label(&xn), &pairs), out, &opts)
         }
@@ -842,6 +913,45 @@ fn axis_label(col: &str) -> String {
         "excitation.amplitude" => "base amplitude U (m)".into(),
         other => other.into(),
     }
+}
+
+/// `plot frf --fit`: the effective system of each input (K, U fixed), printed as `fit-frf`
+/// does; an input the fit refuses is named and left without a curve.
+fn frf_fits(
+    o: &PlotOptions,
+    cols: &[(Vec<f64>, Vec<f64>)],
+    labels: &[String],
+) -> anyhow::Result<Vec<pdamp::plot::frf::FrfFitted>> {
+    let (Some(k), Some(u)) = (o.stiffness, o.base_amplitude) else {
+        bail!("--fit needs --stiffness (N/m) and --base-amplitude (m): they are held fixed in the fit (2.1.21)");
+    };
+    let opts = pdamp::analysis::frf_fit::FrfFitOptions::new(k, u);
+    let mut out = Vec::new();
+    for (i, ((f, z), label)) in cols.iter().zip(labels).enumerate() {
+        match pdamp::analysis::frf_fit::fit_frf(f, z, &opts) {
+            Ok(fit) => {
+                tracing::info!(
+                    "{label}: M_ef = {:.6} ± {:.2e} kg, C_ef = {:.6} ± {:.2e} N s/m ({} points)",
+                    fit.mass_ef_kg,
+                    fit.mass_ef_stderr_kg,
+                    fit.damping_ef_n_s_m,
+                    fit.damping_ef_stderr_n_s_m,
+                    fit.points
+                );
+                out.push(pdamp::plot::frf::FrfFitted {
+                    series: i,
+                    system: pdamp::model::PrimarySystem {
+                        mass_kg: fit.mass_ef_kg,
+                        stiffness_n_m: k,
+                        damping_n_s_m: fit.damping_ef_n_s_m,
+                    },
+                    base_amplitude_m: u,
+                });
+            }
+            Err(e) => tracing::warn!("{label}: no fitted curve: {e}"),
+        }
+    }
+    Ok(out)
 }
 
 fn frf_reference(a: &PlotOptions) -> anyhow::Result<Option<FrfReference>> {

@@ -1,4 +1,4 @@
-//! `pdamp reproduce [--smoke|--quick|--full] [--out figures]`: the whole figure set of SPEC §7
+//! `pdamp reproduce [--smoke|--quick|--full] [--out out/figures]`: the whole figure set of SPEC §7
 //! for scene B, headless, with `OUT/README.md` saying how each figure was made.
 
 use anyhow::Context;
@@ -22,8 +22,10 @@ pub struct Args {
     #[arg(long)]
     pub smoke: bool,
     /// Output directory: PNG + CSV per figure, README.md, sweeps under OUT/data/ (resumable:
-    /// rerunning reuses finished points).
-    #[arg(long, default_value = "figures")]
+    /// rerunning reuses finished points). The default is outside the repository's tracked
+    /// files; the committed reference set in `figures/` is rewritten only when asked for
+    /// with `--out figures`.
+    #[arg(long, default_value = "out/figures")]
     pub out: PathBuf,
     /// Make only these figures (repeatable; e.g. `--only frf --only poincare`; a name also
     /// selects its variants: `poincare` → `poincare_f10`, …). A selection writes its own
