@@ -651,7 +651,9 @@ mod tests {
         assert_eq!(b[1].points, [(4, 4), (5, 5), (6, 6), (7, 7)]);
         // down: points 10..19, values decreasing
         assert_eq!(b[3].points[0], (19, 9));
-        assert_eq!(b[4].warmup, [(16, 6), (15, 5)]);
+        // down runs 9, 8, …, 0 in blocks [9..6], [5..2], [1, 0]: the second warms up on 7, 6
+        assert_eq!(b[4].warmup, [(17, 7), (16, 6)]);
+        assert_eq!(b[4].points[0], (15, 5));
         let covered: usize = b.iter().map(|x| x.points.len()).sum();
         assert_eq!(covered, 20);
         // shards: contiguous ranges of blocks, all covered once

@@ -27,7 +27,19 @@ pub struct SweepDef {
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
     /// Skip the nonlinear analysis of each point (faster; regime columns stay empty).
-    #[arg(long)]
+    #[arg(
+        long,
+        long_help = "Skip the nonlinear analysis of each point (faster; regime columns stay \
+empty).\n\n\
+Sample grid of a point of the event-driven model (damper none or impact): without the \
+analysis, the model is evaluated only at its events (impacts, sticking, detachment), at its \
+segment ends (1/16 of the fastest time scale) and once per forcing period T over the analysis \
+window (the stroboscopic rows of strobe.csv, t = kT, run.analysis_fraction); the amplitude \
+comes from the exact extrema of z(t) between those points and the energies from the closed \
+forms (Gauss-Legendre, exact to rounding), so no series is sampled at all. With the analysis, \
+the grain series is also sampled every max(run.sample_interval, analysis window / \
+run.analysis_max_samples) seconds over the analysis window (default at most 20000 samples)."
+    )]
     pub no_analysis: bool,
 }
 
