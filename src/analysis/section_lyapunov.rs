@@ -158,23 +158,36 @@ pub fn section_lyapunov(
     }
     let usable = n - steps;
     let refs: Vec<usize> = (usable.saturating_sub(opts.max_references.max(1))..usable).collect();
-    // squared distances from every reference to every admissible neighbour, once
+    // the points in one flat array (dist2 on its rows: the same sums as on the rows of `u`)
+    let flat: Vec<f64> = u.iter().flatten().copied().collect();
+    let row = |i: usize| &flat[i * dim..(i + 1) * dim];
+    // every reference's 200 nearest admissible neighbours (distance, index), nearest first in
+    // the order of a stable sort by distance (ties by index, as the candidates are generated
+    // by increasing index): selected in one scratch buffer, then only those sorted
     let w = opts.theiler;
     let mut nn = Vec::with_capacity(refs.len());
+    let mut scratch: Vec<(f64, usize)> = Vec::with_capacity(usable);
+    let by_d = |a: &(f64, usize), b: &(f64, usize)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
     let pair_d: Vec<Vec<(f64, usize)>> = refs
         .iter()
         .map(|&k| {
-            let mut v: Vec<(f64, usize)> = (0..usable)
-                .filter(|&j| j.abs_diff(k) > w)
-                .map(|j| (dist2(&u[k], &u[j]).sqrt(), j))
-                .filter(|(d, _)| *d > 0.0)
-                .collect();
-            v.sort_by(|a, b| a.0.total_cmp(&b.0));
-            if let Some(first) = v.first() {
+            scratch.clear();
+            let rk = row(k);
+            scratch.extend(
+                (0..usable)
+                    .filter(|&j| j.abs_diff(k) > w)
+                    .map(|j| (dist2(rk, row(j)).sqrt(), j))
+                    .filter(|(d, _)| *d > 0.0),
+            );
+            if scratch.len() > 200 {
+                scratch.select_nth_unstable_by(199, by_d);
+                scratch.truncate(200);
+            }
+            scratch.sort_unstable_by(by_d);
+            if let Some(first) = scratch.first() {
                 nn.push(first.0);
             }
-            v.truncate(200);
-            v
+            scratch.clone()
         })
         .collect();
     if nn.is_empty() {
@@ -187,40 +200,58 @@ pub fn section_lyapunov(
     let s_sat = (std::f64::consts::SQRT_2 * size).ln() - 1.0;
     let count = opts.eps_count.max(1);
     let span = opts.eps_span.max(1.0);
-    let mut curves = Vec::with_capacity(count);
-    for e in 0..count {
-        let frac = if count == 1 {
-            0.0
-        } else {
-            e as f64 / (count - 1) as f64
-        };
-        let eps = noise_floor * span.powf(frac);
-        let mut sum = vec![0.0; steps + 1];
-        let mut cnt = vec![0usize; steps + 1];
-        for (&k, cand) in refs.iter().zip(&pair_d) {
-            let within: Vec<usize> = cand
-                .iter()
-                .take_while(|(d, _)| *d <= eps)
-                .map(|(_, j)| *j)
-                .collect();
-            if within.is_empty() {
-                continue;
-            }
-            for dn in 0..=steps {
-                let mean_d = within
-                    .iter()
-                    .map(|&j| dist2(&u[k + dn], &u[j + dn]).sqrt())
-                    .sum::<f64>()
-                    / within.len() as f64;
+    let eps: Vec<f64> = (0..count)
+        .map(|e| {
+            let frac = if count == 1 {
+                0.0
+            } else {
+                e as f64 / (count - 1) as f64
+            };
+            noise_floor * span.powf(frac)
+        })
+        .collect();
+    let eps_max = eps.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    // S(ε, Δ) for every ε at once: per reference, the running sum of the followed distances
+    // over its candidates (nearest first) is read at each radius' neighbour count — the same
+    // additions in the same order as summing each radius' neighbours directly, and every
+    // (ε, Δ) sum accumulates over the references in the same order as one radius at a time
+    let mut sum = vec![vec![0.0; steps + 1]; count];
+    let mut cnt = vec![vec![0usize; steps + 1]; count];
+    let mut within = vec![0usize; count];
+    let mut running: Vec<f64> = Vec::with_capacity(200);
+    for (&k, cand) in refs.iter().zip(&pair_d) {
+        for (n_e, e) in within.iter_mut().zip(&eps) {
+            *n_e = cand.iter().take_while(|(d, _)| *d <= *e).count();
+        }
+        let len = cand.iter().take_while(|(d, _)| *d <= eps_max).count();
+        if len == 0 {
+            continue;
+        }
+        for dn in 0..=steps {
+            let rk = row(k + dn);
+            let mut acc = 0.0;
+            running.clear();
+            running.extend(cand[..len].iter().map(|(_, j)| {
+                acc += dist2(rk, row(j + dn)).sqrt();
+                acc
+            }));
+            for ((&n_e, s), c) in within.iter().zip(&mut sum).zip(&mut cnt) {
+                if n_e == 0 {
+                    continue;
+                }
+                let mean_d = running[n_e - 1] / n_e as f64;
                 if mean_d > 0.0 {
-                    sum[dn] += mean_d.ln();
-                    cnt[dn] += 1;
+                    s[dn] += mean_d.ln();
+                    c[dn] += 1;
                 }
             }
         }
+    }
+    let mut curves = Vec::with_capacity(count);
+    for ((&eps, sum), cnt) in eps.iter().zip(&sum).zip(&cnt) {
         let s: Vec<Option<f64>> = sum
             .iter()
-            .zip(&cnt)
+            .zip(cnt)
             .map(|(a, &c)| (c > 0).then(|| a / c as f64))
             .collect();
         curves.push(fit_curve(eps, s, s_sat));

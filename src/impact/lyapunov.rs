@@ -214,6 +214,53 @@ impl ImpactWorld {
         }
     }
 
+    /// One run that serves both the run's summary (samples to `obs`, as [`ImpactWorld::run`])
+    /// and [`ImpactWorld::model_lyapunov`] over the analysis window (from the setup's
+    /// `analysis_start_s` instead of the steady start): the tangent dynamics ride on the run
+    /// itself, so an analysed point costs one simulation, not two.
+    ///
+    /// # Errors
+    /// The run's errors (outer); the exponent's own (inner), as
+    /// [`ImpactWorld::model_lyapunov`] over the analysis window.
+    pub fn run_with_model_lyapunov(
+        &self,
+        obs: &mut dyn crate::observe::Observer,
+        run_opts: &RunOptions,
+        opts: &ModelLyapunovOptions,
+    ) -> Result<(crate::model::RunSummary, Result<ModelLyapunov, SimError>), SimError> {
+        let mut window = self.clone();
+        window.steady_start = self.strobe_start;
+        let (k0, k_end) = match opts.validate().and_then(|()| window.lyapunov_window()) {
+            Ok(w) => w,
+            Err(e) => return Ok((self.run(obs, run_opts)?, Err(e))),
+        };
+        let mut tan = Tangent::new(self, k0, k_end);
+        let summary = self.run_hooked(obs, run_opts, &mut tan)?;
+        tan.finish();
+        if let Some(err) = tan.failure {
+            return Ok((summary, Err(err)));
+        }
+        if tan.logs.len() < 2 {
+            let err = SimError::Unstable {
+                t_s: tan.t,
+                reason: format!(
+                    "the run ended after {} of {} measured forcing periods",
+                    tan.logs.len(),
+                    k_end - k0
+                ),
+            };
+            return Ok((summary, Err(err)));
+        }
+        let l = self.lyapunov_result(
+            LyapunovMethod::TangentSaltation,
+            &tan.logs,
+            opts.blocks,
+            tan.stuck_s,
+            tan.impacts,
+        );
+        Ok((summary, Ok(l)))
+    }
+
     /// Largest Lyapunov exponent of the stroboscopic map, from the tangent dynamics of the
     /// model with saltation matrices (per forcing period and per second, with a standard error).
     ///

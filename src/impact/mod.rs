@@ -201,6 +201,11 @@ struct Segment<'a> {
     end: (f64, f64),
     /// (sin Ωt, cos Ωt) at the start and at `b`, for a spring-mounted box.
     phases: Option<((f64, f64), (f64, f64))>,
+    /// The node cache's segment length h and homogeneous basis at τ = h.
+    end_basis: Option<(f64, (f64, f64))>,
+    /// (sin Ωb, cos Ωb) evaluated exactly by the event search, if it did (the next
+    /// segment's start phase when the segment ends at `b`).
+    exact_end_phase: std::cell::Cell<Option<(f64, f64)>>,
 }
 
 /// Which event ended a segment.
@@ -283,6 +288,13 @@ struct NodeCache {
     sc: [(f64, f64); 9],
     /// Homogeneous basis at the 8 nodes and at τ = h.
     basis: [(f64, f64); 9],
+    /// The 8-point Gauss–Legendre sums of the base work and of the viscous loss over the
+    /// segment as quadratic forms of X = (y0, w0, sin Ωt, cos Ωt, 1) (the anchor's homogeneous
+    /// part and the phase at the segment start): every node value is linear in X, so the
+    /// quadrature is X^T Q X with Q summed once per cache (25 products per segment instead of
+    /// the closed forms at 8 nodes).
+    q_work: [[f64; 5]; 5],
+    q_visc: [[f64; 5]; 5],
 }
 
 impl NodeCache {
@@ -292,9 +304,12 @@ impl NodeCache {
             loaded: false,
             sc: [(0.0, 0.0); 9],
             basis: [(0.0, 0.0); 9],
+            q_work: [[0.0; 5]; 5],
+            q_visc: [[0.0; 5]; 5],
         }
     }
 
+    #[allow(clippy::needless_range_loop)]
     fn prepare(&mut self, sd: &Sdof, omega: f64, h: f64, loaded: bool) {
         if self.h == h && self.loaded == loaded {
             return;
@@ -309,6 +324,105 @@ impl NodeCache {
         }
         self.h = h;
         self.loaded = loaded;
+        self.q_work = [[0.0; 5]; 5];
+        self.q_visc = [[0.0; 5]; 5];
+        let (k, c, u_amp) = (sd.stiffness, sd.damping, sd.base_amplitude);
+        let an = |y0: f64, w0: f64| Anchor { t0_s: 0.0, y0, w0 };
+        for (i, wgt) in GL_W.iter().enumerate() {
+            let basis = self.basis[i];
+            // (z, z') at the node as affine maps of (y0, w0) and of (sin, cos) at the node
+            let base = sd.eval_parts(&an(0.0, 0.0), basis, (0.0, 0.0));
+            let part = |a: &Anchor, sc: (f64, f64)| {
+                let (z, v) = sd.eval_parts(a, basis, sc);
+                (z - base.0, v - base.1)
+            };
+            let (zy, vy) = part(&an(1.0, 0.0), (0.0, 0.0));
+            let (zw, vw) = part(&an(0.0, 1.0), (0.0, 0.0));
+            let (zsn, vsn) = part(&an(0.0, 0.0), (1.0, 0.0));
+            let (zcs, vcs) = part(&an(0.0, 0.0), (0.0, 1.0));
+            // (sin, cos) at the node from (sin Ωt, cos Ωt) at the start: rotate by (S, C)
+            let (sn, cs) = self.sc[i];
+            let sin_l = [0.0, 0.0, cs, sn, 0.0];
+            let cos_l = [0.0, 0.0, -sn, cs, 0.0];
+            let z_l = [
+                zy,
+                zw,
+                zsn * sin_l[2] + zcs * cos_l[2],
+                zsn * sin_l[3] + zcs * cos_l[3],
+                base.0,
+            ];
+            let v_l = [
+                vy,
+                vw,
+                vsn * sin_l[2] + vcs * cos_l[2],
+                vsn * sin_l[3] + vcs * cos_l[3],
+                base.1,
+            ];
+            let mut du = [0.0; 5];
+            let mut force = [0.0; 5];
+            let mut rel = [0.0; 5];
+            for j in 0..5 {
+                let u = u_amp * cos_l[j];
+                du[j] = -u_amp * omega * sin_l[j];
+                rel[j] = du[j] - v_l[j];
+                force[j] = k * (u - z_l[j]) + c * rel[j];
+            }
+            for j in 0..5 {
+                for m in 0..5 {
+                    self.q_work[j][m] += wgt * 0.5 * (force[j] * du[m] + force[m] * du[j]);
+                    self.q_visc[j][m] += wgt * c * rel[j] * rel[m];
+                }
+            }
+        }
+    }
+
+    /// X^T Q X for the segment start's X = (y0, w0, sin Ωt, cos Ωt, 1).
+    #[inline]
+    fn form(q: &[[f64; 5]; 5], x: &[f64; 5]) -> f64 {
+        let mut total = 0.0;
+        for (row, xj) in q.iter().zip(x) {
+            let r = row[0] * x[0] + row[1] * x[1] + row[2] * x[2] + row[3] * x[3] + row[4] * x[4];
+            total += xj * r;
+        }
+        total
+    }
+}
+
+/// A few [`NodeCache`]s keyed by (segment length, mode): a run alternates between flight and
+/// sticking (free and loaded system) and between the fast and the slow step, and one cache
+/// would be refilled (18 `sin_cos` and 9 `exp`) at every such switch. The values are the same
+/// as a single refilled cache's, so results are bit-identical.
+#[derive(Debug, Clone, Copy)]
+struct NodeCaches {
+    slots: [NodeCache; 4],
+    /// Slot refilled next when no slot matches (round robin).
+    next: usize,
+}
+
+impl NodeCaches {
+    fn empty() -> Self {
+        NodeCaches {
+            slots: [NodeCache::empty(); 4],
+            next: 0,
+        }
+    }
+
+    /// The cache of segment length `h` and mode `loaded`, filled if no slot holds it.
+    fn get(&mut self, sd: &Sdof, omega: f64, h: f64, loaded: bool) -> &NodeCache {
+        let i = match self
+            .slots
+            .iter()
+            .position(|c| c.h == h && c.loaded == loaded)
+        {
+            Some(i) => i,
+            None => {
+                let i = self.next;
+                self.next = (i + 1) % self.slots.len();
+                self.slots[i].prepare(sd, omega, h, loaded);
+                i
+            }
+        };
+        &self.slots[i]
     }
 }
 
@@ -550,7 +664,9 @@ impl ImpactWorld {
         let progress_every = (self.duration / 200.0).max(self.period);
         let mut next_progress = progress_every;
         let mut stall = 0u32;
-        let mut cache = NodeCache::empty();
+        let mut caches = NodeCaches::empty();
+        // (t, sin_cos(Ω t)) computed by the last segment's event search at its end
+        let mut carried_phase: Option<(f64, (f64, f64))> = None;
         let max_events = 2_000_000u64 + (self.duration / self.period * 20_000.0) as u64;
 
         while st.t < self.duration {
@@ -562,7 +678,10 @@ impl ImpactWorld {
             };
             // (sin Ωt, cos Ωt) at the segment start: one sin_cos per segment serves the
             // anchor, the end state, the quadrature and the sticking condition
-            let sc0 = (self.omega * st.t).sin_cos();
+            let sc0 = match carried_phase.take() {
+                Some((t, sc)) if t == st.t => sc,
+                _ => (self.omega * st.t).sin_cos(),
+            };
             let an = match &motion {
                 BoxMotion::Spring(sd) => sd.anchor_parts(st.t, st.z, st.v, sc0),
                 BoxMotion::Kinematic { .. } => motion.anchor(st.t, st.z, st.v),
@@ -581,13 +700,17 @@ impl ImpactWorld {
                 h = b - st.t;
             }
             // box state at b, through the node cache for spring-mounted boxes
-            let (end, cached) = match &motion {
+            let (end, cached, cache) = match &motion {
                 BoxMotion::Spring(sd) => {
-                    cache.prepare(sd, self.omega, h, st.mode.stuck());
+                    let cache = caches.get(sd, self.omega, h, st.mode.stuck());
                     let sc_b = rotate(sc0, cache.sc[8]);
-                    (sd.eval_parts(&an, cache.basis[8], sc_b), Some((sc0, sc_b)))
+                    (
+                        sd.eval_parts(&an, cache.basis[8], sc_b),
+                        Some((sc0, sc_b)),
+                        Some(cache),
+                    )
                 }
-                BoxMotion::Kinematic { .. } => (motion.eval(&an, b), None),
+                BoxMotion::Kinematic { .. } => (motion.eval(&an, b), None, None),
             };
             let (te, event) = if forced_stick {
                 (b.min(st.t + 1e-6 * self.period), Event::None)
@@ -598,8 +721,14 @@ impl ImpactWorld {
                     b,
                     end,
                     phases: cached,
+                    end_basis: cache.map(|c| (c.h, c.basis[8])),
+                    exact_end_phase: std::cell::Cell::new(None),
                 };
-                self.find_event(&st, &seg)
+                let found = self.find_event(&st, &seg);
+                if found.0 == b {
+                    carried_phase = seg.exact_end_phase.get().map(|sc| (b, sc));
+                }
+                found
             };
             // samples and strobe points in [t, te)
             while let Some(d) = ds {
@@ -634,9 +763,9 @@ impl ImpactWorld {
             // quadrature of base work and viscous loss, extrema of z
             let (zb, vb) = if te == b { end } else { motion.eval(&an, te) };
             if te > st.t {
-                match (te == b, cached, &motion) {
-                    (true, Some((sc0, _)), BoxMotion::Spring(sd)) => {
-                        self.integrate_cached(&mut led, sd, &an, &cache, sc0, st.t)
+                match (te == b, cached, cache, &motion) {
+                    (true, Some((sc0, _)), Some(cache), BoxMotion::Spring(_)) => {
+                        self.integrate_cached(&mut led, &an, cache, sc0, st.t)
                     }
                     _ => self.integrate(&mut led, &motion, &an, st.t, te),
                 }
@@ -808,7 +937,23 @@ impl ImpactWorld {
                     }
                     _ => f(st.t),
                 };
-                let fb = f(b);
+                // f(b) with one sin_cos (and the cached basis when b − t0 = h): the same
+                // expressions as eval, accel and jerk, so the same value
+                let fb = match motion {
+                    BoxMotion::Spring(sd) => {
+                        let sc = (self.omega * b).sin_cos();
+                        seg.exact_end_phase.set(Some(sc));
+                        let tau = b - an.t0_s;
+                        let basis = match seg.end_basis {
+                            Some((h, basis)) if h == tau => basis,
+                            _ => sd.homogeneous_basis(tau),
+                        };
+                        let (z, v) = sd.eval_parts(an, basis, sc);
+                        let (a, j) = sd.accel_jerk_parts(sc, z, v);
+                        (sign * (a + g), sign * j)
+                    }
+                    BoxMotion::Kinematic { .. } => f(b),
+                };
                 match first_crossing(&mut f, st.t, b, fa, fb, false) {
                     Some(t) => (t, Event::Detach),
                     None => (b, Event::None),
@@ -950,15 +1095,17 @@ impl ImpactWorld {
 
     /// Gauss–Legendre quadrature of the base work and viscous loss on [a, b].
     fn integrate(&self, led: &mut Ledger, motion: &BoxMotion, an: &Anchor, a: f64, b: f64) {
-        if !matches!(motion, BoxMotion::Spring(_)) {
-            return;
-        }
         let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
         let (mut work, mut visc) = (0.0, 0.0);
+        let BoxMotion::Spring(sd) = motion else {
+            return;
+        };
         for (x, wgt) in GL_X.iter().zip(GL_W.iter()) {
             let t = mid + half * x;
-            let (z, v) = motion.eval(an, t);
-            let (u, du, _) = base_motion(self.u_amp, self.omega, t);
+            // eval and base_motion from one sin_cos (the same expressions, the same values)
+            let sc = (self.omega * t).sin_cos();
+            let (z, v) = sd.eval_parts(an, sd.homogeneous_basis(t - an.t0_s), sc);
+            let (u, du) = (self.u_amp * sc.1, -self.u_amp * self.omega * sc.0);
             let rel_v = du - v;
             work += wgt * (self.k * (u - z) + self.c * rel_v) * du;
             visc += wgt * self.c * rel_v * rel_v;
@@ -971,27 +1118,19 @@ impl ImpactWorld {
         }
     }
 
-    /// [`ImpactWorld::integrate`] on a full-length segment with the cached node values.
-    #[allow(clippy::too_many_arguments)]
+    /// [`ImpactWorld::integrate`] on a full-length segment with the cached quadrature forms.
     fn integrate_cached(
         &self,
         led: &mut Ledger,
-        sd: &Sdof,
         an: &Anchor,
         cache: &NodeCache,
         sc0: (f64, f64),
         a: f64,
     ) {
         let half = 0.5 * cache.h;
-        let (mut work, mut visc) = (0.0, 0.0);
-        for (i, wgt) in GL_W.iter().enumerate() {
-            let sc = rotate(sc0, cache.sc[i]);
-            let (z, v) = sd.eval_parts(an, cache.basis[i], sc);
-            let (u, du) = (self.u_amp * sc.1, -self.u_amp * self.omega * sc.0);
-            let rel_v = du - v;
-            work += wgt * (self.k * (u - z) + self.c * rel_v) * du;
-            visc += wgt * self.c * rel_v * rel_v;
-        }
+        let x = [an.y0, an.w0, sc0.0, sc0.1, 1.0];
+        let work = NodeCache::form(&cache.q_work, &x);
+        let visc = NodeCache::form(&cache.q_visc, &x);
         led.base_work.add(work * half);
         led.viscous.add(visc * half);
         if a >= self.steady_start {

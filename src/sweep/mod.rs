@@ -7,6 +7,7 @@
 //! `timings.csv`). A grid too large for the disk or memory is refused up front ([`budget`]).
 
 pub mod budget;
+pub mod continuation;
 pub mod cost;
 pub mod points;
 pub mod run;
@@ -16,9 +17,10 @@ pub mod slurm;
 pub mod tables;
 pub mod vary;
 
+pub use continuation::{Continuation, Direction};
 pub use points::{SweepPoint, SweepPoints};
 pub use run::{run_scene, run_with_analysis};
-pub use runner::{run_shard, run_sweep, SweepReport, SweepSpec};
+pub use runner::{run_shard, run_shard_with, run_sweep, SweepReport, SweepSpec};
 pub use shard::Shard;
 pub use tables::{merge, MergeReport};
 pub use vary::{grid, Vary};

@@ -72,8 +72,24 @@ pub fn run_resolved(
     let mut tee = Tee {
         observers: vec![obs, &mut decimator],
     };
-    let mut summary = crate::setup::simulate(resolved, &mut tee, &run_opts)?;
-    let model = model_exponent(resolved, &mut summary);
+    let (mut summary, model) = match &resolved.setup {
+        // the impact model's exponent rides on the run itself (one simulation, not two)
+        Setup::Impact(setup) if setup.particle.is_some() => {
+            let (mut s, estimate) = ImpactWorld::new(setup)
+                .run_with_model_lyapunov(&mut tee, &run_opts, &ModelLyapunovOptions::default())
+                .map_err(crate::setup::keyed)?;
+            if resolved.auto.is_some() {
+                s.model = resolved.model_name(&s.model);
+            }
+            let model = model_exponent_of(estimate.map_err(crate::setup::keyed), &mut s);
+            (s, model)
+        }
+        _ => {
+            let mut s = crate::setup::simulate(resolved, &mut tee, &run_opts)?;
+            let model = model_exponent(resolved, &mut s);
+            (s, model)
+        }
+    };
     analyze_into(&mut summary, &collector, scene.frequency_hz(), model);
     Ok(summary)
 }
@@ -138,17 +154,23 @@ fn model_exponent(resolved: &Resolved, summary: &mut RunSummary) -> Option<Expon
     window.window.steady_start_s = window.window.analysis_start_s;
     let estimate = ImpactWorld::new(&window)
         .model_lyapunov(&ModelLyapunovOptions::default())
-        .map(Some)
         .map_err(crate::setup::keyed);
+    model_exponent_of(estimate, summary)
+}
+
+/// The exponent of a model estimate, or `None` (a failure noted in `summary.analysis_error`).
+fn model_exponent_of(
+    estimate: Result<crate::impact::ModelLyapunov, SimError>,
+    summary: &mut RunSummary,
+) -> Option<Exponent> {
     match estimate {
-        Ok(Some(m)) if m.per_period.is_finite() => Some(Exponent {
+        Ok(m) if m.per_period.is_finite() => Some(Exponent {
             per_period: m.per_period,
             stderr_per_period: m.stderr_per_period,
         }),
         // a locked kinematic ball: every perturbation dies (λ = −∞); no finite exponent to
         // report, the exact section (a fixed point) decides
-        Ok(Some(_)) => None,
-        Ok(None) => None,
+        Ok(_) => None,
         Err(e) => {
             summary.analysis_error = Some(format!("model exponent: {e}"));
             None

@@ -2,6 +2,7 @@
 //! [`crate::sweep`]).
 
 use super::budget::{available_memory_bytes, free_disk_bytes, Budget};
+use super::continuation::Continuation;
 use super::shard::Shard;
 use super::tables::{out_err, point_path, read_record, stream_name, write_tables, StreamLog};
 use super::vary::{grid_len, grid_point, Vary};
@@ -64,6 +65,9 @@ pub(super) struct Manifest {
     set: Vec<(String, String)>,
     vary: Vec<(String, Vec<String>)>,
     analysis: bool,
+    /// A continuation sweep's settings (absent for an ordinary sweep).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    continuation: Option<Continuation>,
 }
 
 impl Manifest {
@@ -81,7 +85,32 @@ impl Manifest {
                 .map(|v| (v.key.clone(), v.values.iter().map(value_str).collect()))
                 .collect(),
             analysis: spec.analyze,
+            continuation: None,
         }
+    }
+
+    fn of_continuation(spec: &SweepSpec, c: Option<&Continuation>) -> Manifest {
+        Manifest {
+            continuation: c.copied(),
+            ..Manifest::of(spec)
+        }
+    }
+
+    /// The continuation settings, if this is a continuation sweep.
+    pub(super) fn continuation(&self) -> Option<&Continuation> {
+        self.continuation.as_ref()
+    }
+
+    /// The values of the varied keys, as in `--vary` (parsed back).
+    pub(super) fn values(&self) -> Vec<Vec<toml::Value>> {
+        self.vary
+            .iter()
+            .map(|(_, v)| {
+                v.iter()
+                    .map(|x| crate::scene::overrides::parse_value(x))
+                    .collect()
+            })
+            .collect()
     }
 
     /// The manifest `DIR/sweep.json`.
@@ -103,12 +132,20 @@ impl Manifest {
 
     /// Points in the grid.
     pub(super) fn points(&self) -> usize {
-        self.vary.iter().map(|(_, v)| v.len()).product()
+        let n = self.vary.iter().map(|(_, v)| v.len()).product();
+        match &self.continuation {
+            Some(c) => c.points(n),
+            None => n,
+        }
     }
 
-    /// The varied keys, slowest first.
+    /// The varied keys, slowest first (and `branch` for a continuation sweep).
     pub(super) fn keys(&self) -> Vec<String> {
-        self.vary.iter().map(|(k, _)| k.clone()).collect()
+        let mut keys: Vec<String> = self.vary.iter().map(|(k, _)| k.clone()).collect();
+        if self.continuation.is_some() {
+            keys.push("branch".into());
+        }
+        keys
     }
 }
 
@@ -125,7 +162,7 @@ fn atomic_write(path: &Path, data: &[u8]) -> Result<(), SimError> {
 /// cost per point would be the disk's flush latency, and a record lost or cut by an
 /// operating-system crash is recomputed anyway, since every record is parsed and checked
 /// before a rerun skips its point.
-fn write_point(path: &Path, data: &[u8]) -> Result<(), SimError> {
+pub(super) fn write_point(path: &Path, data: &[u8]) -> Result<(), SimError> {
     let name = path
         .file_name()
         .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
@@ -142,6 +179,17 @@ fn value_str(v: &toml::Value) -> String {
         toml::Value::String(s) => s.clone(),
         other => other.to_string(),
     }
+}
+
+/// Appends [`fmt_num`]`(x)` to `out` without an intermediate string.
+fn push_num(out: &mut String, x: f64) {
+    use std::fmt::Write;
+    let a = x.abs();
+    let _ = if x == 0.0 || !x.is_finite() || (1e-4..1e15).contains(&a) {
+        write!(out, "{x}")
+    } else {
+        write!(out, "{x:e}")
+    };
 }
 
 fn fmt_opt(x: Option<f64>) -> String {
@@ -182,13 +230,44 @@ pub fn run_shard(
     shard: Shard,
     on_point: &(dyn Fn(usize) + Sync),
 ) -> Result<SweepReport, SimError> {
+    run_shard_with(spec, None, out, shard, on_point)
+}
+
+/// [`run_shard`] of a continuation sweep (`c` set: see [`super::continuation`]) or of an
+/// ordinary one (`c = None`).
+///
+/// # Errors
+/// As [`run_shard`]; for a continuation, a `--vary` other than one numeric key, a damper
+/// without carried state (DEM), more shards than blocks.
+pub fn run_shard_with(
+    spec: &SweepSpec,
+    c: Option<&Continuation>,
+    out: &Path,
+    shard: Shard,
+    on_point: &(dyn Fn(usize) + Sync),
+) -> Result<SweepReport, SimError> {
+    if let Some(c) = c {
+        super::continuation::check(spec, c, shard)?;
+    }
     let n = check_budget(spec, out)?;
+    if let Some(c) = c {
+        let points_dir = out.join("points");
+        std::fs::create_dir_all(&points_dir).map_err(|e| out_err(&points_dir, e))?;
+        check_manifest(spec, Some(c), out)?;
+        let manifest = Manifest::of_continuation(spec, Some(c));
+        let keys = manifest.keys();
+        let report = super::continuation::run_blocks(spec, c, out, shard, &keys, on_point)?;
+        if shard.is_whole() {
+            write_all_tables(&manifest, &[out.to_path_buf()], out)?;
+        }
+        return Ok(report);
+    }
     for i in shard.points(n) {
         point_scene(spec, i)?;
     }
     let points_dir = out.join("points");
     std::fs::create_dir_all(&points_dir).map_err(|e| out_err(&points_dir, e))?;
-    check_manifest(spec, out)?;
+    check_manifest(spec, None, out)?;
 
     // finished points from an earlier run (unreadable ones, e.g. from a crash mid-write of an
     // old version, are recomputed)
@@ -256,6 +335,34 @@ pub fn run_shard(
     })
 }
 
+/// Writes the tables of the finished points of the sweep `manifest` found in `dirs` into
+/// `out`: `sweep.csv`, `strobe.csv`, `timings.csv` and, for a continuation sweep,
+/// `hysteresis.csv` / `seams.csv`. Points not finished are left out.
+///
+/// # Errors
+/// As [`write_tables`].
+pub(super) fn write_all_tables(
+    manifest: &Manifest,
+    dirs: &[PathBuf],
+    out: &Path,
+) -> Result<(), SimError> {
+    let present: Vec<(usize, PathBuf)> = (0..manifest.points())
+        .filter_map(|i| {
+            dirs.iter()
+                .map(|d| point_path(d, i))
+                .find(|p| p.is_file())
+                .map(|p| (i, p))
+        })
+        .collect();
+    let rows = write_tables(&manifest.keys(), &present, dirs, out)?;
+    if let Some(c) = manifest.continuation() {
+        let values = manifest.values();
+        let key = &manifest.vary[0].0;
+        super::continuation::write_tables(c, key, &values[0], &rows, dirs, out)?;
+    }
+    Ok(())
+}
+
 /// The scene of point `i`, with the point named in a scene error.
 pub(super) fn point_scene(spec: &SweepSpec, i: usize) -> Result<Scene, SceneError> {
     let mut ov = spec.set.clone();
@@ -286,12 +393,13 @@ fn check_budget(spec: &SweepSpec, out: &Path) -> Result<usize, SimError> {
     Ok(n.unwrap_or(0))
 }
 
-fn check_manifest(spec: &SweepSpec, out: &Path) -> Result<(), SimError> {
-    let manifest = Manifest::of(spec);
+fn check_manifest(spec: &SweepSpec, c: Option<&Continuation>, out: &Path) -> Result<(), SimError> {
+    let manifest = Manifest::of_continuation(spec, c);
     if out.join("sweep.json").is_file() {
         if Manifest::read(out).ok().as_ref() != Some(&manifest) {
             return Err(SimError::Output(format!(
-                "{} holds a different sweep (scene, --set, --vary or --no-analysis differ); \
+                "{} holds a different sweep (scene, --set, --vary, --no-analysis or the \
+                 continuation settings differ); \
                  choose another --out directory or delete it to start over",
                 out.display()
             )));
@@ -301,7 +409,7 @@ fn check_manifest(spec: &SweepSpec, out: &Path) -> Result<(), SimError> {
     manifest.write(out)
 }
 
-fn run_point(
+pub(super) fn run_point(
     scene: &Scene,
     values: &[(String, toml::Value)],
     i: usize,
@@ -359,18 +467,19 @@ fn run_point(
     ] {
         cells.insert(col.to_string(), v.unwrap_or_default());
     }
+    // the same text as format!("{},{},…", cycle, fmt_num(…), …), written into one buffer
     let strobe = s
         .strobe
         .iter()
         .map(|p| {
-            format!(
-                "{},{},{},{},{}",
-                p.cycle,
-                fmt_num(p.grain_z_m),
-                fmt_num(p.box_z_m),
-                fmt_num(p.grain_v_m_s),
-                fmt_num(p.box_v_m_s)
-            )
+            use std::fmt::Write;
+            let mut row = String::with_capacity(96);
+            let _ = write!(row, "{}", p.cycle);
+            for x in [p.grain_z_m, p.box_z_m, p.grain_v_m_s, p.box_v_m_s] {
+                row.push(',');
+                push_num(&mut row, x);
+            }
+            row
         })
         .collect();
     let summary = serde_json::to_value(&s).map_err(|e| SimError::Output(e.to_string()))?;

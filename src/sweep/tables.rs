@@ -212,7 +212,8 @@ impl AtomicFile {
 
 /// Writes `sweep.csv`, `strobe.csv` and `timings.csv` into `out` from the point records
 /// `present` (point index and file, increasing), for a sweep whose varied keys are `keys`.
-/// Each point file is read once; only its `sweep.csv` cells stay in memory.
+/// Each point file is read once; only its `sweep.csv` cells stay in memory. Returns the rows
+/// of `sweep.csv` (point, values, cells).
 ///
 /// # Errors
 /// [`SimError::Output`] naming the file that could not be read or written.
@@ -221,7 +222,7 @@ pub(super) fn write_tables(
     present: &[(usize, PathBuf)],
     stream_dirs: &[PathBuf],
     out: &Path,
-) -> Result<(), SimError> {
+) -> Result<Vec<super::continuation::Row>, SimError> {
     let mut strobe = AtomicFile::create(&out.join("strobe.csv"))?;
     strobe.write(&strobe_header(keys))?;
     let mut rows: Vec<(usize, Vec<String>, BTreeMap<String, String>)> =
@@ -240,7 +241,8 @@ pub(super) fn write_tables(
     let mut sweep = AtomicFile::create(&out.join("sweep.csv"))?;
     sweep.write(&sweep_csv(keys, &rows))?;
     sweep.commit()?;
-    strobe.commit()
+    strobe.commit()?;
+    Ok(rows)
 }
 
 fn sweep_csv(keys: &[String], rows: &[(usize, Vec<String>, BTreeMap<String, String>)]) -> String {
@@ -366,7 +368,6 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<MergeReport, SimError> {
     }
     let n = manifest.points();
     let mut per_dir = vec![0; dirs.len()];
-    let mut present = Vec::with_capacity(n);
     let mut missing = Vec::new();
     for i in 0..n {
         let found = dirs
@@ -374,17 +375,19 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<MergeReport, SimError> {
             .enumerate()
             .find(|(_, d)| point_path(d, i).is_file());
         match found {
-            Some((k, d)) => {
-                per_dir[k] += 1;
-                present.push((i, point_path(d, i)));
-            }
+            Some((k, _)) => per_dir[k] += 1,
             None => missing.push(i),
         }
     }
+    let whose = if manifest.continuation().is_some() {
+        "a continuation sweep's shard K of N holds a contiguous range of blocks"
+    } else {
+        "point i belongs to shard i mod N of --shard K/N"
+    };
     if !missing.is_empty() {
         return Err(SimError::Output(format!(
             "{} of {n} points are not finished in {}: {}; run (or rerun) the shards that \
-             hold them — point i belongs to shard i mod N of --shard K/N — then merge again",
+             hold them — {whose} — then merge again",
             missing.len(),
             dirs.iter()
                 .map(|d| d.display().to_string())
@@ -397,7 +400,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<MergeReport, SimError> {
     if !out.join("sweep.json").is_file() {
         manifest.write(out)?;
     }
-    write_tables(&manifest.keys(), &present, dirs, out)?;
+    super::runner::write_all_tables(&manifest, dirs, out)?;
     Ok(MergeReport { points: n, per_dir })
 }
 

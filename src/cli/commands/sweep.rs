@@ -5,7 +5,8 @@
 
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
-use pdamp::sweep::{run_shard, Shard, SweepSpec, Vary};
+use pdamp::sweep::continuation::{hysteresis_values, shard_point_count};
+use pdamp::sweep::{run_shard_with, Continuation, Direction, Shard, SweepSpec, Vary};
 use std::path::PathBuf;
 
 /// What to sweep (shared by `pdamp sweep` and `pdamp slurm`).
@@ -26,7 +27,19 @@ pub struct SweepDef {
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
     /// Skip the nonlinear analysis of each point (faster; regime columns stay empty).
-    #[arg(long)]
+    #[arg(
+        long,
+        long_help = "Skip the nonlinear analysis of each point (faster; regime columns stay \
+empty).\n\n\
+Sample grid of a point of the event-driven model (damper none or impact): without the \
+analysis, the model is evaluated only at its events (impacts, sticking, detachment), at its \
+segment ends (1/16 of the fastest time scale) and once per forcing period T over the analysis \
+window (the stroboscopic rows of strobe.csv, t = kT, run.analysis_fraction); the amplitude \
+comes from the exact extrema of z(t) between those points and the energies from the closed \
+forms (Gauss-Legendre, exact to rounding), so no series is sampled at all. With the analysis, \
+the grain series is also sampled every max(run.sample_interval, analysis window / \
+run.analysis_max_samples) seconds over the analysis window (default at most 20000 samples)."
+    )]
     pub no_analysis: bool,
 }
 
@@ -59,6 +72,48 @@ pub struct Args {
     /// all are done, `pdamp merge DIR…` writes sweep.csv and strobe.csv.
     #[arg(long, value_name = "K/N")]
     pub shard: Option<String>,
+    /// Continuation: run the one --vary key in order, each point starting from the previous
+    /// point's final state (up: increasing, down: decreasing, both: up then down, with
+    /// hysteresis.csv).
+    #[arg(
+        long,
+        value_name = "up|down|both",
+        long_help = "Continuation (bifurcation-diagram) sweep of one --vary key: the values run \
+in order (up: increasing, down: decreasing, both: up then down), each point starting from the \
+previous point's state at its last stroboscopic time t = nT (box position and velocity, \
+particle height and velocity), so that a multistable system stays on the branch it is on. \
+Damper none or impact only. Points 0…n−1 are the --vary values in the order given on the first \
+branch; with both, points n…2n−1 are the down branch; sweep.csv and strobe.csv get a `branch` \
+column. With both, DIR/hysteresis.csv lists per value the amplitude, impacts per cycle and \
+regime of each branch, their relative amplitude difference |A_up − A_down| / max(A_up, A_down), \
+and hysteresis = 1 where that difference, or the relative difference of the impacts per \
+cycle, exceeds --hysteresis-tol and the branches are not both chaotic (a chaotic attractor's \
+extent over a finite window scatters; with --no-analysis regimes are unknown and chaotic \
+windows are marked too); the values marked are printed at the end.\n\n\
+Sharding: --block B cuts each branch into blocks of B points; every block after the first \
+starts --overlap W points earlier from the scene's initial state (warm-up, written to \
+points/warmup/ and compared with the previous block's points in DIR/seams.csv, agree = 1 \
+when within the tolerance and of the same regime), and --shard K/N runs a contiguous range of \
+blocks. sweep.csv depends on B and W, never on N or the thread count.\n\n\
+Example (scene B's impact damper at e = 0.8, 500 forcing periods a point):\n  \
+pdamp sweep data/scenes/thesis_b_impact.toml --set damper.restitution=0.8 \\\n    \
+--set run.periods=500 --vary excitation.frequency=12:14:0.05 --continuation both \\\n    \
+--out out/hyst\n\
+marks 13.1–13.3 Hz in out/hyst/hysteresis.csv: going up the orbit with 2 impacts per period \
+persists, coming down the one with 3 (5–11 % larger amplitude)."
+    )]
+    pub continuation: Option<String>,
+    /// Continuation: points per block along a branch (default: the whole branch); needed
+    /// for --shard, which splits the blocks.
+    #[arg(long, value_name = "B", requires = "continuation")]
+    pub block: Option<usize>,
+    /// Continuation: warm-up points run before each block after the first (< --block).
+    #[arg(long, value_name = "W", default_value_t = pdamp::sweep::continuation::DEFAULT_OVERLAP)]
+    pub overlap: usize,
+    /// Continuation: relative amplitude difference of the up and down branches above which
+    /// hysteresis.csv marks a value (also the agreement tolerance of seams.csv).
+    #[arg(long, value_name = "TOL", default_value_t = pdamp::sweep::continuation::DEFAULT_TOLERANCE)]
+    pub hysteresis_tol: f64,
 }
 
 /// Run `pdamp sweep`.
@@ -68,8 +123,20 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         Some(s) => Shard::parse(s)?,
         None => Shard::WHOLE,
     };
+    let continuation = match &args.continuation {
+        Some(d) => Some(Continuation {
+            direction: Direction::parse(d)?,
+            block: args.block,
+            overlap: args.overlap,
+            tolerance: args.hysteresis_tol,
+        }),
+        None => None,
+    };
     let n = pdamp::sweep::vary::grid_len(&spec.varies).unwrap_or(usize::MAX);
-    let mine = shard.points(n).size_hint().0;
+    let mine = match (&continuation, spec.varies.first()) {
+        (Some(c), Some(v)) => shard_point_count(&v.values, c, shard),
+        _ => shard.points(n).size_hint().0,
+    };
     let bar = ProgressBar::with_draw_target(Some(mine as u64), crate::cli::progress::draw_target());
     bar.set_style(
         ProgressStyle::with_template(
@@ -79,8 +146,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     );
     let out = &args.def.out;
     let started = std::time::Instant::now();
-    let report = run_shard(&spec, out, shard, &|done| bar.set_position(done as u64))
-        .with_context(|| format!("sweep of {}", args.def.scene.display()))?;
+    let report = run_shard_with(&spec, continuation.as_ref(), out, shard, &|done| {
+        bar.set_position(done as u64)
+    })
+    .with_context(|| format!("sweep of {}", args.def.scene.display()))?;
     bar.finish_and_clear();
     let wrote = if shard.is_whole() {
         format!("wrote {}", out.join("sweep.csv").display())
@@ -98,6 +167,22 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         report.failed.len(),
         started.elapsed().as_secs_f64(),
     );
+    if shard.is_whole() && continuation.is_some_and(|c| c.direction == Direction::Both) {
+        let marked = hysteresis_values(out);
+        let tol = args.hysteresis_tol;
+        if marked.is_empty() {
+            println!("no hysteresis: the up and down branches agree within {tol} everywhere");
+        } else {
+            let list: Vec<String> = marked.iter().map(|v| v.to_string()).collect();
+            println!(
+                "hysteresis (branches differ by more than {tol} in amplitude or impacts per cycle) at \
+                 {} values: {}; see {}",
+                marked.len(),
+                list.join(" "),
+                out.join("hysteresis.csv").display()
+            );
+        }
+    }
     if !report.failed.is_empty() {
         for (i, why) in &report.failed {
             tracing::error!("point {i}: {why}");
