@@ -108,11 +108,11 @@ persists, coming down the one with 3 (5–11 % larger amplitude)."
     #[arg(long, value_name = "B", requires = "continuation")]
     pub block: Option<usize>,
     /// Continuation: warm-up points run before each block after the first (< --block).
-    #[arg(long, value_name = "W", default_value_t = pdamp::sweep::continuation::DEFAULT_OVERLAP)]
+    #[arg(long, value_name = "W", requires = "continuation", default_value_t = pdamp::sweep::continuation::DEFAULT_OVERLAP)]
     pub overlap: usize,
     /// Continuation: relative amplitude difference of the up and down branches above which
     /// hysteresis.csv marks a value (also the agreement tolerance of seams.csv).
-    #[arg(long, value_name = "TOL", default_value_t = pdamp::sweep::continuation::DEFAULT_TOLERANCE)]
+    #[arg(long, value_name = "TOL", requires = "continuation", default_value_t = pdamp::sweep::continuation::DEFAULT_TOLERANCE)]
     pub hysteresis_tol: f64,
 }
 
