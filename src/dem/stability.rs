@@ -122,7 +122,7 @@ impl TimeStepScales {
     pub fn viscous_warning(&self, dt: f64) -> Option<String> {
         (dt > self.viscous_limit_s()).then(|| {
             format!(
-                "the time step {dt:.3e} s is longer than {VISCOUS_DT_FRACTION} x the contacts' viscous time                  {:.3e} s (normal m*/(gamma_n sqrt(zeta)) = {:.3e} s, tangential m_t/(gamma_s sqrt(zeta)) =                  {:.3e} s): the dashpots are integrated too coarsely and the energy ledger will not close;                  use dt <= {:.3e} s (dt = auto does), or lower the damping",
+                "the time step {dt:.3e} s is longer than {VISCOUS_DT_FRACTION} x the contacts' viscous time {:.3e} s (normal m*/(gamma_n sqrt(zeta)) = {:.3e} s, tangential m_t/(gamma_s sqrt(zeta)) = {:.3e} s): the dashpots are integrated too coarsely and the energy ledger will not close; use dt <= {:.3e} s (dt = auto does), or lower the damping",
                 self.viscous_time_s(),
                 self.normal_viscous_time_s,
                 self.tangential_viscous_time_s,

@@ -1004,6 +1004,21 @@ fn pair_chunk<N: NormalKernel, T: TangentialKernel, const SCATTER: bool>(
     [p_coll, p_fric, 0.0]
 }
 
+/// Overlaps of grain i with the walls x−, x+, y−, y+, floor, ceiling (m); ≤ 0: no contact.
+/// Wall w has the normal ±e_{w/2}, + for even w (pointing into the box).
+#[inline(always)]
+fn wall_overlaps(ctx: &GrainCtx, i: usize) -> [f64; 6] {
+    let (p, r, b) = (ctx.pos[i], ctx.radius[i], ctx.box_size);
+    [
+        r - p[0],
+        r - (b[0] - p[0]),
+        r - p[1],
+        r - (b[1] - p[1]),
+        r - (p[2] - ctx.floor),
+        r - (ctx.ceil - p[2]),
+    ]
+}
+
 /// Gravity and settling drag on grain i, and a zero torque (N, N m).
 #[inline(always)]
 fn init_force(ctx: &GrainCtx, i: usize) -> ([f64; 3], [f64; 3]) {
@@ -1068,9 +1083,10 @@ fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool>(
     torque: &mut [[f64; 3]],
     wall_history: &mut [[[f64; 3]; 6]],
 ) -> [f64; 3] {
-    let b = ctx.box_size;
-    let (floor, ceil, vw) = (ctx.floor, ctx.ceil, ctx.wall_v);
+    let vw = ctx.wall_v;
     let (mut fgz, mut p_coll, mut p_fric) = (0.0, 0.0, 0.0);
+    let mut walls = [0u32; 6 * GRAIN_CHUNK];
+    let mut m = 0usize;
     for (l, ((fi, ti), hist)) in force
         .iter_mut()
         .zip(torque.iter_mut())
@@ -1101,66 +1117,64 @@ fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool>(
                 *ti = t;
             }
         }
-        let p = ctx.pos[i];
-        // cheap reject: far from every wall
-        if p[0] > r
-            && p[0] < b[0] - r
-            && p[1] > r
-            && p[1] < b[1] - r
-            && p[2] > floor + r
-            && p[2] < ceil - r
-        {
-            if T::HISTORY {
-                *hist = [[0.0; 3]; 6];
+        // the grain's wall contacts, kept branch-free (six overlaps against the box)
+        let z6 = wall_overlaps(ctx, i);
+        for (w, z) in z6.into_iter().enumerate() {
+            let on = z > 0.0;
+            walls[m] = (l * 6 + w) as u32;
+            m += on as usize;
+            if T::HISTORY && !on {
+                hist[w] = [0.0; 3];
             }
-            continue;
         }
-        let c = &ctx.wall_coef[i];
-        let vp = ctx.vel_pred[i];
-        let om = ctx.omega_pred[i];
-        let cands: [(f64, usize, f64); 6] = [
-            (r - p[0], 0, 1.0),
-            (r - (b[0] - p[0]), 0, -1.0),
-            (r - p[1], 1, 1.0),
-            (r - (b[1] - p[1]), 1, -1.0),
-            (r - (p[2] - floor), 2, 1.0),
-            (r - (ceil - p[2]), 2, -1.0),
-        ];
-        for (w, (z, axis, s)) in cands.into_iter().enumerate() {
-            if z <= 0.0 {
-                if T::HISTORY {
-                    hist[w] = [0.0; 3];
-                }
-                continue;
-            }
+    }
+    // staged like the pair pass: geometry of a block of wall contacts, their responses, sums
+    let mut kin = [ContactKinematics::default(); STAGE];
+    let mut resp = [ContactResponse::default(); STAGE];
+    for block in walls[..m].chunks(STAGE) {
+        for (k, &e) in kin.iter_mut().zip(block) {
+            let (l, w) = (e as usize / 6, e as usize % 6);
+            let i = first + l;
+            let r = ctx.radius[i];
+            let (vp, om) = (ctx.vel_pred[i], ctx.omega_pred[i]);
+            let (axis, s) = (w / 2, 1.0 - 2.0 * (w % 2) as f64);
             let mut n = [0.0; 3];
             n[axis] = s;
-            let k = ContactKinematics {
-                overlap_m: z,
+            *k = ContactKinematics {
+                overlap_m: wall_overlaps(ctx, i)[w],
                 normal: n,
                 v_rel: [vp[0], vp[1], vp[2] - vw],
                 spin: [r * om[0], r * om[1], r * om[2]],
             };
-            let resp = contact_response::<N, T>(
-                &k,
-                c,
+        }
+        for ((rs, k), &e) in resp.iter_mut().zip(&kin).zip(block) {
+            let (l, w) = (e as usize / 6, e as usize % 6);
+            *rs = contact_response::<N, T>(
+                k,
+                &ctx.wall_coef[first + l],
                 ctx.friction,
                 ctx.clamp,
                 ctx.rotations,
                 ctx.dt,
-                &mut hist[w],
+                &mut wall_history[l][w],
             );
-            p_coll += resp.p_collision;
-            p_fric += resp.p_friction;
-            fi[0] += resp.force[0];
-            fi[1] += resp.force[1];
-            fi[2] += resp.force[2];
+        }
+        for (rs, &e) in resp.iter().zip(block) {
+            let l = e as usize / 6;
+            let r = ctx.radius[first + l];
+            p_coll += rs.p_collision;
+            p_fric += rs.p_friction;
+            let fi = &mut force[l];
+            fi[0] += rs.force[0];
+            fi[1] += rs.force[1];
+            fi[2] += rs.force[2];
             if T::ACTIVE && ctx.rotations {
-                ti[0] -= r * resp.torque_arm[0];
-                ti[1] -= r * resp.torque_arm[1];
-                ti[2] -= r * resp.torque_arm[2];
+                let ti = &mut torque[l];
+                ti[0] -= r * rs.torque_arm[0];
+                ti[1] -= r * rs.torque_arm[1];
+                ti[2] -= r * rs.torque_arm[2];
             }
-            fgz -= resp.force[2];
+            fgz -= rs.force[2];
         }
     }
     [fgz, p_coll, p_fric]
