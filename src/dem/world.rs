@@ -1117,6 +1117,20 @@ fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool>(
                 *ti = t;
             }
         }
+        // far from every wall (most grains of a wide bed): nothing to do
+        let p = ctx.pos[i];
+        if p[0] > r
+            && p[0] < ctx.box_size[0] - r
+            && p[1] > r
+            && p[1] < ctx.box_size[1] - r
+            && p[2] > ctx.floor + r
+            && p[2] < ctx.ceil - r
+        {
+            if T::HISTORY {
+                *hist = [[0.0; 3]; 6];
+            }
+            continue;
+        }
         // the grain's wall contacts, kept branch-free (six overlaps against the box)
         let z6 = wall_overlaps(ctx, i);
         for (w, z) in z6.into_iter().enumerate() {
