@@ -99,17 +99,24 @@ lig_settled() {
     echo "$dir"
 }
 
-# one LIGGGHTS timed run -> particle-steps/s
+# CPU seconds (user + sys) of a command, from /usr/bin/time
+cpu_of() { /usr/bin/time -f "%U %S" -o "$WORK/time.txt" "$@" >/dev/null; awk '{print $1 + $2}' "$WORK/time.txt"; }
+
+# one LIGGGHTS timed run -> "wall-based cpu-based" particle-steps/s. Wall: N x NRUN / "Loop time"
+# of the timed run. CPU: N x NRUN / (CPU of the whole process - CPU of the same deck with
+# NRUN = 0), i.e. the timed run's CPU time (fair on a loaded machine).
 lig_run() {
     local n=$1 state=$2 dir=$3 deck=in.run
     [ "$state" = rest ] && deck=in.rest
-    local r w
+    local r w c1 c0
     r=$(nrun "$n"); w=$(nwarm "$n")
-    (cd "$dir" && taskset -c "$CPU" liggghts -in "$deck" -var tag "N$n" -var nwarm "$w" -var nrun "$r" -log "run_$state.log" >/dev/null)
-    awk -v n="$n" -v r="$r" '/^Loop time of/ {t = $4} END {printf "%.6g\n", n * r / t}' "$dir/run_$state.log"
+    c1=$(cd "$dir" && cpu_of taskset -c "$CPU" liggghts -in "$deck" -var tag "N$n" -var nwarm "$w" -var nrun "$r" -log "run_$state.log")
+    c0=$(cd "$dir" && cpu_of taskset -c "$CPU" liggghts -in "$deck" -var tag "N$n" -var nwarm "$w" -var nrun 0 -log "run0_$state.log")
+    awk -v n="$n" -v r="$r" -v c1="$c1" -v c0="$c0" '/^Loop time of/ {t = $4} END {printf "%.6g %.6g\n", n * r / t, n * r / (c1 - c0)}' "$dir/run_$state.log"
 }
 
-# one pdamp run -> particle-steps/s (threads: 1 pinned to $CPU, or 2)
+# one pdamp run -> "wall-based cpu-based" particle-steps/s (threads: 1 pinned to $CPU, or 2;
+# the CPU figure is the stepping thread's CPU time, particle_steps_per_cpu_s)
 pdamp_run() {
     local n=$1 state=$2 threads=$3 L amp dur out
     L=$(side "$n"); amp=0.0045
@@ -122,14 +129,19 @@ pdamp_run() {
         --set damper.count="$n" --set "damper.box=[$L,$L,0.1225]" --set excitation.amplitude=$amp \
         --set run.duration="$dur" --set damper.settle_time="$PDAMP_SETTLE" \
         --set damper.packing="\"$PDAMP_PACKING\"" >"$out.log" 2>&1
-    sed -n 's/.*"particle_steps_per_s": *\([0-9.eE+-]*\).*/\1/p' "$out/summary.json" | head -1
+    local a b
+    a=$(sed -n 's/.*"particle_steps_per_s": *\([0-9.eE+-]*\).*/\1/p' "$out/summary.json" | head -1)
+    b=$(sed -n 's/.*"particle_steps_per_cpu_s": *\([0-9.eE+-]*\).*/\1/p' "$out/summary.json" | head -1)
+    echo "$a ${b:-nan}"
 }
 
 echo "# pdamp vs LIGGGHTS 3.8.0, $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg)"
-echo "# $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); REPEAT=$REPEAT, medians; M particle-steps/s (wall)"
-printf '| bed | N | box L (mm) | timed steps | LIGGGHTS | pdamp 1 thread | ratio |'
-[ "$THREADS2" = 1 ] && printf ' pdamp 2 threads | speed-up |'
-printf '\n|---|---|---|---|---|---|---|'
+echo "# $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); REPEAT=$REPEAT, medians; M particle-steps/s"
+echo "# CPU: per CPU-second of the timed run (LIGGGHTS: process CPU minus a NRUN = 0 run; pdamp: stepping thread)"
+echo "# wall: LIGGGHTS N x NRUN / Loop time; pdamp particle_steps_per_s (driven phase = NWARM + NRUN steps)"
+printf '| bed | N | box L (mm) | timed steps | LIGGGHTS CPU | pdamp CPU | ratio CPU | LIGGGHTS wall | pdamp wall 1 thr | ratio wall |'
+[ "$THREADS2" = 1 ] && printf ' pdamp wall 2 thr | speed-up 2/1 |'
+printf '\n|---|---|---|---|---|---|---|---|---|---|'
 [ "$THREADS2" = 1 ] && printf -- '---|---|'
 printf '\n'
 for n in $NS; do
@@ -144,13 +156,16 @@ for n in $NS; do
             pdamp_run "$n" "$state" 1 >>"$WORK/p1.txt"
             [ "$THREADS2" = 1 ] && pdamp_run "$n" "$state" 2 >>"$WORK/p2.txt"
         done
-        l=$(median <"$WORK/l.txt"); p1=$(median <"$WORK/p1.txt"); p2=$(median <"$WORK/p2.txt")
-        echo "# N=$n $state: LIGGGHTS $(tr '\n' ' ' <"$WORK/l.txt")| pdamp $(tr '\n' ' ' <"$WORK/p1.txt")| pdamp-2 $(tr '\n' ' ' <"$WORK/p2.txt")" >&2
-        awk -v n="$n" -v st="$state" -v L="$(side "$n")" -v r="$(nrun "$n")" -v l="$l" -v p="$p1" -v q="$p2" -v t2="$THREADS2" 'BEGIN {
-            ls = (l == "nan") ? "n/a" : sprintf("%.2f", l / 1e6)
-            ra = (l == "nan") ? "n/a" : sprintf("%.2fx", p / l)
-            printf "| %s | %d | %.2f | %d | %s | %.2f | %s |", st, n, L * 1000, r, ls, p / 1e6, ra
-            if (t2 == 1) printf " %.2f | %.2fx |", q / 1e6, q / p
+        lw=$(cut -d' ' -f1 "$WORK/l.txt" | median); lc=$(cut -d' ' -f2 "$WORK/l.txt" | median)
+        pw=$(cut -d' ' -f1 "$WORK/p1.txt" | median); pc=$(cut -d' ' -f2 "$WORK/p1.txt" | median)
+        p2=$(cut -d' ' -f1 "$WORK/p2.txt" | median)
+        echo "# N=$n $state (wall cpu): LIGGGHTS $(tr '\n' ',' <"$WORK/l.txt")| pdamp $(tr '\n' ',' <"$WORK/p1.txt")| pdamp-2 $(tr '\n' ',' <"$WORK/p2.txt")" >&2
+        awk -v n="$n" -v st="$state" -v L="$(side "$n")" -v r="$(nrun "$n")" -v lw="$lw" -v lc="$lc" -v pw="$pw" -v pc="$pc" -v q="$p2" -v t2="$THREADS2" '
+            function m(x) { return (x == "nan" || x == "") ? "n/a" : sprintf("%.2f", x / 1e6) }
+            function ra(a, b) { return (a == "nan" || b == "nan" || a == "" || b == "") ? "n/a" : sprintf("%.2fx", a / b) }
+            BEGIN {
+            printf "| %s | %d | %.2f | %d | %s | %s | %s | %s | %s | %s |", st, n, L * 1000, r, m(lc), m(pc), ra(pc, lc), m(lw), m(pw), ra(pw, lw)
+            if (t2 == 1) printf " %s | %s |", m(q), ra(q, pw)
             printf "\n" }'
     done
 done
