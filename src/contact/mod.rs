@@ -10,6 +10,7 @@ pub mod coulomb_viscous;
 pub mod hertz_kuwabara_kono;
 pub mod linear_spring_dashpot;
 pub mod material;
+pub mod response;
 pub mod restitution;
 
 pub use coulomb_viscous::coulomb_viscous_force;
@@ -18,6 +19,10 @@ pub use hertz_kuwabara_kono::{
 };
 pub use linear_spring_dashpot::{linear_elastic_force, linear_normal_force, LinearContactParams};
 pub use material::{Material, PairProperties};
+pub use response::{
+    contact_response, tangential_spring_force, ContactCoefficients, ContactKinematics,
+    ContactResponse, NormalKernel, TangentialKernel,
+};
 
 use serde::{Deserialize, Serialize};
 
@@ -80,6 +85,43 @@ pub enum TangentialLaw {
         /// Coulomb friction coefficient μ (–).
         friction: f64,
     },
+    /// Mindlin (Hertz) tangential spring with per-contact history, capped by Coulomb:
+    /// F_t = −k_t ξ − γ_s √ζ v_s with k_t = 8 G* √(R* ζ), |F_t| ≤ μ|F_n|, the spring reset to
+    /// the Coulomb force while sliding ([`response::tangential_spring_force`]; LIGGGHTS's
+    /// `tangential history`, Di Renzo & Di Maio 2004's "no-slip" model).
+    MindlinSpring {
+        /// Tangential damping γ_s (kg s⁻¹ m^-1/2), may be 0.
+        gamma_s: f64,
+        /// Coulomb friction coefficient μ (–).
+        friction: f64,
+    },
+    /// Linear tangential spring k_s = γ k_n with history and the seed paper's dashpot c_s,
+    /// capped by Coulomb (the linear law's tangential spring integrated).
+    LinearSpring {
+        /// Coulomb friction coefficient μ (–).
+        friction: f64,
+    },
+}
+
+impl TangentialLaw {
+    /// Coulomb friction coefficient μ (0 without a tangential force).
+    pub fn friction(&self) -> f64 {
+        match *self {
+            TangentialLaw::None => 0.0,
+            TangentialLaw::CoulombViscous { friction, .. }
+            | TangentialLaw::LinearDashpotCoulomb { friction }
+            | TangentialLaw::MindlinSpring { friction, .. }
+            | TangentialLaw::LinearSpring { friction } => friction,
+        }
+    }
+
+    /// Whether the law keeps a spring elongation per contact.
+    pub fn has_history(&self) -> bool {
+        matches!(
+            self,
+            TangentialLaw::MindlinSpring { .. } | TangentialLaw::LinearSpring { .. }
+        )
+    }
 }
 
 /// Whether the total normal force may turn attractive near the end of a contact.

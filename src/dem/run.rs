@@ -15,9 +15,12 @@ use crate::observe::{DemSampleState, ModelSample, Observer, Sample, SampleKind};
 use super::bed_impacts::BedImpacts;
 use super::energy::{balance, EnergyLedger};
 use super::model::{DemModel, Packing};
-use super::stability::{choose_dt, DEFAULT_DT_FRACTION};
+use super::stability::{choose_dt, TimeStepScales, DEFAULT_DT_FRACTION};
 use super::steady::{strobe_state, EnergyWatch, SteadyWindow, StrobeClock};
 use super::world::{BoxDrive, DemWorld};
+
+/// Relative ledger residual above which a run warns (stderr, `summary.json`) (1 %).
+pub const LEDGER_WARNING_LIMIT: f64 = 0.01;
 
 /// Time step choice: automatic (a fraction of the Hertz contact time) or explicit.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -147,6 +150,16 @@ pub struct DemSummary {
     pub dt_s: f64,
     /// Shortest Hertz contact time at the design impact speed (s).
     pub contact_time_s: f64,
+    /// Shorter of the contacts' normal and tangential viscous times at the design impact
+    /// speed (s) ([`super::stability::viscous_time`]); the step should stay below a quarter.
+    pub viscous_time_s: f64,
+    /// A warning when the time step is too long for the viscous time (see
+    /// [`super::stability::TimeStepScales::viscous_warning`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub time_step_warning: Option<String>,
+    /// A warning when the energy ledger's residual exceeds [`LEDGER_WARNING_LIMIT`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub energy_balance_warning: Option<String>,
     /// Simulated settling time before the drive (s).
     pub settle_time_s: f64,
     /// Settling steps.
@@ -322,6 +335,17 @@ pub(crate) fn run_dem_stepped(
     )?;
     let st = world.energy_state();
     let (_, rel) = balance(&st, &watch.start, &world.ledger);
+    let scales = TimeStepScales::of(model, &drive)?;
+    let energy_balance_warning = (rel > LEDGER_WARNING_LIMIT).then(|| {
+        format!(
+            "the energy ledger does not close: residual {:.2} % of the flows (> {:.0} %); {}",
+            100.0 * rel,
+            100.0 * LEDGER_WARNING_LIMIT,
+            scales.viscous_warning(dt).unwrap_or_else(|| {
+                "lower the time step (run.dt or run.dt_fraction) and compare".to_string()
+            })
+        )
+    });
     let per_cycle = |f| steady.per_cycle(&world, drive.frequency_hz, f);
     Ok(DemSummary {
         amplitude_m: 0.5 * (steady.z_max_m - steady.z_min_m),
@@ -338,6 +362,9 @@ pub(crate) fn run_dem_stepped(
             .map(|c| world.len() as f64 * n_steps as f64 / c),
         dt_s: dt,
         contact_time_s: ts,
+        viscous_time_s: scales.viscous_time_s(),
+        time_step_warning: scales.viscous_warning(dt),
+        energy_balance_warning,
         settle_time_s: bed.settle_time_s,
         settle_steps: bed.settle_steps,
         neighbor_builds: world.neighbor_builds() - builds0,

@@ -3,7 +3,7 @@
 use crate::contact::linear_spring_dashpot::LinearContactParams;
 use crate::contact::material::PairProperties;
 use crate::contact::restitution::{hertz_contact_time, linear_contact_time};
-use crate::contact::NormalLaw;
+use crate::contact::{NormalLaw, TangentialLaw};
 use crate::error::{ModelError, Quantity, SimError};
 use crate::units::{G, TWO_PI};
 
@@ -14,6 +14,123 @@ use super::world::{BoxDrive, DemWorld};
 pub const DEFAULT_DT_FRACTION: f64 = 1.0 / 50.0;
 /// Largest accepted explicit time step, as a fraction of the contact duration (1/20).
 pub const MAX_DT_FRACTION: f64 = 1.0 / 20.0;
+/// Largest time step, as a fraction of the viscous time scale [`viscous_time`], that the
+/// automatic step takes and that an explicit step may have without a warning (1/4): the
+/// energy ledger of scene B's bed then closes to well under 1 %.
+pub const VISCOUS_DT_FRACTION: f64 = 0.25;
+/// An explicit step longer than this many normal viscous times (m*/(γ_n √ζ_max), or m*/c_n)
+/// is refused: explicit integration of an uncapped dashpot is unstable beyond 2.
+pub const MAX_NORMAL_VISCOUS_DT: f64 = 1.0;
+
+/// Viscous time scales (s) of the contacts at impact speed `v` (m/s): (normal, tangential).
+///
+/// Normal: m* / c_eff with c_eff = γ_n √ζ_max (Hertz–Kuwabara–Kono, ζ_max the Hertz overlap
+/// at `v`: ½ m* v² = (8/15) E* √R* ζ_max^{5/2}) or c_n (linear). Tangential: m_t / c_t with
+/// c_t = γ_s √ζ_max (or c_s) and m_t = (2/7) m* with rotations (a sphere's contact point
+/// slides against its translational and rotational inertia), m* without. The shorter of
+/// grain–grain and grain–wall contacts of the smallest grains. A dashpot integrated with a
+/// step comparable to its time scale dissipates the wrong energy (the ledger misses it) and,
+/// beyond twice it, turns unstable.
+///
+/// # Errors
+/// [`ModelError`] when a linear law's restitution or yield strength is out of range.
+pub fn viscous_time(model: &DemModel, v: f64) -> Result<(f64, f64), ModelError> {
+    let grains: &Grains = &model.grains;
+    let r = grains.r_min_m;
+    let m = grains.density_kg_m3 * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
+    let (g, w) = (grains.material, model.contact.wall.material);
+    let pp = PairProperties::new(r, m, &g, r, m, &g);
+    let pw = PairProperties::new(r, m, &g, f64::INFINITY, f64::INFINITY, &w);
+    let m_t = |m_star: f64| {
+        if model.rotations {
+            2.0 / 7.0 * m_star
+        } else {
+            m_star
+        }
+    };
+    let times = |wall: bool, p: &PairProperties| -> Result<(f64, f64), ModelError> {
+        let (normal, tangential) = model.contact.laws(wall);
+        let (c_n, c_t) = match normal {
+            NormalLaw::HertzKuwabaraKono { gamma_n } => {
+                let k_n = crate::contact::hertz_stiffness(p.e_star, p.r_star);
+                let z_max = (1.25 * p.m_star * v * v / k_n).powf(0.4);
+                let gamma_s = match tangential {
+                    TangentialLaw::CoulombViscous { gamma_s, .. }
+                    | TangentialLaw::MindlinSpring { gamma_s, .. } => gamma_s,
+                    _ => 0.0,
+                };
+                (gamma_n * z_max.sqrt(), gamma_s * z_max.sqrt())
+            }
+            NormalLaw::LinearSpringDashpot {
+                restitution,
+                yield_strength,
+            } => {
+                let l = LinearContactParams::select(p, &g, yield_strength, restitution)?;
+                let c_s = match tangential {
+                    TangentialLaw::None => 0.0,
+                    _ => l.c_s,
+                };
+                (l.c_n, c_s)
+            }
+        };
+        let t = |m: f64, c: f64| if c > 0.0 { m / c } else { f64::INFINITY };
+        Ok((t(p.m_star, c_n), t(m_t(p.m_star), c_t)))
+    };
+    let (a, b) = (times(false, &pp)?, times(true, &pw)?);
+    Ok((a.0.min(b.0), a.1.min(b.1)))
+}
+
+/// The time step rule, all its scales at the design impact speed (s).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TimeStepScales {
+    /// Shortest Hertz (or linear) contact duration t_s (s).
+    pub contact_time_s: f64,
+    /// Normal viscous time m*/(γ_n √ζ_max) (s) (∞ without damping).
+    pub normal_viscous_time_s: f64,
+    /// Tangential viscous time m_t/(γ_s √ζ_max) (s) (∞ without).
+    pub tangential_viscous_time_s: f64,
+}
+
+impl TimeStepScales {
+    /// The scales of `model` on `drive`.
+    ///
+    /// # Errors
+    /// As [`contact_time`].
+    pub fn of(model: &DemModel, drive: &BoxDrive) -> Result<Self, ModelError> {
+        let v = impact_speed(drive, model.box_size_m[2]);
+        let (tn, tt) = viscous_time(model, v)?;
+        Ok(TimeStepScales {
+            contact_time_s: contact_time(model, v)?,
+            normal_viscous_time_s: tn,
+            tangential_viscous_time_s: tt,
+        })
+    }
+
+    /// Shorter of the two viscous times (s).
+    pub fn viscous_time_s(&self) -> f64 {
+        self.normal_viscous_time_s
+            .min(self.tangential_viscous_time_s)
+    }
+
+    /// Largest step the viscous rule allows without a warning (s).
+    pub fn viscous_limit_s(&self) -> f64 {
+        VISCOUS_DT_FRACTION * self.viscous_time_s()
+    }
+
+    /// A warning when `dt` (s) exceeds [`TimeStepScales::viscous_limit_s`], naming the
+    /// scales; `None` otherwise.
+    pub fn viscous_warning(&self, dt: f64) -> Option<String> {
+        (dt > self.viscous_limit_s()).then(|| {
+            format!(
+                "the time step {dt:.3e} s is longer than {VISCOUS_DT_FRACTION} x the contacts' viscous time {:.3e} s (normal m*/(gamma_n sqrt(zeta)) = {:.3e} s, tangential m_t/(gamma_s sqrt(zeta)) = {:.3e} s): the dashpots are integrated too coarsely and the energy ledger will not close; use dt <= {:.3e} s (dt = auto does), or lower the damping",
+                self.viscous_time_s(),
+                self.normal_viscous_time_s,
+                self.tangential_viscous_time_s,
+                self.viscous_limit_s()
+            )
+        })
+    }
+}
 
 /// Largest expected impact speed (m/s): v = max(2 U Ω, √(2 g Lz)) — twice the base's peak
 /// speed (grain and box moving against each other) or a free fall over the box height.
@@ -71,7 +188,8 @@ pub fn choose_dt(
     fraction: f64,
 ) -> Result<(f64, f64), ModelError> {
     let v = impact_speed(drive, model.box_size_m[2]);
-    let ts = contact_time(model, v)?;
+    let scales = TimeStepScales::of(model, drive)?;
+    let ts = scales.contact_time_s;
     match dt {
         None => {
             if !(fraction > 0.0 && fraction <= MAX_DT_FRACTION) {
@@ -81,7 +199,8 @@ pub fn choose_dt(
                     "must be in (0, 0.05]: dt = fraction × t_s (default 1/50; the thesis used ~1/100)",
                 ));
             }
-            Ok((fraction * ts, ts))
+            // the viscous rule: never longer than a quarter of the viscous time
+            Ok(((fraction * ts).min(scales.viscous_limit_s()), ts))
         }
         Some(dt) => {
             if !(dt > 0.0 && dt.is_finite()) {
@@ -102,6 +221,19 @@ pub fn choose_dt(
                          (lower Young's modulus)",
                         MAX_DT_FRACTION * ts,
                         ts / 50.0
+                    ),
+                ));
+            }
+            let tn = scales.normal_viscous_time_s;
+            if dt > MAX_NORMAL_VISCOUS_DT * tn {
+                return Err(ModelError::new(
+                    Quantity::TimeStep,
+                    format!("{dt:e} s"),
+                    format!(
+                        "is longer than the normal viscous time m*/(gamma_n sqrt(zeta)) = {tn:.3e} s at impact speed \
+                         {v:.3} m/s: the normal dashpot cannot be integrated stably; lower the time step \
+                         (<= {:.3e} s recommended, dt = auto chooses it) or the normal damping",
+                        scales.viscous_limit_s()
                     ),
                 ));
             }

@@ -1,52 +1,64 @@
 //! [`DemWorld`]: grains (structure of arrays), the box and the primary mass, and the step.
 
 use nalgebra::UnitQuaternion;
+use rayon::prelude::*;
 
+use crate::contact::hertz_stiffness;
 use crate::contact::linear_spring_dashpot::LinearContactParams;
 use crate::contact::material::{Material, PairProperties};
-use crate::contact::{coulomb_viscous_force, hertz_stiffness};
-use crate::contact::{
-    hertz_elastic_force, hertz_normal_force, linear_elastic_force, linear_normal_force,
+use crate::contact::response::{
+    contact_response, ContactCoefficients, ContactKinematics, ContactResponse,
+    CoulombViscousKernel, HertzKernel, LinearKernel, LinearSpringKernel, MindlinSpringKernel,
+    NoTangential, NormalKernel, TangentialKernel,
 };
 use crate::contact::{AttractionPolicy, NormalLaw, TangentialLaw};
 use crate::error::{ModelError, Quantity};
 use crate::integrate::{advance_orientation, half_kick, half_kick_predict, kick_drift};
 pub use crate::model::{BoxDrive, PrimarySystem};
-use crate::neighbor::{NeighborList, Pair};
+use crate::neighbor::{NeighborList, Pair, J_ROLE};
 use crate::units::G;
 
 use super::energy::{EnergyLedger, EnergyState};
 use super::model::DemModel;
 
-/// Normal-law kernel used by the monomorphised contact loops: the public kernels of
-/// [`crate::contact`] (tests/contact_properties.rs checks their properties).
-trait NormalKernel {
-    /// Returns (raw total force, elastic force, factor of the tangential damping) (N, N, –).
-    fn eval(k: f64, c: f64, overlap: f64, v_n: f64) -> (f64, f64, f64);
+/// Candidate pairs per work unit of the pair pass. The pass is split into these fixed chunks
+/// whatever the number of threads, and their partial sums are added in chunk order, so a run
+/// gives bit-identical results on any number of threads.
+pub const PAIR_CHUNK: usize = 1024;
+/// Grains per work unit of the per-grain passes (force gathering, walls, integration).
+pub const GRAIN_CHUNK: usize = 512;
+/// Contacts whose geometry, then responses, are computed together in the pair pass.
+const STAGE: usize = 64;
+/// Default smallest grain count for which a step uses the rayon thread pool.
+pub const PARALLEL_MIN_GRAINS: usize = 2000;
+
+/// Bytes a DEM run holds per grain, neighbour structure included: ~520 B of grain arrays
+/// (state, predictions, forces, per-grain coefficients and wall springs, cell list) plus up to
+/// ~8 candidate pairs of 120 B (pair, coefficients, state, per-grain index), rounded up.
+pub const BYTES_PER_GRAIN: f64 = 2048.0;
+
+/// Memory a DEM run of `n` grains needs (bytes), independent of the box (the cell list is
+/// sorted, not a grid over the box volume).
+pub fn memory_estimate_bytes(n: usize) -> f64 {
+    n as f64 * BYTES_PER_GRAIN
 }
 
-struct HertzKernel;
-impl NormalKernel for HertzKernel {
-    #[inline(always)]
-    fn eval(k: f64, c: f64, z: f64, v_n: f64) -> (f64, f64, f64) {
-        (
-            hertz_normal_force(k, z, v_n, c),
-            hertz_elastic_force(k, z),
-            z.sqrt(),
-        )
-    }
+/// Memory the machine can give now (bytes): `MemAvailable` of /proc/meminfo; `None` where
+/// unknown.
+pub fn available_memory_bytes() -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = s.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024.0)
 }
 
-struct LinearKernel;
-impl NormalKernel for LinearKernel {
-    #[inline(always)]
-    fn eval(k: f64, c: f64, z: f64, v_n: f64) -> (f64, f64, f64) {
-        (
-            linear_normal_force(k, z, v_n, c),
-            linear_elastic_force(k, z),
-            1.0,
-        )
-    }
+/// Per candidate pair: the contact's force on i and torque arm from the last force pass, and
+/// its tangential spring elongation (m) when the law has history.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct PairState {
+    force: [f64; 3],
+    torque_arm: [f64; 3],
+    history: [f64; 3],
 }
 
 /// Contact laws (grain–grain and grain–wall) of the [`DemModel`], flattened for the loops.
@@ -63,33 +75,42 @@ struct Laws {
 }
 
 impl Laws {
-    fn any_tangential(&self) -> bool {
-        self.tangential != TangentialLaw::None || self.wall_tangential != TangentialLaw::None
-    }
-
     fn friction(&self, wall: bool) -> f64 {
-        match if wall {
-            self.wall_tangential
+        if wall {
+            self.wall_tangential.friction()
         } else {
-            self.tangential
-        } {
-            TangentialLaw::None => 0.0,
-            TangentialLaw::CoulombViscous { friction, .. }
-            | TangentialLaw::LinearDashpotCoulomb { friction } => friction,
+            self.tangential.friction()
         }
     }
 
-    /// (k_n, normal damping, tangential damping) of a pair or grain–wall contact.
-    fn coefficients(&self, r_i: f64, m_i: f64, r_j: f64, m_j: f64, wall: bool) -> [f64; 3] {
+    /// The tangential law the loops run (the grain–grain one, or the wall's if grains have
+    /// none; both come from the same scene key).
+    fn tangential_kind(&self) -> TangentialLaw {
+        if self.tangential != TangentialLaw::None {
+            self.tangential
+        } else {
+            self.wall_tangential
+        }
+    }
+
+    /// [`ContactCoefficients`] of a pair or grain–wall contact.
+    fn coefficients(
+        &self,
+        r_i: f64,
+        m_i: f64,
+        r_j: f64,
+        m_j: f64,
+        wall: bool,
+    ) -> ContactCoefficients {
         let (mat_j, normal, tangential) = if wall {
             (&self.wall, self.wall_normal, self.wall_tangential)
         } else {
             (&self.grain, self.normal, self.tangential)
         };
         let p = PairProperties::new(r_i, m_i, &self.grain, r_j, m_j, mat_j);
-        let (k, c, c_lin_s) = match normal {
+        let (k, c, c_lin_s, k_lin_s) = match normal {
             NormalLaw::HertzKuwabaraKono { gamma_n } => {
-                (hertz_stiffness(p.e_star, p.r_star), gamma_n, 0.0)
+                (hertz_stiffness(p.e_star, p.r_star), gamma_n, 0.0, 0.0)
             }
             NormalLaw::LinearSpringDashpot {
                 restitution,
@@ -97,15 +118,19 @@ impl Laws {
             } => {
                 let l = LinearContactParams::select(&p, &self.grain, yield_strength, restitution)
                     .expect("validated linear parameters");
-                (l.k_n, l.c_n, l.c_s)
+                (l.k_n, l.c_n, l.c_s, l.k_s)
             }
         };
-        let cs = match tangential {
-            TangentialLaw::None => 0.0,
-            TangentialLaw::CoulombViscous { gamma_s, .. } => gamma_s,
-            TangentialLaw::LinearDashpotCoulomb { .. } => c_lin_s,
+        let (cs, kt) = match tangential {
+            TangentialLaw::None => (0.0, 0.0),
+            TangentialLaw::CoulombViscous { gamma_s, .. } => (gamma_s, 0.0),
+            TangentialLaw::LinearDashpotCoulomb { .. } => (c_lin_s, 0.0),
+            TangentialLaw::MindlinSpring { gamma_s, .. } => {
+                (gamma_s, 8.0 * p.g_star * p.r_star.sqrt())
+            }
+            TangentialLaw::LinearSpring { .. } => (c_lin_s, k_lin_s),
         };
-        [k, c, cs]
+        [k, c, cs, kt]
     }
 }
 
@@ -165,8 +190,18 @@ pub struct DemWorld {
     viscous_power_prev: f64,
     laws: Laws,
     neighbors: NeighborList,
-    pair_coef: Vec<[f64; 3]>,
-    wall_coef: Vec<[f64; 3]>,
+    pair_coef: Vec<ContactCoefficients>,
+    wall_coef: Vec<ContactCoefficients>,
+    pair_state: Vec<PairState>,
+    /// Tangential spring elongation of each grain's contacts with the six walls (m).
+    wall_history: Vec<[[f64; 3]; 6]>,
+    /// Springs of the pairs before a rebuild, keyed by (min, max) grain (scratch).
+    history_carry: Vec<(u64, [f64; 3])>,
+    /// Partial sums of the chunks (scratch, reused every step).
+    partials: Vec<[f64; 3]>,
+    /// Smallest grain count for which a step uses the rayon pool (default
+    /// [`PARALLEL_MIN_GRAINS`]); results do not depend on it nor on the thread count.
+    pub parallel_min_grains: usize,
     /// Time steps taken since construction (settling included).
     pub steps: u64,
 }
@@ -267,6 +302,11 @@ impl DemWorld {
             neighbors,
             pair_coef: Vec::new(),
             wall_coef,
+            pair_state: Vec::new(),
+            wall_history: vec![[[0.0; 3]; 6]; n],
+            history_carry: Vec::new(),
+            partials: Vec::new(),
+            parallel_min_grains: PARALLEL_MIN_GRAINS,
             steps: 0,
         })
     }
@@ -391,25 +431,55 @@ impl DemWorld {
         // half kick + drift of the grains, fused with the Verlet-list displacement check
         let (reference, ref_shift) = self.neighbors.reference();
         let shift = [0.0, 0.0, self.box_z - ref_shift[2]];
-        let max_d2 = kick_drift(
-            &mut self.pos,
-            &mut self.vel,
-            &mut self.vel_pred,
-            &self.force,
-            &self.inv_mass,
-            h,
-            dt,
-            reference,
-            shift,
-        );
-        if self.laws.rotations {
-            half_kick_predict(
-                &mut self.omega,
-                &mut self.omega_pred,
-                &self.torque,
-                &self.inv_inertia,
+        let par = self.parallel();
+        let max_d2 = if par {
+            let tracked = reference.len() == self.pos.len();
+            self.pos
+                .par_chunks_mut(GRAIN_CHUNK)
+                .zip(self.vel.par_chunks_mut(GRAIN_CHUNK))
+                .zip(self.vel_pred.par_chunks_mut(GRAIN_CHUNK))
+                .zip(self.force.par_chunks(GRAIN_CHUNK))
+                .zip(self.inv_mass.par_chunks(GRAIN_CHUNK))
+                .enumerate()
+                .map(|(c, ((((x, v), vp), f), im))| {
+                    let r = if tracked {
+                        &reference[c * GRAIN_CHUNK..c * GRAIN_CHUNK + x.len()]
+                    } else {
+                        &[]
+                    };
+                    kick_drift(x, v, vp, f, im, h, dt, r, shift)
+                })
+                .reduce(|| 0.0, f64::max)
+        } else {
+            kick_drift(
+                &mut self.pos,
+                &mut self.vel,
+                &mut self.vel_pred,
+                &self.force,
+                &self.inv_mass,
                 h,
-            );
+                dt,
+                reference,
+                shift,
+            )
+        };
+        if self.laws.rotations {
+            if par {
+                self.omega
+                    .par_chunks_mut(GRAIN_CHUNK)
+                    .zip(self.omega_pred.par_chunks_mut(GRAIN_CHUNK))
+                    .zip(self.torque.par_chunks(GRAIN_CHUNK))
+                    .zip(self.inv_inertia.par_chunks(GRAIN_CHUNK))
+                    .for_each(|(((w, wp), t), ii)| half_kick_predict(w, wp, t, ii, h));
+            } else {
+                half_kick_predict(
+                    &mut self.omega,
+                    &mut self.omega_pred,
+                    &self.torque,
+                    &self.inv_inertia,
+                    h,
+                );
+            }
         }
         self.box_v_pred = if primary_free {
             self.box_v + h * self.box_a
@@ -429,9 +499,26 @@ impl DemWorld {
             self.box_a = self.box_acceleration();
         }
         // 6. second half kick
-        half_kick(&mut self.vel, &self.force, &self.inv_mass, h);
-        if self.laws.rotations {
-            half_kick(&mut self.omega, &self.torque, &self.inv_inertia, h);
+        if par {
+            let rot = self.laws.rotations;
+            self.vel
+                .par_chunks_mut(GRAIN_CHUNK)
+                .zip(self.force.par_chunks(GRAIN_CHUNK))
+                .zip(self.inv_mass.par_chunks(GRAIN_CHUNK))
+                .zip(self.omega.par_chunks_mut(GRAIN_CHUNK))
+                .zip(self.torque.par_chunks(GRAIN_CHUNK))
+                .zip(self.inv_inertia.par_chunks(GRAIN_CHUNK))
+                .for_each(|(((((v, f), im), w), t), ii)| {
+                    half_kick(v, f, im, h);
+                    if rot {
+                        half_kick(w, t, ii, h);
+                    }
+                });
+        } else {
+            half_kick(&mut self.vel, &self.force, &self.inv_mass, h);
+            if self.laws.rotations {
+                half_kick(&mut self.omega, &self.torque, &self.inv_inertia, h);
+            }
         }
         if primary_free {
             self.box_v += h * self.box_a;
@@ -486,76 +573,185 @@ impl DemWorld {
         self.forces(rebuild)
     }
 
-    fn forces(&mut self, rebuild: bool) -> (f64, f64) {
+    /// Whether this step uses the rayon pool.
+    fn parallel(&self) -> bool {
+        self.len() >= self.parallel_min_grains && rayon::current_num_threads() > 1
+    }
+
+    /// Rebuilds the neighbour list, the per-pair coefficients (computed here only, never in
+    /// the step) and carries the tangential springs of the contacts over to the new list.
+    fn rebuild_neighbors(&mut self) {
         let shift = [0.0, 0.0, self.box_z];
+        let carry = self.laws.tangential_kind().has_history();
+        let key = |p: &Pair| ((p.i.min(p.j) as u64) << 32) | p.i.max(p.j) as u64;
+        if carry {
+            self.history_carry.clear();
+            for (p, st) in self.neighbors.pairs.iter().zip(&self.pair_state) {
+                if st.history != [0.0; 3] {
+                    let h = st.history;
+                    let h = if p.i < p.j { h } else { [-h[0], -h[1], -h[2]] };
+                    self.history_carry.push((key(p), h));
+                }
+            }
+            self.history_carry.sort_unstable_by_key(|e| e.0);
+        }
+        self.neighbors.rebuild(&self.pos, &self.radius, shift);
+        self.pair_coef.clear();
+        for &Pair { i, j } in &self.neighbors.pairs {
+            let (i, j) = (i as usize, j as usize);
+            let c = self.laws.coefficients(
+                self.radius[i],
+                self.mass[i],
+                self.radius[j],
+                self.mass[j],
+                false,
+            );
+            self.pair_coef.push(c);
+        }
+        self.pair_state.clear();
+        self.pair_state
+            .resize(self.neighbors.pairs.len(), PairState::default());
+        if carry && !self.history_carry.is_empty() {
+            for (p, st) in self.neighbors.pairs.iter().zip(self.pair_state.iter_mut()) {
+                if let Ok(a) = self.history_carry.binary_search_by_key(&key(p), |e| e.0) {
+                    let h = self.history_carry[a].1;
+                    st.history = if p.i < p.j { h } else { [-h[0], -h[1], -h[2]] };
+                }
+            }
+        }
+    }
+
+    fn forces(&mut self, rebuild: bool) -> (f64, f64) {
         if rebuild {
-            self.neighbors.rebuild(&self.pos, &self.radius, shift);
-            self.pair_coef.clear();
-            for &Pair { i, j } in &self.neighbors.pairs {
-                let (i, j) = (i as usize, j as usize);
-                let c = self.laws.coefficients(
-                    self.radius[i],
-                    self.mass[i],
-                    self.radius[j],
-                    self.mass[j],
-                    false,
-                );
-                self.pair_coef.push(c);
-            }
+            self.rebuild_neighbors();
         }
-        let g = self.gravity;
-        for (f, m) in self.force.iter_mut().zip(&self.mass) {
-            *f = [0.0, 0.0, -m * g];
-        }
-        if self.laws.rotations {
-            self.torque.iter_mut().for_each(|t| *t = [0.0; 3]);
-        }
-        if self.settle_drag > 0.0 {
-            for ((f, v), m) in self.force.iter_mut().zip(&self.vel).zip(&self.mass) {
-                let s = -m * self.settle_drag;
-                f[0] += s * v[0];
-                f[1] += s * v[1];
-                f[2] += s * v[2];
-            }
-        }
-        // the enums are matched once per step; each arm runs a monomorphised loop without
-        // per-pair branches on the law, friction, rotations or the attraction policy
+        // the laws are matched once per step; each arm runs loops monomorphised on the normal
+        // and tangential kernels (rotations and the attraction policy are loop-invariant flags)
         let l = &self.laws;
         let hertz = matches!(l.normal, NormalLaw::HertzKuwabaraKono { .. });
-        let clamp = l.attraction == AttractionPolicy::Clamp;
-        let out = match (hertz, l.any_tangential(), l.rotations, clamp) {
-            (true, true, true, true) => self.contacts::<HertzKernel, true, true, true>(),
-            (true, true, true, false) => self.contacts::<HertzKernel, true, true, false>(),
-            (true, true, false, true) => self.contacts::<HertzKernel, true, false, true>(),
-            (true, true, false, false) => self.contacts::<HertzKernel, true, false, false>(),
-            (true, false, _, true) => self.contacts::<HertzKernel, false, false, true>(),
-            (true, false, _, false) => self.contacts::<HertzKernel, false, false, false>(),
-            (false, true, true, true) => self.contacts::<LinearKernel, true, true, true>(),
-            (false, true, true, false) => self.contacts::<LinearKernel, true, true, false>(),
-            (false, true, false, true) => self.contacts::<LinearKernel, true, false, true>(),
-            (false, true, false, false) => self.contacts::<LinearKernel, true, false, false>(),
-            (false, false, _, true) => self.contacts::<LinearKernel, false, false, true>(),
-            (false, false, _, false) => self.contacts::<LinearKernel, false, false, false>(),
+        let out = match (hertz, l.tangential_kind()) {
+            (true, TangentialLaw::None) => self.contacts::<HertzKernel, NoTangential>(),
+            (true, TangentialLaw::CoulombViscous { .. })
+            | (true, TangentialLaw::LinearDashpotCoulomb { .. }) => {
+                self.contacts::<HertzKernel, CoulombViscousKernel>()
+            }
+            (true, TangentialLaw::MindlinSpring { .. }) => {
+                self.contacts::<HertzKernel, MindlinSpringKernel>()
+            }
+            (true, TangentialLaw::LinearSpring { .. }) => {
+                self.contacts::<HertzKernel, LinearSpringKernel>()
+            }
+            (false, TangentialLaw::None) => self.contacts::<LinearKernel, NoTangential>(),
+            (false, TangentialLaw::CoulombViscous { .. })
+            | (false, TangentialLaw::LinearDashpotCoulomb { .. }) => {
+                self.contacts::<LinearKernel, CoulombViscousKernel>()
+            }
+            (false, TangentialLaw::MindlinSpring { .. }) => {
+                self.contacts::<LinearKernel, MindlinSpringKernel>()
+            }
+            (false, TangentialLaw::LinearSpring { .. }) => {
+                self.contacts::<LinearKernel, LinearSpringKernel>()
+            }
         };
         self.grain_force_n = out.0;
         (out.1, out.2)
     }
 
-    fn contacts<K: NormalKernel, const TANG: bool, const ROT: bool, const CLAMP: bool>(
-        &mut self,
-    ) -> LoopOut {
-        let (pc, pf) = pair_loop::<K, TANG, ROT, CLAMP>(
-            &self.pos,
-            &self.vel_pred,
-            &self.omega_pred,
-            &self.radius,
-            &self.neighbors.pairs,
-            &self.pair_coef,
-            (self.laws.friction(false), self.laws.friction(true)),
-            &mut self.force,
-            &mut self.torque,
-        );
-        let (fgz, wc, wf) = wall_loop::<K, TANG, ROT, CLAMP>(self);
+    /// Pair pass (every candidate pair's contact response into its [`PairState`]), then the
+    /// per-grain pass (gravity, drag, the grain's pair forces gathered in pair order, its
+    /// wall contacts). Both passes run in fixed chunks, on the rayon pool for large beds.
+    fn contacts<N: NormalKernel, T: TangentialKernel>(&mut self) -> LoopOut {
+        let par = self.parallel();
+        let ctx = PairCtx {
+            pos: &self.pos,
+            vel: &self.vel_pred,
+            omega: &self.omega_pred,
+            radius: &self.radius,
+            friction: self.laws.friction(false),
+            clamp: self.laws.attraction == AttractionPolicy::Clamp,
+            rotations: self.laws.rotations,
+            dt: self.dt,
+        };
+        let b = self.box_size;
+        let (grain_start, grain_items) = self.neighbors.grain_index();
+        let gctx = GrainCtx {
+            pos: &self.pos,
+            vel: &self.vel,
+            vel_pred: &self.vel_pred,
+            omega_pred: &self.omega_pred,
+            radius: &self.radius,
+            mass: &self.mass,
+            wall_coef: &self.wall_coef,
+            grain_start,
+            grain_items,
+            pair_state: &[],
+            box_size: b,
+            floor: self.box_z,
+            ceil: self.box_z + b[2],
+            wall_v: self.box_v_pred,
+            friction: self.laws.friction(true),
+            clamp: self.laws.attraction == AttractionPolicy::Clamp,
+            rotations: self.laws.rotations,
+            dt: self.dt,
+            gravity: self.gravity,
+            drag: self.settle_drag,
+        };
+        let pairs = &self.neighbors.pairs;
+        let coef = &self.pair_coef;
+        let state = &mut self.pair_state;
+        if par {
+            state
+                .par_chunks_mut(PAIR_CHUNK)
+                .zip(pairs.par_chunks(PAIR_CHUNK))
+                .zip(coef.par_chunks(PAIR_CHUNK))
+                .map(|((s, p), c)| pair_chunk::<N, T, false>(&ctx, p, c, s, &mut [], &mut []))
+                .collect_into_vec(&mut self.partials);
+        } else {
+            init_forces(&gctx, &mut self.force, &mut self.torque);
+            self.partials.clear();
+            for ((s, p), c) in state
+                .chunks_mut(PAIR_CHUNK)
+                .zip(pairs.chunks(PAIR_CHUNK))
+                .zip(coef.chunks(PAIR_CHUNK))
+            {
+                let part =
+                    pair_chunk::<N, T, true>(&ctx, p, c, s, &mut self.force, &mut self.torque);
+                self.partials.push(part);
+            }
+        }
+        let (pc, pf) = self
+            .partials
+            .iter()
+            .fold((0.0, 0.0), |a, p| (a.0 + p[0], a.1 + p[1]));
+        let gctx = GrainCtx {
+            pair_state: &self.pair_state,
+            ..gctx
+        };
+        if par {
+            self.force
+                .par_chunks_mut(GRAIN_CHUNK)
+                .zip(self.torque.par_chunks_mut(GRAIN_CHUNK))
+                .zip(self.wall_history.par_chunks_mut(GRAIN_CHUNK))
+                .enumerate()
+                .map(|(c, ((f, t), h))| grain_chunk::<N, T, true>(&gctx, c * GRAIN_CHUNK, f, t, h))
+                .collect_into_vec(&mut self.partials);
+        } else {
+            self.partials.clear();
+            for (c, ((f, t), h)) in self
+                .force
+                .chunks_mut(GRAIN_CHUNK)
+                .zip(self.torque.chunks_mut(GRAIN_CHUNK))
+                .zip(self.wall_history.chunks_mut(GRAIN_CHUNK))
+                .enumerate()
+            {
+                self.partials
+                    .push(grain_chunk::<N, T, false>(&gctx, c * GRAIN_CHUNK, f, t, h));
+            }
+        }
+        let (fgz, wc, wf) = self
+            .partials
+            .iter()
+            .fold((0.0, 0.0, 0.0), |a, p| (a.0 + p[0], a.1 + p[1], a.2 + p[2]));
         (fgz, pc + wc, pf + wf)
     }
 
@@ -573,18 +769,34 @@ impl DemWorld {
             NormalLaw::HertzKuwabaraKono { .. } => 0.4 * k * z * z * z.sqrt(),
             NormalLaw::LinearSpringDashpot { .. } => 0.5 * k * z * z,
         };
-        for (p, c) in self.neighbors.pairs.iter().zip(&self.pair_coef) {
+        // tangential springs: ½ k_t |ξ|² (k_t = k_t' √ζ for Mindlin)
+        let tangential = |c: &ContactCoefficients, z: f64, h: [f64; 3]| -> f64 {
+            let kt = match self.laws.tangential_kind() {
+                TangentialLaw::MindlinSpring { .. } => c[3] * z.sqrt(),
+                TangentialLaw::LinearSpring { .. } => c[3],
+                _ => return 0.0,
+            };
+            0.5 * kt * (h[0] * h[0] + h[1] * h[1] + h[2] * h[2])
+        };
+        for ((p, c), st) in self
+            .neighbors
+            .pairs
+            .iter()
+            .zip(&self.pair_coef)
+            .zip(&self.pair_state)
+        {
             let (i, j) = (p.i as usize, p.j as usize);
             let d = sub(self.pos[i], self.pos[j]);
             let z = self.radius[i] + self.radius[j] - norm(d);
             if z > 0.0 {
-                s.elastic_j += elastic(c[0], z);
+                s.elastic_j += elastic(c[0], z) + tangential(c, z, st.history);
             }
         }
         for i in 0..self.len() {
-            for z in self.wall_overlaps(i) {
+            for (w, z) in self.wall_overlaps(i).into_iter().enumerate() {
                 if z > 0.0 {
-                    s.elastic_j += elastic(self.wall_coef[i][0], z);
+                    let c = &self.wall_coef[i];
+                    s.elastic_j += elastic(c[0], z) + tangential(c, z, self.wall_history[i][w]);
                 }
             }
         }
@@ -665,174 +877,319 @@ fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 fn norm(a: [f64; 3]) -> f64 {
     (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
 }
-#[inline(always)]
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
+
+/// Shared inputs of the pair pass.
+struct PairCtx<'a> {
+    pos: &'a [[f64; 3]],
+    vel: &'a [[f64; 3]],
+    omega: &'a [[f64; 3]],
+    radius: &'a [f64],
+    friction: f64,
+    clamp: bool,
+    rotations: bool,
+    dt: f64,
 }
 
-/// Grain–grain contacts over the Verlet list. Returns (collision power, friction power) (W).
-#[allow(clippy::too_many_arguments)]
+/// One chunk of candidate pairs: a branch-free pass keeps the pairs in contact (and clears
+/// the others' outputs and springs), then [`contact_response`] runs on those only. Returns the
+/// chunk's (collision power, friction power, 0) (W).
+///
+/// `SCATTER` (one thread): the forces and torques go straight into `force` and `torque` (which
+/// hold gravity and drag already), pair by pair in pair order — the same sums in the same order
+/// as the per-grain gathering of the parallel path, so both give bit-identical results.
 #[inline(never)]
-fn pair_loop<K: NormalKernel, const TANG: bool, const ROT: bool, const CLAMP: bool>(
-    pos: &[[f64; 3]],
-    vel: &[[f64; 3]],
-    omega: &[[f64; 3]],
-    radius: &[f64],
+fn pair_chunk<N: NormalKernel, T: TangentialKernel, const SCATTER: bool>(
+    ctx: &PairCtx,
     pairs: &[Pair],
-    coef: &[[f64; 3]],
-    mu: (f64, f64),
+    coef: &[ContactCoefficients],
+    state: &mut [PairState],
     force: &mut [[f64; 3]],
     torque: &mut [[f64; 3]],
-) -> (f64, f64) {
-    let (mut p_coll, mut p_fric) = (0.0, 0.0);
-    let mu = mu.0;
-    for (pair, c) in pairs.iter().zip(coef) {
+) -> [f64; 3] {
+    let (pos, radius) = (ctx.pos, ctx.radius);
+    let mut active = [0u32; PAIR_CHUNK];
+    let mut m = 0usize;
+    for (a, (pair, st)) in pairs.iter().zip(state.iter_mut()).enumerate() {
         let (i, j) = (pair.i as usize, pair.j as usize);
-        let (ri, rj) = (radius[i], radius[j]);
         let d = sub(pos[i], pos[j]);
         let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-        let cut = ri + rj;
-        if r2 >= cut * cut {
-            continue;
+        let cut = radius[i] + radius[j];
+        let on = r2 < cut * cut;
+        active[m] = a as u32;
+        m += on as usize;
+        if !SCATTER {
+            st.force = [0.0; 3];
+            st.torque_arm = [0.0; 3];
         }
-        let dist = r2.sqrt();
-        let inv = 1.0 / dist;
-        let n = [d[0] * inv, d[1] * inv, d[2] * inv];
-        let z = cut - dist;
-        let vr = sub(vel[i], vel[j]);
-        let vrn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2];
-        let v_n = -vrn;
-        let (raw, fel, ts) = K::eval(c[0], c[1], z, v_n);
-        let f = if CLAMP {
-            AttractionPolicy::Clamp.apply(raw)
-        } else {
-            raw
-        };
-        p_coll += (f - fel) * v_n;
-        let mut fv = [f * n[0], f * n[1], f * n[2]];
-        if TANG {
-            let mut vs = [vr[0] - vrn * n[0], vr[1] - vrn * n[1], vr[2] - vrn * n[2]];
-            if ROT {
-                let (wi, wj) = (omega[i], omega[j]);
-                let w = [
+        if T::HISTORY && !on {
+            st.history = [0.0; 3];
+        }
+    }
+    // staged: geometry of a block of contacts, then their responses, then the sums — short
+    // loops of independent iterations whose square roots and divisions overlap
+    let (mut p_coll, mut p_fric) = (0.0, 0.0);
+    let mut kin = [ContactKinematics::default(); STAGE];
+    let mut resp = [ContactResponse::default(); STAGE];
+    for block in active[..m].chunks(STAGE) {
+        for (k, &a) in kin.iter_mut().zip(block) {
+            let pair = pairs[a as usize];
+            let (i, j) = (pair.i as usize, pair.j as usize);
+            let (ri, rj) = (radius[i], radius[j]);
+            let d = sub(pos[i], pos[j]);
+            let dist = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            let inv = 1.0 / dist;
+            let spin = if ctx.rotations {
+                let (wi, wj) = (ctx.omega[i], ctx.omega[j]);
+                [
                     ri * wi[0] + rj * wj[0],
                     ri * wi[1] + rj * wj[1],
                     ri * wi[2] + rj * wj[2],
-                ];
-                let wn = cross(w, n);
-                vs = sub(vs, wn);
-            }
-            let (fs, p) = coulomb_viscous_force(vs, ts, f, c[2], mu);
-            p_fric += p;
-            fv[0] += fs[0];
-            fv[1] += fs[1];
-            fv[2] += fs[2];
-            if ROT {
-                let t = cross(n, fs);
-                let ti = &mut torque[i];
-                ti[0] -= ri * t[0];
-                ti[1] -= ri * t[1];
-                ti[2] -= ri * t[2];
-                let tj = &mut torque[j];
-                tj[0] -= rj * t[0];
-                tj[1] -= rj * t[1];
-                tj[2] -= rj * t[2];
-            }
+                ]
+            } else {
+                [0.0; 3]
+            };
+            *k = ContactKinematics {
+                overlap_m: ri + rj - dist,
+                normal: [d[0] * inv, d[1] * inv, d[2] * inv],
+                v_rel: sub(ctx.vel[i], ctx.vel[j]),
+                spin,
+            };
         }
-        let fi = &mut force[i];
-        fi[0] += fv[0];
-        fi[1] += fv[1];
-        fi[2] += fv[2];
-        let fj = &mut force[j];
-        fj[0] -= fv[0];
-        fj[1] -= fv[1];
-        fj[2] -= fv[2];
+        for ((r, k), &a) in resp.iter_mut().zip(&kin).zip(block) {
+            let a = a as usize;
+            *r = contact_response::<N, T>(
+                k,
+                &coef[a],
+                ctx.friction,
+                ctx.clamp,
+                ctx.rotations,
+                ctx.dt,
+                &mut state[a].history,
+            );
+        }
+        for (r, &a) in resp.iter().zip(block) {
+            let a = a as usize;
+            if SCATTER {
+                let pair = pairs[a];
+                let (i, j) = (pair.i as usize, pair.j as usize);
+                let (f, t) = (r.force, r.torque_arm);
+                let fi = &mut force[i];
+                fi[0] += f[0];
+                fi[1] += f[1];
+                fi[2] += f[2];
+                let fj = &mut force[j];
+                fj[0] -= f[0];
+                fj[1] -= f[1];
+                fj[2] -= f[2];
+                if T::ACTIVE && ctx.rotations {
+                    let (ri, rj) = (radius[i], radius[j]);
+                    let ti = &mut torque[i];
+                    ti[0] -= ri * t[0];
+                    ti[1] -= ri * t[1];
+                    ti[2] -= ri * t[2];
+                    let tj = &mut torque[j];
+                    tj[0] -= rj * t[0];
+                    tj[1] -= rj * t[1];
+                    tj[2] -= rj * t[2];
+                }
+            } else {
+                let st = &mut state[a];
+                st.force = r.force;
+                st.torque_arm = r.torque_arm;
+            }
+            p_coll += r.p_collision;
+            p_fric += r.p_friction;
+        }
     }
-    (p_coll, p_fric)
+    [p_coll, p_fric, 0.0]
 }
 
-/// Grain–wall contacts with the six planes of the box. Returns (F_gz, collision power,
-/// friction power).
-#[inline(never)]
-fn wall_loop<K: NormalKernel, const TANG: bool, const ROT: bool, const CLAMP: bool>(
-    w: &mut DemWorld,
-) -> LoopOut {
-    let b = w.box_size;
-    let floor = w.box_z;
-    let ceil = w.box_z + b[2];
-    let vw = w.box_v_pred;
-    let mu = w.laws.friction(true);
-    let (mut fgz, mut p_coll, mut p_fric) = (0.0, 0.0, 0.0);
-    for i in 0..w.pos.len() {
-        let p = w.pos[i];
-        let r = w.radius[i];
-        // cheap reject: far from every wall
-        if p[0] > r
-            && p[0] < b[0] - r
-            && p[1] > r
-            && p[1] < b[1] - r
-            && p[2] > floor + r
-            && p[2] < ceil - r
-        {
-            continue;
-        }
-        let c = w.wall_coef[i];
-        let vr = [w.vel_pred[i][0], w.vel_pred[i][1], w.vel_pred[i][2] - vw];
-        let om = w.omega_pred[i];
-        let cands: [(f64, usize, f64); 6] = [
-            (r - p[0], 0, 1.0),
-            (r - (b[0] - p[0]), 0, -1.0),
-            (r - p[1], 1, 1.0),
-            (r - (b[1] - p[1]), 1, -1.0),
-            (r - (p[2] - floor), 2, 1.0),
-            (r - (ceil - p[2]), 2, -1.0),
-        ];
-        for (z, axis, s) in cands {
-            if z <= 0.0 {
-                continue;
-            }
-            let mut n = [0.0; 3];
-            n[axis] = s;
-            let vrn = vr[axis] * s;
-            let v_n = -vrn;
-            let (raw, fel, ts) = K::eval(c[0], c[1], z, v_n);
-            let f = if CLAMP {
-                AttractionPolicy::Clamp.apply(raw)
-            } else {
-                raw
-            };
-            p_coll += (f - fel) * v_n;
-            let mut fv = [f * n[0], f * n[1], f * n[2]];
-            if TANG {
-                let mut vs = vr;
-                vs[axis] = 0.0;
-                if ROT {
-                    let wn = cross([r * om[0], r * om[1], r * om[2]], n);
-                    vs = sub(vs, wn);
-                }
-                let (fs, pw) = coulomb_viscous_force(vs, ts, f, c[2], mu);
-                p_fric += pw;
-                fv[0] += fs[0];
-                fv[1] += fs[1];
-                fv[2] += fs[2];
-                if ROT {
-                    let t = cross(n, fs);
-                    let ti = &mut w.torque[i];
-                    ti[0] -= r * t[0];
-                    ti[1] -= r * t[1];
-                    ti[2] -= r * t[2];
-                }
-            }
-            let fi = &mut w.force[i];
-            fi[0] += fv[0];
-            fi[1] += fv[1];
-            fi[2] += fv[2];
-            fgz -= fv[2];
+/// Overlaps of grain i with the walls x−, x+, y−, y+, floor, ceiling (m); ≤ 0: no contact.
+/// Wall w has the normal ±e_{w/2}, + for even w (pointing into the box).
+#[inline(always)]
+fn wall_overlaps(ctx: &GrainCtx, i: usize) -> [f64; 6] {
+    let (p, r, b) = (ctx.pos[i], ctx.radius[i], ctx.box_size);
+    [
+        r - p[0],
+        r - (b[0] - p[0]),
+        r - p[1],
+        r - (b[1] - p[1]),
+        r - (p[2] - ctx.floor),
+        r - (ctx.ceil - p[2]),
+    ]
+}
+
+/// Gravity and settling drag on grain i, and a zero torque (N, N m).
+#[inline(always)]
+fn init_force(ctx: &GrainCtx, i: usize) -> ([f64; 3], [f64; 3]) {
+    let m = ctx.mass[i];
+    let mut f = [0.0, 0.0, -m * ctx.gravity];
+    if ctx.drag > 0.0 {
+        let (v, s) = (ctx.vel[i], -m * ctx.drag);
+        f[0] += s * v[0];
+        f[1] += s * v[1];
+        f[2] += s * v[2];
+    }
+    (f, [0.0; 3])
+}
+
+/// [`init_force`] for every grain (the one-thread path, before the scattering pair pass).
+fn init_forces(ctx: &GrainCtx, force: &mut [[f64; 3]], torque: &mut [[f64; 3]]) {
+    for (i, (f, t)) in force.iter_mut().zip(torque.iter_mut()).enumerate() {
+        let (a, b) = init_force(ctx, i);
+        *f = a;
+        if ctx.rotations {
+            *t = b;
         }
     }
-    (fgz, p_coll, p_fric)
+}
+
+/// Shared inputs of the per-grain pass.
+struct GrainCtx<'a> {
+    pos: &'a [[f64; 3]],
+    vel: &'a [[f64; 3]],
+    vel_pred: &'a [[f64; 3]],
+    omega_pred: &'a [[f64; 3]],
+    radius: &'a [f64],
+    mass: &'a [f64],
+    wall_coef: &'a [ContactCoefficients],
+    grain_start: &'a [u32],
+    grain_items: &'a [u32],
+    pair_state: &'a [PairState],
+    box_size: [f64; 3],
+    floor: f64,
+    ceil: f64,
+    wall_v: f64,
+    friction: f64,
+    clamp: bool,
+    rotations: bool,
+    dt: f64,
+    gravity: f64,
+    drag: f64,
+}
+
+/// One chunk of grains from `first`: gravity and settling drag, the grain's pair forces and
+/// torques gathered in pair order (so the sums do not depend on the threads), then its
+/// contacts with the six walls through the same [`contact_response`]. Returns the chunk's
+/// (F_gz, collision power, friction power) (N, W, W).
+///
+/// Without `GATHER` (one thread) only the walls are added: gravity, drag and the pair forces
+/// are in `force` already ([`init_forces`], then the scattering [`pair_chunk`]).
+#[inline(never)]
+fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool>(
+    ctx: &GrainCtx,
+    first: usize,
+    force: &mut [[f64; 3]],
+    torque: &mut [[f64; 3]],
+    wall_history: &mut [[[f64; 3]; 6]],
+) -> [f64; 3] {
+    let vw = ctx.wall_v;
+    let (mut fgz, mut p_coll, mut p_fric) = (0.0, 0.0, 0.0);
+    let mut walls = [0u32; 6 * GRAIN_CHUNK];
+    let mut m = 0usize;
+    for (l, ((fi, ti), hist)) in force
+        .iter_mut()
+        .zip(torque.iter_mut())
+        .zip(wall_history.iter_mut())
+        .enumerate()
+    {
+        let i = first + l;
+        let r = ctx.radius[i];
+        if GATHER {
+            let (mut f, mut t) = init_force(ctx, i);
+            let items =
+                &ctx.grain_items[ctx.grain_start[i] as usize..ctx.grain_start[i + 1] as usize];
+            for &e in items {
+                let st = &ctx.pair_state[(e & !J_ROLE) as usize];
+                // +1 where i is the pair's i, −1 where it is its j (exact: a + (−b) = a − b)
+                let sign = 1.0 - 2.0 * (e >> 31) as f64;
+                f[0] += sign * st.force[0];
+                f[1] += sign * st.force[1];
+                f[2] += sign * st.force[2];
+                if T::ACTIVE && ctx.rotations {
+                    t[0] -= r * st.torque_arm[0];
+                    t[1] -= r * st.torque_arm[1];
+                    t[2] -= r * st.torque_arm[2];
+                }
+            }
+            *fi = f;
+            if ctx.rotations {
+                *ti = t;
+            }
+        }
+        // far from every wall (most grains of a wide bed): nothing to do
+        let p = ctx.pos[i];
+        if p[0] > r
+            && p[0] < ctx.box_size[0] - r
+            && p[1] > r
+            && p[1] < ctx.box_size[1] - r
+            && p[2] > ctx.floor + r
+            && p[2] < ctx.ceil - r
+        {
+            if T::HISTORY {
+                *hist = [[0.0; 3]; 6];
+            }
+            continue;
+        }
+        // the grain's wall contacts, kept branch-free (six overlaps against the box)
+        let z6 = wall_overlaps(ctx, i);
+        for (w, z) in z6.into_iter().enumerate() {
+            let on = z > 0.0;
+            walls[m] = (l * 6 + w) as u32;
+            m += on as usize;
+            if T::HISTORY && !on {
+                hist[w] = [0.0; 3];
+            }
+        }
+    }
+    // staged like the pair pass: geometry of a block of wall contacts, their responses, sums
+    let mut kin = [ContactKinematics::default(); STAGE];
+    let mut resp = [ContactResponse::default(); STAGE];
+    for block in walls[..m].chunks(STAGE) {
+        for (k, &e) in kin.iter_mut().zip(block) {
+            let (l, w) = (e as usize / 6, e as usize % 6);
+            let i = first + l;
+            let r = ctx.radius[i];
+            let (vp, om) = (ctx.vel_pred[i], ctx.omega_pred[i]);
+            let (axis, s) = (w / 2, 1.0 - 2.0 * (w % 2) as f64);
+            let mut n = [0.0; 3];
+            n[axis] = s;
+            *k = ContactKinematics {
+                overlap_m: wall_overlaps(ctx, i)[w],
+                normal: n,
+                v_rel: [vp[0], vp[1], vp[2] - vw],
+                spin: [r * om[0], r * om[1], r * om[2]],
+            };
+        }
+        for ((rs, k), &e) in resp.iter_mut().zip(&kin).zip(block) {
+            let (l, w) = (e as usize / 6, e as usize % 6);
+            *rs = contact_response::<N, T>(
+                k,
+                &ctx.wall_coef[first + l],
+                ctx.friction,
+                ctx.clamp,
+                ctx.rotations,
+                ctx.dt,
+                &mut wall_history[l][w],
+            );
+        }
+        for (rs, &e) in resp.iter().zip(block) {
+            let l = e as usize / 6;
+            let r = ctx.radius[first + l];
+            p_coll += rs.p_collision;
+            p_fric += rs.p_friction;
+            let fi = &mut force[l];
+            fi[0] += rs.force[0];
+            fi[1] += rs.force[1];
+            fi[2] += rs.force[2];
+            if T::ACTIVE && ctx.rotations {
+                let ti = &mut torque[l];
+                ti[0] -= r * rs.torque_arm[0];
+                ti[1] -= r * rs.torque_arm[1];
+                ti[2] -= r * rs.torque_arm[2];
+            }
+            fgz -= rs.force[2];
+        }
+    }
+    [fgz, p_coll, p_fric]
 }

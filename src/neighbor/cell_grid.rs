@@ -1,7 +1,8 @@
-//! Cell grid + Verlet pair list (O(N) neighbour search).
+//! Sorted cell list + Verlet pair list (O(N) neighbour search, O(N) memory).
 //!
-//! Grains are binned (counting sort, no allocation after the first build) into cubic-ish cells
-//! of side ≥ 2 R_max + skin in the box frame; each cell is compared with itself and its 13
+//! Grains are keyed by their cell (cubic-ish cells of side ≥ 2 R_max + skin in the box frame)
+//! and sorted by key; only occupied cells are kept, and a neighbour cell is found by binary
+//! search among them, so the memory does not grow with the box volume; each cell is compared with itself and its 13
 //! "forward" neighbours, so every pair is found once (i < j in cell order) and its force is
 //! computed once (Newton's third law). The list keeps every pair closer than
 //! R_i + R_j + skin; it stays valid while every grain has moved less than skin/2 relative to
@@ -17,7 +18,11 @@ pub struct Pair {
     pub j: u32,
 }
 
-/// Verlet neighbour list built with a cell grid over the box.
+/// Bit set in [`NeighborList::grain_pairs`] entries where the grain is the pair's `j`.
+pub const J_ROLE: u32 = 1 << 31;
+
+/// Verlet neighbour list built with a sorted (hashed) cell list: only occupied cells are
+/// stored, so its memory is O(N) whatever the box volume.
 #[derive(Debug, Clone)]
 pub struct NeighborList {
     /// Candidate pairs (valid until [`NeighborList::needs_rebuild`] says otherwise).
@@ -26,10 +31,17 @@ pub struct NeighborList {
     box_m: [f64; 3],
     dims: [usize; 3],
     inv_cell: [f64; 3],
-    cell_count: Vec<u32>,
+    /// (cell key, grain) sorted by key then grain.
+    keyed: Vec<(u64, u32)>,
+    /// Keys of the occupied cells, ascending.
+    cell_keys: Vec<u64>,
+    /// Start of each occupied cell's grains in `keyed` (one more entry than cells).
     cell_start: Vec<u32>,
-    cell_items: Vec<u32>,
-    cell_of: Vec<u32>,
+    /// Per grain, where its entries start in `grain_items` (N + 1 entries).
+    grain_start: Vec<u32>,
+    /// Per grain, the candidate pairs it belongs to in pair order: the pair index, with
+    /// [`J_ROLE`] set where the grain is the pair's `j`.
+    grain_items: Vec<u32>,
     ref_pos: Vec<[f64; 3]>,
     ref_shift: [f64; 3],
     /// Number of (re)builds so far.
@@ -37,7 +49,8 @@ pub struct NeighborList {
 }
 
 impl NeighborList {
-    /// Prepares a grid for a box of size `box_m` (m), grains up to `r_max` (m), skin (m).
+    /// Prepares a cell list for a box of size `box_m` (m), grains up to `r_max` (m), skin (m).
+    /// Allocates nothing that depends on the box volume.
     pub fn new(box_m: [f64; 3], r_max: f64, skin_m: f64) -> Self {
         let cell = 2.0 * r_max + skin_m;
         let mut dims = [1usize; 3];
@@ -46,17 +59,17 @@ impl NeighborList {
             dims[d] = ((box_m[d] / cell).floor() as usize).clamp(1, 1 << 20);
             inv_cell[d] = dims[d] as f64 / box_m[d];
         }
-        let n_cells = dims[0] * dims[1] * dims[2];
         NeighborList {
             pairs: Vec::new(),
             skin_m,
             box_m,
             dims,
             inv_cell,
-            cell_count: vec![0; n_cells],
-            cell_start: vec![0; n_cells + 1],
-            cell_items: Vec::new(),
-            cell_of: Vec::new(),
+            keyed: Vec::new(),
+            cell_keys: Vec::new(),
+            cell_start: Vec::new(),
+            grain_start: Vec::new(),
+            grain_items: Vec::new(),
             ref_pos: Vec::new(),
             ref_shift: [0.0; 3],
             builds: 0,
@@ -73,8 +86,37 @@ impl NeighborList {
         self.dims
     }
 
+    /// Occupied cells at the last build.
+    pub fn occupied_cells(&self) -> usize {
+        self.cell_keys.len()
+    }
+
+    /// Bytes held by the neighbour structure now (pairs, cell list, per-grain index).
+    pub fn memory_bytes(&self) -> usize {
+        self.pairs.capacity() * std::mem::size_of::<Pair>()
+            + self.keyed.capacity() * 16
+            + self.cell_keys.capacity() * 8
+            + (self.cell_start.capacity()
+                + self.grain_start.capacity()
+                + self.grain_items.capacity())
+                * 4
+            + self.ref_pos.capacity() * 24
+    }
+
+    /// The candidate pairs of grain `i`, in pair order: pair index, with [`J_ROLE`] set where
+    /// `i` is the pair's `j`.
     #[inline]
-    fn cell_index(&self, p: [f64; 3]) -> usize {
+    pub fn grain_pairs(&self, i: usize) -> &[u32] {
+        &self.grain_items[self.grain_start[i] as usize..self.grain_start[i + 1] as usize]
+    }
+
+    /// (per-grain start, items) of [`NeighborList::grain_pairs`] for all grains.
+    pub fn grain_index(&self) -> (&[u32], &[u32]) {
+        (&self.grain_start, &self.grain_items)
+    }
+
+    #[inline]
+    fn cell_coords(&self, p: [f64; 3]) -> [usize; 3] {
         let mut c = [0usize; 3];
         for d in 0..3 {
             let x = (p[d] * self.inv_cell[d]).floor();
@@ -84,7 +126,12 @@ impl NeighborList {
                 (x as usize).min(self.dims[d] - 1)
             };
         }
-        (c[2] * self.dims[1] + c[1]) * self.dims[0] + c[0]
+        c
+    }
+
+    #[inline]
+    fn key(&self, c: [usize; 3]) -> u64 {
+        ((c[2] as u64 * self.dims[1] as u64) + c[1] as u64) * self.dims[0] as u64 + c[0] as u64
     }
 
     /// True when some grain moved more than skin/2 relative to the common `shift` (m) since
@@ -120,7 +167,9 @@ impl NeighborList {
         self.builds == 0 || max_d2 > 0.25 * self.skin_m * self.skin_m
     }
 
-    /// Rebuilds the pair list: all pairs with |r_i − r_j| < R_i + R_j + skin.
+    /// Rebuilds the pair list: all pairs with |r_i − r_j| < R_i + R_j + skin, in the order of
+    /// the cells' linear index (z, y, x), then the half stencil, then the grains' indices —
+    /// and the per-grain index of those pairs.
     ///
     /// `pos` are lab-frame centres (m), `shift` the box origin in the lab frame (m).
     pub fn rebuild(&mut self, pos: &[[f64; 3]], radius: &[f64], shift: [f64; 3]) {
@@ -129,76 +178,96 @@ impl NeighborList {
         self.ref_pos.clear();
         self.ref_pos.extend_from_slice(pos);
         self.ref_shift = shift;
-        self.cell_of.resize(n, 0);
-        self.cell_items.resize(n, 0);
-        self.cell_count.iter_mut().for_each(|c| *c = 0);
+        // sorted cell list: (key, grain), occupied cells and their ranges
+        self.keyed.clear();
         for (i, q) in pos.iter().enumerate() {
-            let c = self.cell_index([q[0] - shift[0], q[1] - shift[1], q[2] - shift[2]]);
-            self.cell_of[i] = c as u32;
-            self.cell_count[c] += 1;
+            let c = self.cell_coords([q[0] - shift[0], q[1] - shift[1], q[2] - shift[2]]);
+            self.keyed.push((self.key(c), i as u32));
         }
-        let mut acc = 0u32;
-        for (c, &cnt) in self.cell_count.iter().enumerate() {
-            self.cell_start[c] = acc;
-            acc += cnt;
+        self.keyed.sort_unstable();
+        self.cell_keys.clear();
+        self.cell_start.clear();
+        for (a, &(k, _)) in self.keyed.iter().enumerate() {
+            if self.cell_keys.last() != Some(&k) {
+                self.cell_keys.push(k);
+                self.cell_start.push(a as u32);
+            }
         }
-        let nc = self.cell_count.len();
-        self.cell_start[nc] = acc;
-        // fill (reuse cell_count as a cursor)
-        for c in 0..nc {
-            self.cell_count[c] = self.cell_start[c];
-        }
-        for i in 0..n {
-            let c = self.cell_of[i] as usize;
-            self.cell_items[self.cell_count[c] as usize] = i as u32;
-            self.cell_count[c] += 1;
-        }
+        self.cell_start.push(n as u32);
         self.pairs.clear();
         let [nx, ny, nz] = self.dims;
         let skin = self.skin_m;
-        for cz in 0..nz {
-            for cy in 0..ny {
-                for cx in 0..nx {
-                    let c = (cz * ny + cy) * nx + cx;
-                    let (a0, a1) = (self.cell_start[c] as usize, self.cell_start[c + 1] as usize);
-                    if a0 == a1 {
-                        continue;
+        for c in 0..self.cell_keys.len() {
+            let key = self.cell_keys[c];
+            let cx = (key % nx as u64) as usize;
+            let cy = ((key / nx as u64) % ny as u64) as usize;
+            let cz = (key / (nx as u64 * ny as u64)) as usize;
+            let (a0, a1) = (self.cell_start[c] as usize, self.cell_start[c + 1] as usize);
+            for (dx, dy, dz) in HALF_STENCIL {
+                let (x, y, z) = (cx as isize + dx, cy as isize + dy, cz as isize + dz);
+                if x < 0 || y < 0 || z < 0 {
+                    continue;
+                }
+                let (x, y, z) = (x as usize, y as usize, z as usize);
+                if x >= nx || y >= ny || z >= nz {
+                    continue;
+                }
+                let same = (dx, dy, dz) == (0, 0, 0);
+                let c2 = if same {
+                    c
+                } else {
+                    match self.cell_keys.binary_search(&self.key([x, y, z])) {
+                        Ok(c2) => c2,
+                        Err(_) => continue,
                     }
-                    for (dx, dy, dz) in HALF_STENCIL {
-                        let (x, y, z) = (cx as isize + dx, cy as isize + dy, cz as isize + dz);
-                        if x < 0 || y < 0 || z < 0 {
-                            continue;
-                        }
-                        let (x, y, z) = (x as usize, y as usize, z as usize);
-                        if x >= nx || y >= ny || z >= nz {
-                            continue;
-                        }
-                        let c2 = (z * ny + y) * nx + x;
-                        let (b0, b1) = (
-                            self.cell_start[c2] as usize,
-                            self.cell_start[c2 + 1] as usize,
-                        );
-                        let same = c2 == c;
-                        for a in a0..a1 {
-                            let i = self.cell_items[a] as usize;
-                            let (pi, ri) = (pos[i], radius[i]);
-                            let start = if same { a + 1 } else { b0 };
-                            for b in start..b1 {
-                                let j = self.cell_items[b] as usize;
-                                let d = [pi[0] - pos[j][0], pi[1] - pos[j][1], pi[2] - pos[j][2]];
-                                let cut = ri + radius[j] + skin;
-                                if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < cut * cut {
-                                    self.pairs.push(Pair {
-                                        i: i as u32,
-                                        j: j as u32,
-                                    });
-                                }
-                            }
+                };
+                let (b0, b1) = (
+                    self.cell_start[c2] as usize,
+                    self.cell_start[c2 + 1] as usize,
+                );
+                for a in a0..a1 {
+                    let i = self.keyed[a].1 as usize;
+                    let (pi, ri) = (pos[i], radius[i]);
+                    let start = if same { a + 1 } else { b0 };
+                    for b in start..b1 {
+                        let j = self.keyed[b].1 as usize;
+                        let d = [pi[0] - pos[j][0], pi[1] - pos[j][1], pi[2] - pos[j][2]];
+                        let cut = ri + radius[j] + skin;
+                        if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < cut * cut {
+                            self.pairs.push(Pair {
+                                i: i as u32,
+                                j: j as u32,
+                            });
                         }
                     }
                 }
             }
         }
+        // per-grain index of the pairs (counting sort, pair order kept)
+        self.grain_start.clear();
+        self.grain_start.resize(n + 1, 0);
+        for p in &self.pairs {
+            self.grain_start[p.i as usize + 1] += 1;
+            self.grain_start[p.j as usize + 1] += 1;
+        }
+        for g in 0..n {
+            self.grain_start[g + 1] += self.grain_start[g];
+        }
+        self.grain_items.clear();
+        self.grain_items.resize(2 * self.pairs.len(), 0);
+        // fill, using grain_start[g] as g's cursor, then shift the ends back into starts
+        for (k, p) in self.pairs.iter().enumerate() {
+            let (i, j) = (p.i as usize, p.j as usize);
+            self.grain_items[self.grain_start[i] as usize] = k as u32;
+            self.grain_start[i] += 1;
+            self.grain_items[self.grain_start[j] as usize] = k as u32 | J_ROLE;
+            self.grain_start[j] += 1;
+        }
+        // grain_start[g] now holds the end of g = the start of g + 1: shift back
+        for g in (1..=n).rev() {
+            self.grain_start[g] = self.grain_start[g - 1];
+        }
+        self.grain_start[0] = 0;
     }
 
     /// Box size the grid was made for (m).
@@ -267,6 +336,27 @@ mod tests {
         }
         assert_eq!(got, want);
         assert!(!want.is_empty());
+        // the per-grain index lists every pair of each grain once, in pair order
+        for g in 0..n {
+            let mine: Vec<usize> = nl
+                .grain_pairs(g)
+                .iter()
+                .map(|&e| {
+                    let k = (e & !J_ROLE) as usize;
+                    let p = nl.pairs[k];
+                    assert_eq!(if e & J_ROLE != 0 { p.j } else { p.i } as usize, g);
+                    k
+                })
+                .collect();
+            let want: Vec<usize> = (0..nl.pairs.len())
+                .filter(|&k| nl.pairs[k].i as usize == g || nl.pairs[k].j as usize == g)
+                .collect();
+            assert_eq!(mine, want);
+        }
+        // memory does not follow the box volume: a 1 km box holds no more than the grains need
+        let mut big = NeighborList::new([1e3, 1e3, 1e3], 0.002, 0.0005);
+        big.rebuild(&pos, &rad, [0.0; 3]);
+        assert!(big.memory_bytes() < 200 * n + 16 * big.pairs.len() + 4096);
         // a common translation does not invalidate the list; a single grain moving does
         let moved: Vec<[f64; 3]> = pos.iter().map(|p| [p[0], p[1], p[2] + 0.01]).collect();
         assert!(!nl.needs_rebuild(&moved, [0.0, 0.0, 0.02]));

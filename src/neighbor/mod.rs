@@ -1,6 +1,6 @@
-//! Broad phase of the DEM (SPEC §2): an O(N) cell grid that builds a Verlet pair list with a
+//! Broad phase of the DEM (SPEC §2): an O(N) sorted cell list that builds a Verlet pair list with a
 //! skin, rebuilt only when some grain has moved more than half the skin relative to the box.
 
 pub mod cell_grid;
 
-pub use cell_grid::{NeighborList, Pair};
+pub use cell_grid::{NeighborList, Pair, J_ROLE};

@@ -17,6 +17,7 @@
 //! gamma_n = 3660.0                  # kg s⁻¹ m^-1/2 (Kuwabara–Kono normal damping)
 //! gamma_s = 10980.0                 # kg s⁻¹ m^-1/2 (tangential damping)
 //! contact = "hertz-kk"              # or "linear" (needs restitution, yield_strength)
+//! tangential = "coulomb-viscous"    # or "mindlin" (hertz-kk) / "linear-spring" (linear)
 //! ```
 
 use serde::{Deserialize, Serialize};
@@ -35,6 +36,24 @@ pub enum ContactKind {
     /// Linear spring–dashpot with the seed paper's parameter selection.
     #[serde(rename = "linear", alias = "linear_spring_dashpot")]
     Linear,
+}
+
+/// Tangential contact law (`damper.tangential`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum TangentialKind {
+    /// The thesis's simplified Coulomb law, history-free: −min(γ_s |v_s| √ζ, μ|F_n|) v̂_s
+    /// (`hertz-kk`), or −min(c_s |v_s|, μ|F_n|) v̂_s (`linear`).
+    #[default]
+    #[serde(rename = "coulomb-viscous", alias = "coulomb_viscous")]
+    CoulombViscous,
+    /// Mindlin (Hertz) tangential spring k_t = 8 G* √(R* ζ) with per-contact history, damping
+    /// γ_s √ζ, Coulomb cap μ|F_n| with the spring reset while sliding (`hertz-kk` only).
+    #[serde(rename = "mindlin")]
+    Mindlin,
+    /// Linear tangential spring k_s = γ k_n with history, the linear law's c_s, Coulomb cap
+    /// (`linear` only).
+    #[serde(rename = "linear-spring", alias = "linear_spring")]
+    LinearSpring,
 }
 
 /// How the initial bed is built (`damper.packing`).
@@ -132,6 +151,10 @@ pub struct DemParams {
     /// Contact law: `"hertz-kk"` (Hertz + Kuwabara–Kono, default) or `"linear"`.
     #[serde(default)]
     pub contact: ContactKind,
+    /// Tangential law: `"coulomb-viscous"` (the thesis's, default), `"mindlin"` (Hertz spring
+    /// with history, `hertz-kk`) or `"linear-spring"` (with history, `linear`).
+    #[serde(default)]
+    pub tangential: TangentialKind,
     /// Coefficient of restitution e (–), grain–grain. `linear`: the law's constant e
     /// (required). `hertz-kk`: instead of `gamma_n`, the e that collisions at
     /// `restitution_speed` have; γ_n is derived from it (Müller–Pöschel's e(v) inverted at the
@@ -271,6 +294,7 @@ impl DemParams {
             gamma_n: 3660.0,
             gamma_s: 10980.0,
             contact: ContactKind::HertzKk,
+            tangential: TangentialKind::CoulombViscous,
             restitution: None,
             restitution_speed: None,
             yield_strength: None,
@@ -534,6 +558,23 @@ impl DemParams {
         }
         if let Some(v) = self.restitution_speed {
             positive("damper.restitution_speed", v, "m/s")?;
+        }
+        match (self.contact, self.tangential) {
+            (ContactKind::Linear, TangentialKind::Mindlin) => {
+                return Err(SceneError::invalid(
+                    "damper.tangential",
+                    "mindlin",
+                    "the Mindlin spring goes with contact = \"hertz-kk\"; with \"linear\" use \"linear-spring\"",
+                ))
+            }
+            (ContactKind::HertzKk, TangentialKind::LinearSpring) => {
+                return Err(SceneError::invalid(
+                    "damper.tangential",
+                    "linear-spring",
+                    "the linear spring goes with contact = \"linear\"; with \"hertz-kk\" use \"mindlin\"",
+                ))
+            }
+            _ => {}
         }
         if self.contact == ContactKind::HertzKk {
             self.validate_hertz_restitution()?;

@@ -14,7 +14,7 @@ use crate::dem::stability::choose_dt;
 use crate::error::{SceneError, SimError};
 use crate::model::{BoxDrive, EnergyTotals, RunOptions, RunSummary, RunWindow};
 use crate::observe::{Observer, SnapshotWriter, StrobeCollector, Tee};
-use crate::scene::dem::{ContactKind, DemParams, PackingKind, SnapshotFormat};
+use crate::scene::dem::{ContactKind, DemParams, PackingKind, SnapshotFormat, TangentialKind};
 use crate::scene::{Damper, DtSpec, Scene};
 
 /// A resolved DEM scene: the damper, its drive, gravity, the run settings and outputs.
@@ -122,6 +122,7 @@ pub fn dem_setup(scene: &Scene) -> Result<DemSetup, SceneError> {
 /// [`SceneError`] naming the key (see [`DemParams::validate`]).
 pub fn dem_model(params: &DemParams) -> Result<DemModel, SceneError> {
     params.validate()?;
+    check_memory(params.count, crate::dem::world::available_memory_bytes())?;
     let dist = params.radius_distribution()?;
     let radii = dist.sample_n(params.count, params.seed);
     let grains = Grains::new(
@@ -147,6 +148,29 @@ pub fn dem_model(params: &DemParams) -> Result<DemModel, SceneError> {
     // the linear law's parameters (e, Y) and the contact time are checked once, here
     crate::dem::stability::contact_time(&model, 1.0).map_err(super::scene_error)?;
     Ok(model)
+}
+
+/// Refuses, before anything is allocated, a grain count whose run would need more memory
+/// than `available` bytes (the machine's free memory; no check when unknown).
+///
+/// # Errors
+/// [`SceneError`] on `damper.count` with the estimate and what is available.
+pub fn check_memory(count: usize, available: Option<f64>) -> Result<(), SceneError> {
+    let need = crate::dem::world::memory_estimate_bytes(count);
+    match available {
+        Some(have) if need > have => Err(SceneError::invalid(
+            "damper.count",
+            count,
+            format!(
+                "needs about {:.1} GB of memory ({:.0} bytes per grain: grain arrays and neighbour list), \
+                 but the machine has {:.1} GB available; use fewer grains",
+                need / 1e9,
+                crate::dem::world::BYTES_PER_GRAIN,
+                have / 1e9
+            ),
+        )),
+        _ => Ok(()),
+    }
 }
 
 /// Default impact speed (m/s) at which a `hertz-kk` scene's `restitution` holds.
@@ -280,9 +304,14 @@ pub fn contact_model(params: &DemParams) -> Result<ContactModel, SceneError> {
         if mu <= 0.0 {
             return TangentialLaw::None;
         }
-        match params.contact {
-            ContactKind::HertzKk => {
-                let gamma_s = gamma_s[usize::from(wall)];
+        let gamma_s = gamma_s[usize::from(wall)];
+        match (params.contact, params.tangential) {
+            (_, TangentialKind::Mindlin) => TangentialLaw::MindlinSpring {
+                gamma_s,
+                friction: mu,
+            },
+            (_, TangentialKind::LinearSpring) => TangentialLaw::LinearSpring { friction: mu },
+            (ContactKind::HertzKk, _) => {
                 if gamma_s > 0.0 {
                     TangentialLaw::CoulombViscous {
                         gamma_s,
@@ -292,7 +321,7 @@ pub fn contact_model(params: &DemParams) -> Result<ContactModel, SceneError> {
                     TangentialLaw::None
                 }
             }
-            ContactKind::Linear => TangentialLaw::LinearDashpotCoulomb { friction: mu },
+            (ContactKind::Linear, _) => TangentialLaw::LinearDashpotCoulomb { friction: mu },
         }
     };
     Ok(ContactModel {
@@ -366,6 +395,12 @@ pub fn simulate(
         None => (run_dem(&setup.model, drive, &cfg, &mut fwd)?, None),
     };
     drop(fwd);
+    for w in [&s.time_step_warning, &s.energy_balance_warning]
+        .into_iter()
+        .flatten()
+    {
+        eprintln!("warning: {w}");
+    }
     let cycles = (cfg.duration_s - s.steady_start_s) * drive.frequency_hz;
     let l = s.ledger;
     let mut extra = BTreeMap::new();
@@ -393,6 +428,12 @@ pub fn simulate(
         ("particle_steps_per_cpu_s", opt(s.particle_steps_per_cpu_s)),
         ("dt_s", s.dt_s),
         ("contact_time_s", s.contact_time_s),
+        ("viscous_time_s", s.viscous_time_s),
+        // 1 when the ledger's residual exceeds 1 % (the run also said so on stderr)
+        (
+            "energy_balance_warning",
+            f64::from(u8::from(s.energy_balance_warning.is_some())),
+        ),
         ("settle_time_s", s.settle_time_s),
         ("settle_steps", s.settle_steps as f64),
         ("neighbor_builds", s.neighbor_builds as f64),
@@ -445,6 +486,16 @@ pub fn simulate(
 mod tests {
     use super::*;
     use crate::dem::stability::DEFAULT_DT_FRACTION;
+
+    #[test]
+    fn a_grain_count_beyond_memory_is_refused_naming_the_key_and_the_estimate() {
+        let e = check_memory(1_000_000_000, Some(24e9))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("damper.count") && e.contains("2048.0 GB"), "{e}");
+        assert!(check_memory(64_000, Some(24e9)).is_ok());
+        assert!(check_memory(usize::MAX, None).is_ok());
+    }
 
     #[test]
     fn explicit_dt_above_limit_is_rejected_with_the_limit() {

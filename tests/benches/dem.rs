@@ -4,13 +4,17 @@
 //!
 //! Groups: `dem/step/{250,1000,4000}_steel` (real stiffness, E = 2.03e11 Pa) and
 //! `dem/step/{250,1000,4000}_soft1000` (E/1000; box widened to keep the bed height),
-//! `neighbor/cell_grid/{250,1000,4000}` and `contact/hertz_kuwabara_kono`.
+//! `neighbor/cell_grid/{250,1000,4000}`, `contact/hertz_kuwabara_kono` and
+//! `contact/response/{hertz_coulomb_viscous,hertz_mindlin}` (the routine the engine calls).
 //! Criterion reports "elements/s" = particle-steps/s. The bed is settled and driven for
 //! a while before timing so that the measured steps are those of the fluidised steady state.
 //! Run: `cargo bench --bench dem`.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use pdamp::contact::hertz_normal_force;
+use pdamp::contact::response::{
+    contact_response, ContactKinematics, CoulombViscousKernel, HertzKernel, MindlinSpringKernel,
+};
 use pdamp::dem::run::{initial_world, settle};
 use pdamp::dem::stability::{choose_dt, DEFAULT_DT_FRACTION};
 use pdamp::dem::{BoxDrive, DemWorld};
@@ -113,5 +117,54 @@ fn bench_contact(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, bench_step, bench_neighbor, bench_contact);
+/// The response routine the engine's pair and wall passes call (one per law pair), on a
+/// contact with rotation: Hertz–Kuwabara–Kono with the thesis's Coulomb law and with the
+/// Mindlin spring.
+fn bench_response(c: &mut Criterion) {
+    let k = ContactKinematics {
+        overlap_m: 2e-6,
+        normal: [0.6, 0.0, 0.8],
+        v_rel: [0.1, -0.2, -0.3],
+        spin: [0.0, 1e-3, 2e-3],
+    };
+    let coef = [5.7e9, 3660.0, 10980.0, 2.0e9];
+    let mut g = c.benchmark_group("contact/response");
+    g.bench_function("hertz_coulomb_viscous", |b| {
+        let mut h = [0.0; 3];
+        b.iter(|| {
+            contact_response::<HertzKernel, CoulombViscousKernel>(
+                black_box(&k),
+                &coef,
+                0.3,
+                true,
+                true,
+                1e-7,
+                &mut h,
+            )
+        })
+    });
+    g.bench_function("hertz_mindlin", |b| {
+        let mut h = [0.0; 3];
+        b.iter(|| {
+            contact_response::<HertzKernel, MindlinSpringKernel>(
+                black_box(&k),
+                &coef,
+                0.3,
+                true,
+                true,
+                1e-7,
+                &mut h,
+            )
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(
+    benches,
+    bench_step,
+    bench_neighbor,
+    bench_contact,
+    bench_response
+);
 criterion_main!(benches);
