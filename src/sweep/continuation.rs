@@ -79,7 +79,7 @@ impl Direction {
         }
     }
 
-    fn branches(self) -> &'static [Branch] {
+    pub(crate) fn branches(self) -> &'static [Branch] {
         match self {
             Direction::Up => &[Branch::Up],
             Direction::Down => &[Branch::Down],

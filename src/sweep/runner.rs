@@ -249,7 +249,8 @@ pub fn run_shard_with(
     if let Some(c) = c {
         super::continuation::check(spec, c, shard)?;
     }
-    let n = check_budget(spec, out)?;
+    let branches = c.map_or(1, |c| c.direction.branches().len());
+    let n = check_budget(spec, out, branches)?;
     if let Some(c) = c {
         let points_dir = out.join("points");
         std::fs::create_dir_all(&points_dir).map_err(|e| out_err(&points_dir, e))?;
@@ -379,8 +380,8 @@ pub(super) fn point_scene(spec: &SweepSpec, i: usize) -> Result<Scene, SceneErro
 
 /// The number of points, after checking that the sweep fits the disk and memory
 /// ([`Budget`]); the stroboscopic rows per point are taken as the larger of the first and last
-/// point's.
-fn check_budget(spec: &SweepSpec, out: &Path) -> Result<usize, SimError> {
+/// point's. A continuation with `branches` = 2 (`both`) runs every point twice.
+fn check_budget(spec: &SweepSpec, out: &Path, branches: usize) -> Result<usize, SimError> {
     let rows = |i: usize| -> f64 {
         point_scene(spec, i).map_or(0.0, |s| {
             (s.duration_s() - s.analysis_start_s()).max(0.0) * s.frequency_hz() + 1.0
@@ -388,7 +389,10 @@ fn check_budget(spec: &SweepSpec, out: &Path) -> Result<usize, SimError> {
     };
     let n = grid_len(&spec.varies);
     let strobe_rows = n.map_or(0.0, |n| rows(0).max(rows(n.saturating_sub(1))));
-    let budget = Budget::estimate(&spec.varies, strobe_rows, spec.analyze);
+    let mut budget = Budget::estimate(&spec.varies, strobe_rows, spec.analyze);
+    budget.points = budget.points.and_then(|p| p.checked_mul(branches));
+    budget.disk_bytes *= branches as f64;
+    budget.memory_bytes *= branches as f64;
     budget.check(&spec.varies, free_disk_bytes(out), available_memory_bytes())?;
     Ok(n.unwrap_or(0))
 }
