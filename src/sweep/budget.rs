@@ -160,10 +160,22 @@ mod tests {
 
     #[test]
     fn the_issue_s_ten_million_point_sweep_is_refused_with_count_estimate_and_key() {
-        // 1:30:0.000003 gives 9 666 667 values: 9.7e6 × (3.2 kB + 100 rows × 210 B) ≈ 234 GB
-        let v = Vary::parse("excitation.frequency=1:30:0.000003").unwrap();
-        let n = v.values.len();
-        let varies = [v];
+        // 1:30:0.000003 gives 9 666 667 values: more than one key may have (10⁶), refused
+        // with the count and the key before any value is made
+        let e = Vary::parse("excitation.frequency=1:30:0.000003")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("excitation.frequency") && e.contains("9666667"),
+            "{e}"
+        );
+        // the same size as a grid: 9 667 × 1 000 points ≈ 9.7e6 × (3.2 kB + 100 rows × 210 B)
+        // ≈ 234 GB, refused by the budget
+        let varies = [
+            Vary::parse("excitation.frequency=1:30:0.003").unwrap(),
+            Vary::parse("damper.gap=0.001:1:0.001").unwrap(),
+        ];
+        let n = varies[0].values.len() * varies[1].values.len();
         let b = Budget::estimate(&varies, 100.0, false);
         assert_eq!(b.points, Some(n));
         let e = b
