@@ -341,9 +341,9 @@ pub(crate) fn run_dem_stepped(
             "the energy ledger does not close: residual {:.2} % of the flows (> {:.0} %); {}",
             100.0 * rel,
             100.0 * LEDGER_WARNING_LIMIT,
-            scales.viscous_warning(dt).unwrap_or_else(|| {
-                "lower the time step (run.dt or run.dt_fraction) and compare".to_string()
-            })
+            scales
+                .viscous_warning(dt)
+                .unwrap_or_else(|| { "lower the time step and compare".to_string() })
         )
     });
     let per_cycle = |f| steady.per_cycle(&world, drive.frequency_hz, f);
