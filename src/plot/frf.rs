@@ -87,21 +87,28 @@ impl FrfReference {
                 self.primary.with_added_mass(mp),
             ));
         }
-        let n = 600;
         masses
             .into_iter()
             .map(|(label, p)| {
-                let pts = (0..=n)
-                    .map(|i| {
-                        let f = f_lo + (f_hi - f_lo) * i as f64 / n as f64;
-                        let z = p.steady_amplitude_at_hz(self.base_amplitude_m, f);
-                        (f, 1e3 * z)
-                    })
-                    .collect();
-                (label, pts)
+                (
+                    label,
+                    amplitude_curve(&p, self.base_amplitude_m, f_lo, f_hi),
+                )
             })
             .collect()
     }
+}
+
+/// Z(f) of (2.1.21) for `p` at base amplitude `u` (m), 601 points over `f_lo..f_hi` (Hz), as
+/// (Hz, mm): the reference and fitted curves of the figure.
+fn amplitude_curve(p: &PrimarySystem, u: f64, f_lo: f64, f_hi: f64) -> Vec<(f64, f64)> {
+    let n = 600;
+    (0..=n)
+        .map(|i| {
+            let f = f_lo + (f_hi - f_lo) * i as f64 / n as f64;
+            (f, 1e3 * p.steady_amplitude_at_hz(u, f))
+        })
+        .collect()
 }
 
 fn fmt(v: f64) -> String {
@@ -209,15 +216,11 @@ impl Figure for FrfFigure<'_> {
         }
         for fit in &self.fitted {
             let color = series_color(fit.series);
-            let n = 600;
-            let pts: Vec<(f64, f64)> = (0..=n)
-                .map(|k| {
-                    let f = f_lo.max(1e-3) + (f_hi - f_lo.max(1e-3)) * k as f64 / n as f64;
-                    let z = fit.system.steady_amplitude_at_hz(fit.base_amplitude_m, f);
-                    (f, 1e3 * z)
-                })
-                .filter(|p| p.1 <= z_hi)
-                .collect();
+            let pts: Vec<(f64, f64)> =
+                amplitude_curve(&fit.system, fit.base_amplitude_m, f_lo.max(1e-3), f_hi)
+                    .into_iter()
+                    .filter(|p| p.1 <= z_hi)
+                    .collect();
             let style = ShapeStyle::from(color).stroke_width(2);
             chart
                 .draw_series(DashedLineSeries::new(pts, 4, 4, style))
