@@ -67,7 +67,8 @@ pub fn scene_toml(data: &[u8]) {
     {
         let mut csv = pdamp::observe::CsvRecorder::new(Vec::new());
         let ok = pdamp::setup::simulate(&resolved, &mut csv, &opts).is_ok();
-        let text = String::from_utf8(csv.into_inner()).expect("series.csv is UTF-8");
+        let text = String::from_utf8(csv.into_inner().expect("an in-memory series.csv flushes"))
+            .expect("series.csv is UTF-8");
         assert!(
             !has_non_finite(&text),
             "series.csv with a non-finite value (run ok: {ok}):\n{text:.2000}"

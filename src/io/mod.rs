@@ -3,9 +3,11 @@
 //! atomic file writes ([`atomic_write`], synced; the one copy every writer uses).
 
 pub mod atomic;
+pub mod csv_out;
 pub mod run_dir;
 pub mod series;
 
 pub use atomic::atomic_write;
+pub use csv_out::CsvOut;
 pub use run_dir::RunDir;
 pub use series::{read_columns, read_series, Column, SeriesReadOptions};

@@ -2,6 +2,7 @@
 
 use super::{Observer, Sample, SampleKind, FIXED_COLUMNS};
 use crate::error::SimError;
+use crate::io::CsvOut;
 use std::io::Write;
 
 /// CSV recorder: one row per sample; columns [`FIXED_COLUMNS`], the model's columns
@@ -11,9 +12,9 @@ use std::io::Write;
 /// [`SimError::Unstable`] naming the column, except an infinite `ceiling_z_m` (no ceiling,
 /// `damper.gap = inf`), written as an empty cell.
 pub struct CsvRecorder<W: Write> {
-    out: W,
-    line: String,
+    out: CsvOut<W>,
     columns: Vec<&'static str>,
+    values: Vec<f64>,
 }
 
 impl CsvRecorder<std::io::BufWriter<std::fs::File>> {
@@ -32,37 +33,32 @@ impl<W: Write> CsvRecorder<W> {
     /// Record into any writer.
     pub fn new(out: W) -> Self {
         CsvRecorder {
-            out,
-            line: String::with_capacity(256),
+            out: CsvOut::new(out),
             columns: Vec::new(),
+            values: Vec::with_capacity(16),
         }
     }
 
-    /// The writer back (e.g. a `Vec<u8>` in tests).
-    pub fn into_inner(self) -> W {
-        self.out
-    }
-
-    fn write_line(&mut self) -> Result<(), SimError> {
-        self.line.push('\n');
-        self.out
-            .write_all(self.line.as_bytes())
-            .map_err(|e| SimError::Output(format!("series.csv: {e}")))?;
-        self.line.clear();
-        Ok(())
+    /// The writer back, flushed (e.g. a `Vec<u8>` in tests).
+    ///
+    /// # Errors
+    /// [`SimError::Output`] if the final flush fails.
+    pub fn into_inner(self) -> Result<W, SimError> {
+        self.out.into_inner().map_err(output_err)
     }
 }
 
-/// Appends one cell: the number, an empty cell for an infinite ceiling, or why not.
-fn push_cell(line: &mut String, column: &str, v: f64) -> Result<(), String> {
-    use std::fmt::Write as _;
-    if v.is_finite() {
-        let _ = write!(line, "{}", super::fmt_num(v));
-        Ok(())
-    } else if column == "ceiling_z_m" && v == f64::INFINITY {
-        Ok(())
+fn output_err(e: std::io::Error) -> SimError {
+    SimError::Output(format!("series.csv: {e}"))
+}
+
+/// Why a sample value cannot be written, or `None` if it can (finite, or the infinite
+/// ceiling of a damper without one, written as an empty cell).
+fn refusal(column: &str, v: f64) -> Option<String> {
+    if v.is_finite() || (column == "ceiling_z_m" && v == f64::INFINITY) {
+        None
     } else {
-        Err(format!(
+        Some(format!(
             "the sample's {column} is {v}: the state is no longer finite (nothing non-finite is \
              written to series.csv)"
         ))
@@ -71,36 +67,41 @@ fn push_cell(line: &mut String, column: &str, v: f64) -> Result<(), String> {
 
 impl<W: Write> Observer for CsvRecorder<W> {
     fn start(&mut self, kind: SampleKind) -> Result<(), SimError> {
-        let mut cols: Vec<&str> = FIXED_COLUMNS.to_vec();
+        let mut cols: Vec<&'static str> = FIXED_COLUMNS.to_vec();
         cols.extend_from_slice(kind.columns());
         cols.push("grain_force_n");
-        self.line = cols.join(",");
+        self.out.row(&cols).map_err(output_err)?;
         self.columns = cols;
-        self.write_line()
+        Ok(())
     }
 
     fn sample(&mut self, s: &Sample) -> Result<(), SimError> {
-        let mut values = Vec::with_capacity(self.columns.len());
-        values.extend_from_slice(&s.fixed_values());
+        self.values.clear();
+        self.values.extend_from_slice(&s.fixed_values());
+        let values = &mut self.values;
         s.model.for_each_value(|v| values.push(v));
-        values.push(s.grain_force_n);
-        self.line.clear();
-        for (i, v) in values.iter().enumerate() {
-            if i > 0 {
-                self.line.push(',');
-            }
+        self.values.push(s.grain_force_n);
+        // check the whole row first, so that a refused sample leaves no partial row behind
+        for (i, &v) in self.values.iter().enumerate() {
             let column = self.columns.get(i).copied().unwrap_or("?");
-            push_cell(&mut self.line, column, *v).map_err(|reason| SimError::Unstable {
-                t_s: s.time_s,
-                reason,
-            })?;
+            if let Some(reason) = refusal(column, v) {
+                return Err(SimError::Unstable {
+                    t_s: s.time_s,
+                    reason,
+                });
+            }
         }
-        self.write_line()
+        for &v in &self.values {
+            if v.is_finite() {
+                self.out.num(v).map_err(output_err)?;
+            } else {
+                self.out.text("").map_err(output_err)?;
+            }
+        }
+        self.out.end_row().map_err(output_err)
     }
 
     fn finish(&mut self) -> Result<(), SimError> {
-        self.out
-            .flush()
-            .map_err(|e| SimError::Output(format!("series.csv: {e}")))
+        self.out.flush().map_err(output_err)
     }
 }

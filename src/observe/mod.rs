@@ -300,10 +300,7 @@ impl Observer for Tee<'_> {
 /// Format a number for CSV output: shortest round-trip representation, in scientific notation
 /// for very small or large magnitudes (`3.1e-13` rather than `0.00000000000031`).
 pub fn fmt_num(x: f64) -> String {
-    let a = x.abs();
-    if x == 0.0 || !x.is_finite() || (1e-4..1e15).contains(&a) {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
-    }
+    let mut s = String::new();
+    crate::io::csv_out::push_num(&mut s, x);
+    s
 }

@@ -116,29 +116,32 @@ impl Observer for SnapshotWriter {
 /// # Errors
 /// I/O errors.
 pub fn write_csv(world: &GrainState<'_>, path: &Path) -> std::io::Result<()> {
-    let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
-    write!(
-        f,
-        "id,x_m,y_m,z_m,vx_m_s,vy_m_s,vz_m_s,wx_rad_s,wy_rad_s,wz_rad_s,radius_m"
-    )?;
+    let file = std::io::BufWriter::new(std::fs::File::create(path)?);
+    let mut t = crate::io::CsvOut::new(file);
+    let mut header = vec![
+        "id", "x_m", "y_m", "z_m", "vx_m_s", "vy_m_s", "vz_m_s", "wx_rad_s", "wy_rad_s",
+        "wz_rad_s", "radius_m",
+    ];
     if world.orientation.is_some() {
-        write!(f, ",qw,qx,qy,qz")?;
+        header.extend(["qw", "qx", "qy", "qz"]);
     }
-    writeln!(f)?;
+    t.row(&header)?;
     for i in 0..world.pos.len() {
         let (p, v, w) = (world.pos[i], world.vel[i], world.omega[i]);
-        write!(
-            f,
-            "{i},{},{},{},{},{},{},{},{},{},{}",
-            p[0], p[1], p[2], v[0], v[1], v[2], w[0], w[1], w[2], world.radius[i]
-        )?;
+        t.int(i as u64)?;
+        for x in p.iter().chain(&v).chain(&w) {
+            t.num(*x)?;
+        }
+        t.num(world.radius[i])?;
         if let Some(q) = world.orientation {
             let q = q[i].quaternion();
-            write!(f, ",{},{},{},{}", q.w, q.i, q.j, q.k)?;
+            for x in [q.w, q.i, q.j, q.k] {
+                t.num(x)?;
+            }
         }
-        writeln!(f)?;
+        t.end_row()?;
     }
-    f.flush()
+    t.into_inner()?.flush()
 }
 
 /// Writes snapshot number `k` of the grains and the box as VTK XML into `dir` and rewrites the

@@ -271,22 +271,27 @@ fn opt_cell(v: Option<f64>) -> String {
 
 fn regime_frf(info: &Info, pts: &[Point]) -> Result<FigureRecord, StudyError> {
     let name = "ch4_regime_frf";
-    let mut text = "frequency_hz,amplitude_m,regime,period,mle_per_s,mle_stderr_per_s,\
-                    impacts_per_cycle\n"
-        .to_string();
-    for p in pts {
-        text += &format!(
-            "{},{},{},{},{},{},{}\n",
-            p.f_hz,
-            p.amplitude_m,
-            p.regime_str(),
+    let header = [
+        "frequency_hz",
+        "amplitude_m",
+        "regime",
+        "period",
+        "mle_per_s",
+        "mle_stderr_per_s",
+        "impacts_per_cycle",
+    ];
+    let rows = pts.iter().map(|p| {
+        vec![
+            p.f_hz.to_string(),
+            p.amplitude_m.to_string(),
+            p.regime_str().to_string(),
             opt_cell(p.period),
             opt_cell(p.mle_per_s),
             opt_cell(p.mle_stderr_per_s),
-            p.floor_impacts + p.ceiling_impacts
-        );
-    }
-    info.ctx.write_text(&format!("{name}.csv"), &text)?;
+            (p.floor_impacts + p.ceiling_impacts).to_string(),
+        ]
+    });
+    info.ctx.write_table(name, &header, rows)?;
     let f: Vec<f64> = pts.iter().map(|p| p.f_hz).collect();
     let z: Vec<f64> = pts.iter().map(|p| p.amplitude_m).collect();
     let reg: Vec<Option<Regime>> = pts.iter().map(|p| p.regime).collect();
@@ -440,10 +445,20 @@ fn run_length(
     long_pts: &[Point],
 ) -> Result<FigureRecord, StudyError> {
     let name = "ch4_run_length";
-    let mut text = "frequency_hz,verdict,verdict_doubled,same_verdict,amplitude_m,\
-                    amplitude_doubled_m,amplitude_change_pct,impacts_per_cycle,\
-                    impacts_per_cycle_doubled,mle_per_s,mle_per_s_doubled\n"
-        .to_string();
+    let header = [
+        "frequency_hz",
+        "verdict",
+        "verdict_doubled",
+        "same_verdict",
+        "amplitude_m",
+        "amplitude_doubled_m",
+        "amplitude_change_pct",
+        "impacts_per_cycle",
+        "impacts_per_cycle_doubled",
+        "mle_per_s",
+        "mle_per_s_doubled",
+    ];
+    let mut rows = Vec::new();
     let (mut same, mut worst) = (0usize, 0.0f64);
     let mut pairs = Vec::new();
     for p in pts {
@@ -454,23 +469,22 @@ fn run_length(
         worst = worst.max(change.abs());
         let agree = p.verdict() == q.verdict();
         same += usize::from(agree);
-        text += &format!(
-            "{},{},{},{},{},{},{:.3},{},{},{},{}\n",
-            p.f_hz,
+        rows.push(vec![
+            p.f_hz.to_string(),
             p.verdict(),
             q.verdict(),
-            agree,
-            p.amplitude_m,
-            q.amplitude_m,
-            change,
-            p.floor_impacts + p.ceiling_impacts,
-            q.floor_impacts + q.ceiling_impacts,
+            agree.to_string(),
+            p.amplitude_m.to_string(),
+            q.amplitude_m.to_string(),
+            format!("{change:.3}"),
+            (p.floor_impacts + p.ceiling_impacts).to_string(),
+            (q.floor_impacts + q.ceiling_impacts).to_string(),
             opt_cell(p.mle_per_s),
-            opt_cell(q.mle_per_s)
-        );
+            opt_cell(q.mle_per_s),
+        ]);
         pairs.push((p.f_hz, p.amplitude_m, q.amplitude_m));
     }
-    info.ctx.write_text(&format!("{name}.csv"), &text)?;
+    info.ctx.write_table(name, &header, rows)?;
     let f: Vec<f64> = pairs.iter().map(|p| p.0).collect();
     let a: Vec<f64> = pairs.iter().map(|p| p.1).collect();
     let b: Vec<f64> = pairs.iter().map(|p| p.2).collect();
@@ -678,7 +692,7 @@ fn panel(info: &Info, r: &PanelRun) -> Result<FigureRecord, StudyError> {
 fn reconstruction(info: &Info, runs: &[PanelRun]) -> Result<FigureRecord, StudyError> {
     let name = "ch4_reconstruction";
     let mut series: Vec<(Vec<f64>, usize, f64, String)> = Vec::new();
-    let mut text = "frequency_hz,lag_s,decimation\n".to_string();
+    let mut rows = Vec::new();
     let mut commands = Vec::new();
     for r in runs {
         // 64 samples per period: the lag from the first minimum of the mutual information
@@ -707,7 +721,11 @@ fn reconstruction(info: &Info, runs: &[PanelRun]) -> Result<FigureRecord, StudyE
             .opt("column", "grain_z_m")
             .opt("lag", lag * dec),
         );
-        text += &format!("{},{},{dec}\n", r.f_hz, lag as f64 * dt);
+        rows.push(vec![
+            r.f_hz.to_string(),
+            (lag as f64 * dt).to_string(),
+            dec.to_string(),
+        ]);
         series.push((
             z[z.len() - keep..].to_vec(),
             lag,
@@ -715,7 +733,8 @@ fn reconstruction(info: &Info, runs: &[PanelRun]) -> Result<FigureRecord, StudyE
             format!("{} Hz: {}", r.f_hz, r.verdict()),
         ));
     }
-    info.ctx.write_text(&format!("{name}.csv"), &text)?;
+    info.ctx
+        .write_table(name, &["frequency_hz", "lag_s", "decimation"], rows)?;
     let fig = ReconstructionGridFigure {
         cells: series
             .iter()

@@ -89,17 +89,17 @@ pub(super) fn frf_figure(
         ),
         None => (vec![], vec![]),
     };
-    let mut text = String::from("model,frequency_hz,amplitude_m\n");
+    let mut rows = Vec::new();
     for (label, f, z) in [
         ("impact_e0", &f0, &z0),
         ("impact_e0.8", &f8, &z8),
         ("dem", &fd, &zd),
     ] {
         for i in 0..f.len() {
-            text += &format!("{label},{},{}\n", f[i], z[i]);
+            rows.push(vec![label.to_string(), f[i].to_string(), z[i].to_string()]);
         }
     }
-    ctx.write_text(&format!("{name}.csv"), &text)?;
+    ctx.write_table(name, &["model", "frequency_hz", "amplitude_m"], rows)?;
     let mut series = vec![
         Series {
             label: "impact model, e = 0",

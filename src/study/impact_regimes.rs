@@ -85,24 +85,29 @@ fn regime_columns(
         y,
     };
     let cell = |v: Option<f64>| v.map(|m| m.to_string()).unwrap_or_default();
-    let mut text = format!(
-        "frequency_hz,{y_header},regime,period,mle_per_s,mle_stderr_per_s,model_mle_per_s,\
-         model_mle_stderr_per_s\n"
-    );
-    for i in 0..c.f.len() {
-        text += &format!(
-            "{},{},{},{},{},{},{},{}\n",
-            c.f[i],
-            c.y[i],
-            c.regime[i].map_or("", Regime::as_str),
+    let header = [
+        "frequency_hz",
+        y_header,
+        "regime",
+        "period",
+        "mle_per_s",
+        "mle_stderr_per_s",
+        "model_mle_per_s",
+        "model_mle_stderr_per_s",
+    ];
+    let rows = (0..c.f.len()).map(|i| {
+        vec![
+            c.f[i].to_string(),
+            c.y[i].to_string(),
+            c.regime[i].map_or("", Regime::as_str).to_string(),
             c.period[i].map(|p| p.to_string()).unwrap_or_default(),
             cell(c.mle[i]),
             cell(c.mle_se[i]),
             cell(c.model[i]),
             cell(c.model_se[i]),
-        );
-    }
-    ctx.write_text(&format!("{name}.csv"), &text)?;
+        ]
+    });
+    ctx.write_table(name, &header, rows)?;
     Ok(c)
 }
 

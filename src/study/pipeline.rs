@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use super::command::Command;
 use crate::error::{SimError, StudyError};
 use crate::model::RunOptions;
-use crate::observe::{fmt_num, ModelSample, Observer, Sample};
+use crate::observe::{ModelSample, Observer, Sample};
 use crate::plot::{render, Figure, FigureOptions};
 use crate::scene::{Scene, SceneSource};
 use crate::sweep::{run_sweep, SweepPoints, SweepSpec, Vary};
@@ -253,13 +253,37 @@ impl Ctx<'_> {
         header: &[&str],
         rows: &[Vec<f64>],
     ) -> Result<(), StudyError> {
-        let mut text = header.join(",");
-        text.push('\n');
-        for r in rows {
-            let cells: Vec<String> = r.iter().map(|&x| fmt_num(x)).collect();
-            text += &cells.join(",");
-            text.push('\n');
-        }
+        let mut t = crate::io::CsvOut::in_memory();
+        let written = t.row(header).and_then(|()| {
+            for r in rows {
+                for &x in r {
+                    // a missing value (NaN) is an empty cell: nothing non-finite is written
+                    if x.is_finite() {
+                        t.num(x)?;
+                    } else {
+                        t.text("")?;
+                    }
+                }
+                t.end_row()?;
+            }
+            Ok(())
+        });
+        written.map_err(|e| StudyError::step(name, e))?;
+        self.write_text(&format!("{name}.csv"), &t.into_string())
+    }
+
+    /// Writes `OUT/<name>.csv` atomically from rows of text cells (labels, verdicts and
+    /// numbers already formatted; an empty cell for a missing value).
+    ///
+    /// # Errors
+    /// [`StudyError::Output`] naming the file.
+    pub fn write_table(
+        &self,
+        name: &str,
+        header: &[&str],
+        rows: impl IntoIterator<Item = Vec<String>>,
+    ) -> Result<(), StudyError> {
+        let text = crate::io::csv_out::table_text(header, rows);
         self.write_text(&format!("{name}.csv"), &text)
     }
 

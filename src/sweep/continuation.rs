@@ -41,6 +41,7 @@ use super::runner::{point_scene, run_point, write_point, PointRecord, SweepRepor
 use super::shard::Shard;
 use super::tables::{out_err, point_path, read_record, stream_name, StreamLog};
 use crate::error::{SceneError, SimError};
+use crate::io::CsvOut;
 use crate::observe::fmt_num;
 use crate::scene::{Damper, Scene};
 use rayon::prelude::*;
@@ -526,48 +527,56 @@ pub(super) fn write_tables(
                 .total_cmp(&number(&values[b]).unwrap_or(f64::NAN))
                 .then(a.cmp(&b))
         });
-        let mut text = format!(
-            "{key},amplitude_up_m,amplitude_down_m,amplitude_relative_difference,\
-             impacts_per_cycle_up,impacts_per_cycle_down,regime_up,regime_down,hysteresis\n"
-        );
+        let mut t = CsvOut::in_memory();
+        let header = [
+            key,
+            "amplitude_up_m",
+            "amplitude_down_m",
+            "amplitude_relative_difference",
+            "impacts_per_cycle_up",
+            "impacts_per_cycle_down",
+            "regime_up",
+            "regime_down",
+            "hysteresis",
+        ];
+        let _ = t.row(header);
         for v in order {
             let (up, down) = (v, n + v);
             let (au, ad) = (cell(up, "amplitude_m"), cell(down, "amplitude_m"));
             let (ru, rd) = (cell(up, "regime"), cell(down, "regime"));
-            let rel = match (au.parse::<f64>(), ad.parse::<f64>()) {
-                (Ok(a), Ok(b)) if a.max(b) > 0.0 => Some((a - b).abs() / a.max(b)),
-                (Ok(_), Ok(_)) => Some(0.0),
-                _ => None,
-            };
+            let rel = relative_difference(&au, &ad);
             let (iu, id) = (
                 cell(up, "impacts_per_cycle"),
                 cell(down, "impacts_per_cycle"),
             );
-            let rel_impacts = match (iu.parse::<f64>(), id.parse::<f64>()) {
-                (Ok(a), Ok(b)) if a.max(b) > 0.0 => Some((a - b).abs() / a.max(b)),
-                (Ok(_), Ok(_)) => Some(0.0),
-                _ => None,
-            };
+            let rel_impacts = relative_difference(&iu, &id);
             let marked = marks_hysteresis(rel, rel_impacts, &ru, &rd, c.tolerance);
-            let value = match &values[v] {
-                toml::Value::String(s) => s.clone(),
-                other => other.to_string(),
-            };
-            text.push_str(&format!(
-                "{value},{au},{ad},{},{iu},{id},{ru},{rd},{}\n",
-                rel.map(fmt_num).unwrap_or_default(),
-                u8::from(marked)
-            ));
+            let rel = rel.map(fmt_num).unwrap_or_default();
+            let flag = u8::from(marked).to_string();
+            let value = value_text(&values[v]);
+            // writes into memory cannot fail
+            let _ = t.row([&value, &au, &ad, &rel, &iu, &id, &ru, &rd, &flag]);
         }
+        let text = t.into_string();
         crate::io::atomic_write(&out.join("hysteresis.csv"), text.as_bytes())
             .map_err(|e| SimError::Output(e.to_string()))?;
     }
     let all = blocks(values, c);
     if all.iter().any(|b| !b.warmup.is_empty()) {
-        let mut text = format!(
-            "branch,block_first_point,point,{key},amplitude_chain_m,amplitude_warmup_m,\
-             amplitude_relative_difference,regime_chain,regime_warmup,agree\n"
-        );
+        let mut t = CsvOut::in_memory();
+        let header = [
+            "branch",
+            "block_first_point",
+            "point",
+            key,
+            "amplitude_chain_m",
+            "amplitude_warmup_m",
+            "amplitude_relative_difference",
+            "regime_chain",
+            "regime_warmup",
+            "agree",
+        ];
+        let _ = t.row(header);
         for b in all.iter().filter(|b| !b.warmup.is_empty()) {
             for &(i, v) in &b.warmup {
                 let warm = dirs.iter().find_map(|d| read_record(&warmup_path(d, i), i));
@@ -578,29 +587,47 @@ pub(super) fn write_tables(
                     )
                 });
                 let (ac, rc) = (cell(i, "amplitude_m"), cell(i, "regime"));
-                let rel = match (ac.parse::<f64>(), aw.parse::<f64>()) {
-                    (Ok(a), Ok(b)) if a.max(b) > 0.0 => Some((a - b).abs() / a.max(b)),
-                    (Ok(_), Ok(_)) => Some(0.0),
-                    _ => None,
-                };
+                let rel = relative_difference(&ac, &aw);
                 let agree = rel.is_some_and(|r| r <= c.tolerance) && rc == rw;
-                let value = match &values[v] {
-                    toml::Value::String(s) => s.clone(),
-                    other => other.to_string(),
-                };
-                text.push_str(&format!(
-                    "{},{},{i},{value},{ac},{aw},{},{rc},{rw},{}\n",
-                    b.branch.as_str(),
-                    b.points[0].0,
+                let row = [
+                    b.branch.as_str().to_string(),
+                    b.points[0].0.to_string(),
+                    i.to_string(),
+                    value_text(&values[v]),
+                    ac,
+                    aw,
                     rel.map(fmt_num).unwrap_or_default(),
-                    u8::from(agree)
-                ));
+                    rc,
+                    rw,
+                    u8::from(agree).to_string(),
+                ];
+                // writes into memory cannot fail
+                let _ = t.row(&row);
             }
         }
+        let text = t.into_string();
         crate::io::atomic_write(&out.join("seams.csv"), text.as_bytes())
             .map_err(|e| SimError::Output(e.to_string()))?;
     }
     Ok(())
+}
+
+/// |a − b| / max(a, b) of two numeric cells (0 when both are 0), `None` if either is not a
+/// number.
+fn relative_difference(a: &str, b: &str) -> Option<f64> {
+    match (a.parse::<f64>(), b.parse::<f64>()) {
+        (Ok(a), Ok(b)) if a.max(b) > 0.0 => Some((a - b).abs() / a.max(b)),
+        (Ok(_), Ok(_)) => Some(0.0),
+        _ => None,
+    }
+}
+
+/// A varied value as its CSV cell (a string without its TOML quotes).
+fn value_text(v: &toml::Value) -> String {
+    match v {
+        toml::Value::String(s) => s.clone(),
+        other => other.to_string(),
+    }
 }
 
 /// Whether one value's two branches are different motions: their relative amplitude

@@ -174,22 +174,13 @@ pub(super) fn write_point(path: &Path, data: &[u8]) -> Result<(), SimError> {
     })
 }
 
+use crate::io::csv_out::push_num;
+
 fn value_str(v: &toml::Value) -> String {
     match v {
         toml::Value::String(s) => s.clone(),
         other => other.to_string(),
     }
-}
-
-/// Appends [`fmt_num`]`(x)` to `out` without an intermediate string.
-fn push_num(out: &mut String, x: f64) {
-    use std::fmt::Write;
-    let a = x.abs();
-    let _ = if x == 0.0 || !x.is_finite() || (1e-4..1e15).contains(&a) {
-        write!(out, "{x}")
-    } else {
-        write!(out, "{x:e}")
-    };
 }
 
 fn fmt_opt(x: Option<f64>) -> String {

@@ -8,6 +8,7 @@
 
 use super::runner::{Manifest, PointRecord};
 use crate::error::SimError;
+use crate::io::csv_out::{record_line, table_text, CsvOut};
 use std::collections::{BTreeMap, BTreeSet};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -113,8 +114,7 @@ impl StreamLog {
         for c in HEAD.iter().chain(TAIL.iter()) {
             row.push(rec.cells.get(*c).cloned().unwrap_or_default());
         }
-        let mut line = row.join(",");
-        line.push('\n');
+        let line = record_line(&row);
         self.file
             .write_all(line.as_bytes())
             .map_err(|e| out_err(&self.path, e))
@@ -125,9 +125,7 @@ fn stream_header(keys: &[String]) -> String {
     let mut cols: Vec<&str> = vec!["point", "wall_time_s"];
     cols.extend(keys.iter().map(String::as_str));
     cols.extend(HEAD.iter().chain(TAIL.iter()));
-    let mut h = cols.join(",");
-    h.push('\n');
-    h
+    record_line(cols)
 }
 
 /// Wall time of every point in the stream logs of `dirs` (the last entry of a point wins).
@@ -258,18 +256,15 @@ fn sweep_csv(keys: &[String], rows: &[(usize, Vec<String>, BTreeMap<String, Stri
     cols.extend(HEAD);
     cols.extend(extras);
     cols.extend(TAIL);
-    let mut out = cols.join(",");
-    out.push('\n');
-    for (i, values, cells) in rows {
+    let body = rows.iter().map(|(i, values, cells)| {
         let mut row = vec![i.to_string()];
         row.extend(values.iter().cloned());
         for c in &cols[1 + keys.len()..] {
             row.push(cells.get(*c).cloned().unwrap_or_default());
         }
-        out.push_str(&row.join(","));
-        out.push('\n');
-    }
-    out
+        row
+    });
+    table_text(&cols, body)
 }
 
 fn write_timings(
@@ -282,22 +277,18 @@ fn write_timings(
         .copied()
         .filter(|(k, _)| rows.iter().any(|(_, _, c)| c.contains_key(*k)))
         .collect();
-    let mut text = String::from("point,wall_time_s");
-    for (_, col) in &present {
-        text.push(',');
-        text.push_str(col);
-    }
-    text.push('\n');
-    for (i, _, cells) in rows {
-        text.push_str(&i.to_string());
-        text.push(',');
-        text.push_str(walls.get(i).map_or("", String::as_str));
-        for (k, _) in &present {
-            text.push(',');
-            text.push_str(cells.get(*k).map_or("", String::as_str));
-        }
-        text.push('\n');
-    }
+    let mut header = vec!["point", "wall_time_s"];
+    header.extend(present.iter().map(|(_, col)| *col));
+    let body = rows.iter().map(|(i, _, cells)| {
+        let mut row = vec![i.to_string(), walls.get(i).cloned().unwrap_or_default()];
+        row.extend(
+            present
+                .iter()
+                .map(|(k, _)| cells.get(*k).cloned().unwrap_or_default()),
+        );
+        row
+    });
+    let text = table_text(&header, body);
     let mut f = AtomicFile::create(&out.join("timings.csv"))?;
     f.write(&text)?;
     f.commit()
@@ -307,29 +298,24 @@ fn strobe_header(keys: &[String]) -> String {
     let mut cols: Vec<&str> = vec!["point", "frequency_hz"];
     cols.extend(keys.iter().map(String::as_str));
     cols.extend(["cycle", "grain_z_m", "box_z_m", "grain_v_m_s", "box_v_m_s"]);
-    let mut h = cols.join(",");
-    h.push('\n');
-    h
+    record_line(cols)
 }
 
+/// The `strobe.csv` lines of one point: the point, its frequency and varied values, then each
+/// stored strobe row's five cells (`cycle,grain_z_m,box_z_m,grain_v_m_s,box_v_m_s`).
 fn strobe_rows(r: &PointRecord) -> String {
-    let mut prefix = format!(
-        "{},{}",
-        r.point,
-        r.cells.get("frequency_hz").map_or("", |s| s.as_str())
-    );
-    for (_, v) in &r.values {
-        prefix.push(',');
-        prefix.push_str(v);
-    }
-    let mut out = String::new();
+    let mut prefix = vec![
+        r.point.to_string(),
+        r.cells.get("frequency_hz").cloned().unwrap_or_default(),
+    ];
+    prefix.extend(r.values.iter().map(|(_, v)| v.clone()));
+    let mut t = CsvOut::in_memory();
     for row in &r.strobe {
-        out.push_str(&prefix);
-        out.push(',');
-        out.push_str(row);
-        out.push('\n');
+        let cells = prefix.iter().map(String::as_str).chain(row.split(','));
+        // writes into memory cannot fail
+        let _ = t.row(cells);
     }
-    out
+    t.into_string()
 }
 
 // ---------------------------------------------------------------- merge

@@ -3,6 +3,7 @@
 //! [`super::auto`].
 
 use crate::error::DataError;
+use crate::io::csv_out::table_text;
 use crate::observe::fmt_num;
 
 use super::ladder::Axis;
@@ -23,21 +24,13 @@ fn opt(x: Option<f64>) -> String {
     x.map(fmt_num).unwrap_or_default()
 }
 
-fn quote(s: &str) -> String {
-    if s.contains([',', '"', '\n']) {
-        format!("\"{}\"", s.replace('"', "\"\""))
-    } else {
-        s.to_string()
-    }
-}
-
-fn run_line(r: &RunRow) -> String {
+fn run_cells(r: &RunRow) -> [String; 18] {
     [
         r.axis.as_str().to_string(),
-        quote(&r.setting),
+        r.setting.clone(),
         fmt_num(r.value),
         fmt_num(r.frequency_hz),
-        quote(&r.status),
+        r.status.clone(),
         fmt_num(r.wall_time_s),
         fmt_num(r.total_wall_time_s),
         r.steps.to_string(),
@@ -52,13 +45,12 @@ fn run_line(r: &RunRow) -> String {
         opt(r.mle_per_s),
         opt(r.mle_abs_error_per_s),
     ]
-    .join(",")
 }
 
-fn setting_line(s: &SettingRow) -> String {
+fn setting_cells(s: &SettingRow) -> [String; 16] {
     [
         s.axis.as_str().to_string(),
-        quote(&s.setting),
+        s.setting.clone(),
         fmt_num(s.value),
         s.runs_ok.to_string(),
         s.runs.to_string(),
@@ -74,17 +66,15 @@ fn setting_line(s: &SettingRow) -> String {
         opt(s.mle_max_abs_error_per_s),
         s.pareto_amplitude.to_string(),
     ]
-    .join(",")
 }
 
 /// `tradeoff.csv` text: one row per run.
 pub fn runs_csv(study: &Study) -> String {
-    let mut s = format!("{RUN_COLUMNS}\n");
-    for r in &study.runs {
-        s.push_str(&run_line(r));
-        s.push('\n');
-    }
-    s
+    table_text(&columns(RUN_COLUMNS), study.runs.iter().map(run_cells))
+}
+
+fn columns(header: &str) -> Vec<&str> {
+    header.split(',').collect()
 }
 
 /// `tradeoff_settings.csv` text: `# ` comment lines (`header`, one per line), then one row
@@ -106,12 +96,10 @@ pub fn settings_csv(study: &Study, header: &[String]) -> String {
     for n in &study.notes {
         s.push_str(&format!("# {n}\n"));
     }
-    s.push_str(SETTING_COLUMNS);
-    s.push('\n');
-    for r in &study.settings {
-        s.push_str(&setting_line(r));
-        s.push('\n');
-    }
+    s.push_str(&table_text(
+        &columns(SETTING_COLUMNS),
+        study.settings.iter().map(setting_cells),
+    ));
     s
 }
 
