@@ -6,7 +6,8 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::common::{
-    self, check_finite, check_len, decimate_minmax, draw_err, padded_range, Figure,
+    self, check_finite, check_len, decimate_minmax, draw_err, padded_range, Figure, LegendEntry,
+    LegendMark,
 };
 use crate::error::PlotError;
 
@@ -73,9 +74,8 @@ impl Figure for BedMotionFigure<'_> {
         let mm = |v: &[f64]| -> Vec<f64> { v.iter().map(|z| 1e3 * z).collect() };
         let (floor, ceil, grain) = (mm(self.floor_z_m), mm(self.ceiling_z_m), mm(self.grain_z_m));
         let band = self.grain_band.map(|(lo, hi)| (mm(lo), mm(hi)));
-        let root = root
-            .titled(title, common::caption_font())
-            .map_err(draw_err)?;
+        // one legend for both panels, in a column beside them: it never covers the curves
+        let (root, panel) = common::with_side_panel(root, title, 0.24, 190)?;
         let (top, bottom) = match self.grain_force_n {
             Some(_) => {
                 let h = root.dim_in_pixel().1;
@@ -84,6 +84,7 @@ impl Figure for BedMotionFigure<'_> {
             }
             None => (root.clone(), None),
         };
+        let mut legend = Vec::new();
         let t = self.time_s;
         let (t_lo, t_hi) = padded_range([t], 0.0);
         let mut ranges: Vec<&[f64]> = vec![&floor, &ceil, &grain];
@@ -104,17 +105,15 @@ impl Figure for BedMotionFigure<'_> {
             let mut poly: Vec<(f64, f64)> =
                 (0..t.len()).step_by(step).map(|i| (t[i], hi[i])).collect();
             poly.extend((0..t.len()).step_by(step).rev().map(|i| (t[i], lo[i])));
-            let color = RGBColor(230, 159, 0);
+            let color = common::shade(RGBColor(230, 159, 0), 0.35);
             chart
-                .draw_series(std::iter::once(Polygon::new(
-                    poly,
-                    color.mix(0.35).filled(),
-                )))
-                .map_err(draw_err)?
-                .label("grains: lowest to highest")
-                .legend(move |(x, y)| {
-                    Rectangle::new([(x, y - 5), (x + 20, y + 5)], color.mix(0.35).filled())
-                });
+                .draw_series(std::iter::once(Polygon::new(poly, color.filled())))
+                .map_err(draw_err)?;
+            legend.push(LegendEntry::new(
+                "grains: lowest to highest",
+                color,
+                LegendMark::Patch,
+            ));
         }
         let lines: [(&str, &[f64], RGBColor, u32); 3] = [
             ("floor", &floor, BLACK, 2),
@@ -132,13 +131,9 @@ impl Figure for BedMotionFigure<'_> {
                     decimate_minmax(t, y, MAX_POINTS),
                     color.stroke_width(w),
                 ))
-                .map_err(draw_err)?
-                .label(label)
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(w))
-                });
+                .map_err(draw_err)?;
+            legend.push(LegendEntry::new(label, color, LegendMark::Line(w)));
         }
-        common::legend(&mut chart, SeriesLabelPosition::UpperRight)?;
         if let (Some(bottom), Some(f)) = (bottom, self.grain_force_n) {
             let (f_lo, f_hi) = padded_range([f], 0.05);
             let mut chart = ChartBuilder::on(&bottom)
@@ -154,13 +149,13 @@ impl Figure for BedMotionFigure<'_> {
                     decimate_minmax(t, f, MAX_POINTS),
                     color.stroke_width(1),
                 ))
-                .map_err(draw_err)?
-                .label("force of the grains on the box F_gz")
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
-            common::legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+                .map_err(draw_err)?;
+            legend.push(LegendEntry::new(
+                "force of the grains on the box F_gz (lower panel)",
+                color,
+                LegendMark::Line(2),
+            ));
         }
-        Ok(())
+        common::side_legend(&panel, &legend)
     }
 }

@@ -524,6 +524,11 @@ pub enum LegendMark {
     Dashed(u32),
     /// A filled circle of the given radius (px).
     Dot(u32),
+    /// A line sample of the given width (px) with a filled circle on it (a sweep's curve
+    /// with its points marked).
+    LineDot(u32),
+    /// A line sample of the given width (px) with a filled triangle on it.
+    LineTriangle(u32),
     /// A filled rectangle (a colour band or cell); the colour is drawn as given.
     Patch,
     /// A filled circle of the given radius (px) on a vertical error bar.
@@ -643,6 +648,21 @@ pub fn side_legend_rows<DB: DrawingBackend>(
             LegendMark::Dot(r) => panel
                 .draw(&Circle::new((x0 + sample / 2, y), r as i32, c.filled()))
                 .map_err(draw_err)?,
+            LegendMark::LineDot(wd) | LegendMark::LineTriangle(wd) => {
+                panel
+                    .draw(&PathElement::new(
+                        vec![(x0, y), (x0 + sample, y)],
+                        c.stroke_width(wd),
+                    ))
+                    .map_err(draw_err)?;
+                let xc = x0 + sample / 2;
+                if matches!(e.mark, LegendMark::LineDot(_)) {
+                    panel.draw(&Circle::new((xc, y), 4, c.filled()))
+                } else {
+                    panel.draw(&TriangleMarker::new((xc, y), 5, c.filled()))
+                }
+                .map_err(draw_err)?;
+            }
             LegendMark::Patch => panel
                 .draw(&Rectangle::new(
                     [(x0, y - 7), (x0 + sample, y + 7)],

@@ -86,13 +86,19 @@ impl Figure for LinesFigure<'_> {
             chart
                 .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
                 .map_err(draw_err)?;
-            legend.push(LegendEntry::new(s.label, color, LegendMark::Line(2)));
             // markers on sampled points (a sweep), not on a dense time series; alternate
-            // marker shapes so curves differ without colour too
+            // marker shapes so curves differ without colour too; the legend shows the same
+            let dots = i % 2 == 0 || shapes == 1;
+            let mark = match (pts.len() > MAX_MARKED_POINTS, dots) {
+                (true, _) => LegendMark::Line(2),
+                (false, true) => LegendMark::LineDot(2),
+                (false, false) => LegendMark::LineTriangle(2),
+            };
+            legend.push(LegendEntry::new(s.label, color, mark));
             if pts.len() > MAX_MARKED_POINTS {
                 continue;
             }
-            if i % 2 == 0 || shapes == 1 {
+            if dots {
                 chart
                     .draw_series(pts.iter().map(|&p| Circle::new(p, 4, color.filled())))
                     .map_err(draw_err)?;

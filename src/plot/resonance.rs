@@ -11,7 +11,10 @@ pub fn resonance_figure<'a>(series: Vec<Series<'a>>, parameter_label: &str) -> L
         x_label: parameter_label.to_string(),
         y_label: "resonance amplitude Z_res (mm)".into(),
         y_scale: 1e3,
-        title: "Resonance amplitude versus damper parameter".into(),
+        title: format!(
+            "Resonance amplitude versus {}",
+            parameter_name(parameter_label)
+        ),
         kind: "resonance",
     }
 }
@@ -40,4 +43,12 @@ pub fn resonance_amplitudes(parameter: &[f64], amplitude_m: &[f64]) -> (Vec<f64>
         }
     }
     (xs, zs)
+}
+
+/// The parameter's name without its unit: `gap (mm)` → `gap`.
+fn parameter_name(label: &str) -> &str {
+    match label.rfind(" (") {
+        Some(i) if label.ends_with(')') => &label[..i],
+        _ => label,
+    }
 }

@@ -8,6 +8,9 @@ use plotters::prelude::*;
 use super::common::{self, check_finite, check_len, draw_err, Figure};
 use crate::error::PlotError;
 
+/// Fraction of the power axis kept empty above the highest line, for the legend.
+const LEGEND_BAND: f64 = 0.16;
+
 /// Spectrum figure: power (log scale) versus frequency.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SpectrumFigure<'a> {
@@ -81,12 +84,16 @@ impl Figure for SpectrumFigure<'_> {
             .fold(f64::MAX, f64::min)
             .max(p_hi * 1e-14);
         let (f_lo, f_hi) = super::common::padded_range([self.frequency_hz], 0.0);
+        // an empty band above the data (LEGEND_BAND of the axis height on the log scale)
+        // holds the legend, so that it never covers a peak
+        let (y_lo, y_data_hi) = (p_lo * 0.5, p_hi * 2.0);
+        let y_hi = y_data_hi * (y_data_hi / y_lo).powf(LEGEND_BAND / (1.0 - LEGEND_BAND));
         let mut chart = ChartBuilder::on(root)
             .caption(title, common::caption_font())
             .margin(common::scaled(root, 0.02, 8))
             .x_label_area_size(common::scaled(root, 0.08, 40))
             .y_label_area_size(common::scaled(root, 0.12, 60))
-            .build_cartesian_2d(f_lo..f_hi, (p_lo * 0.5..p_hi * 2.0).log_scale())
+            .build_cartesian_2d(f_lo..f_hi, (y_lo..y_hi).log_scale())
             .map_err(draw_err)?;
         chart
             .configure_mesh()
@@ -105,7 +112,7 @@ impl Figure for SpectrumFigure<'_> {
             let mut k = 1.0;
             let mut first = true;
             while k * f <= f_hi && k <= 40.0 {
-                let line = vec![(k * f, p_lo * 0.5), (k * f, p_hi * 2.0)];
+                let line = vec![(k * f, y_lo), (k * f, y_data_hi)];
                 let anno = chart
                     .draw_series(DashedLineSeries::new(line, 6, 4, style))
                     .map_err(draw_err)?;

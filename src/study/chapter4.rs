@@ -587,8 +587,14 @@ fn panel(info: &Info, r: &PanelRun) -> Result<FigureRecord, StudyError> {
         w(&rec.grain_zmin_m),
         w(&rec.grain_zmax_m),
     );
-    let sz: Vec<f64> = r.summary.strobe.iter().map(|p| p.grain_z_m).collect();
-    let sv: Vec<f64> = r.summary.strobe.iter().map(|p| p.grain_v_m_s).collect();
+    // one length unit across the panel: mm (the bed motion is drawn in mm)
+    let sz: Vec<f64> = r.summary.strobe.iter().map(|p| 1e3 * p.grain_z_m).collect();
+    let sv: Vec<f64> = r
+        .summary
+        .strobe
+        .iter()
+        .map(|p| 1e3 * p.grain_v_m_s)
+        .collect();
     let sp = power_spectrum(
         &rec.grain_z_m,
         &SpectrumOptions {
@@ -601,7 +607,7 @@ fn panel(info: &Info, r: &PanelRun) -> Result<FigureRecord, StudyError> {
         .filter(|&i| sp.frequency[i] > 0.0 && sp.frequency[i] <= 4.0 * f)
         .collect();
     let fx: Vec<f64> = keep.iter().map(|&i| sp.frequency[i]).collect();
-    let pw: Vec<f64> = keep.iter().map(|&i| sp.power[i]).collect();
+    let pw_mm2: Vec<f64> = keep.iter().map(|&i| 1e6 * sp.power[i]).collect();
     info.ctx.write_csv(
         &format!("{name}_section"),
         &["cycle", "time_s", "grain_z_m", "grain_v_m_s", "box_z_m"],
@@ -632,14 +638,14 @@ fn panel(info: &Info, r: &PanelRun) -> Result<FigureRecord, StudyError> {
         section: PoincareFigure {
             x: &sz,
             y: &sv,
-            x_label: "z_cm at t = kT (m)".into(),
-            y_label: "ż_cm at t = kT (m/s)".into(),
+            x_label: "z_cm at t = kT (mm)".into(),
+            y_label: "ż_cm at t = kT (mm/s)".into(),
         },
         spectrum: SpectrumFigure {
             frequency_hz: &fx,
-            power: &pw,
+            power: &pw_mm2,
             forcing_hz: Some(f),
-            power_label: "power of z_cm (m² per bin)".into(),
+            power_label: "power of z_cm (mm² per bin)".into(),
         },
     };
     let impacts = r.summary.impacts_per_cycle;
@@ -727,7 +733,7 @@ fn reconstruction(info: &Info, runs: &[PanelRun]) -> Result<FigureRecord, StudyE
             dec.to_string(),
         ]);
         series.push((
-            z[z.len() - keep..].to_vec(),
+            z[z.len() - keep..].iter().map(|v| 1e3 * v).collect(),
             lag,
             dt,
             format!("{} Hz: {}", r.f_hz, r.verdict()),
@@ -744,7 +750,7 @@ fn reconstruction(info: &Info, runs: &[PanelRun]) -> Result<FigureRecord, StudyE
                         series: z,
                         lag: *lag,
                         dt_s: Some(*dt),
-                        value_label: "z_cm (m)".into(),
+                        value_label: "z_cm (mm)".into(),
                     },
                     cap.clone(),
                 )

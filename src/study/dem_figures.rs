@@ -188,11 +188,18 @@ fn energy_vs_frequency(
 ) -> Result<FigureRecord, StudyError> {
     let name = "energy_vs_frequency_dem";
     let f = sw.points.map(|s| s.frequency_hz);
-    // the primary's viscous loss, then the grains' own (collision, friction …)
-    let mut cols = vec!["energy_viscous_j_per_cycle".to_string()];
+    // the input (base work), the primary's viscous loss, then the grains' own (collision,
+    // friction …): in a steady state the input is the sum of the others
+    let mut cols = vec![
+        "energy_input_j_per_cycle".to_string(),
+        "energy_viscous_j_per_cycle".to_string(),
+    ];
     cols.extend(grain_energy_keys(&sw.points));
-    let mut values = vec![sw.points.map(|s| s.energy_viscous_j_per_cycle)];
-    for c in &cols[1..] {
+    let mut values = vec![
+        sw.points.map(|s| s.energy_input_j_per_cycle),
+        sw.points.map(|s| s.energy_viscous_j_per_cycle),
+    ];
+    for c in &cols[2..] {
         values.push(extra_values(name, &sw.points, c)?);
     }
     let mut header = vec!["frequency_hz"];
@@ -214,9 +221,9 @@ fn energy_vs_frequency(
     let size = ctx.render(name, &energy_figure(&f, "frequency f (Hz)", &pairs))?;
     Ok(FigureRecord {
         name: name.into(),
-        caption: "DEM, scene B (N = 250, Lz = 0.1225 m): energy dissipated per forcing cycle by \
-                  collisions (normal damping), friction (tangential) and the primary's damper C \
-                  versus frequency."
+        caption: "DEM, scene B (N = 250, Lz = 0.1225 m): energy put in per forcing cycle by the \
+                  base, and dissipated by collisions (normal damping), friction (tangential) and \
+                  the primary's damper C, versus frequency."
             .into(),
         spec_item: "collision vs friction energy per cycle versus f".into(),
         commands: sw.commands_then_plot("energy", &ctx.path(&format!("{name}.png"))),
@@ -296,11 +303,17 @@ fn zres_energy_vs_lz(
         ],
         &rows,
     )?;
+    // every length drawn in mm (Lz like the amplitude)
+    let lz_mm: Vec<Vec<f64>> = curves
+        .iter()
+        .map(|(_, x, _, _)| super::impact_gap::to_mm(x))
+        .collect();
     let series = curves
         .iter()
-        .map(|(l, x, z, _)| Series { label: l, x, y: z })
+        .zip(&lz_mm)
+        .map(|((l, _, z, _), x)| Series { label: l, x, y: z })
         .collect();
-    let size = ctx.render(name, &resonance_figure(series, "container height Lz (m)"))?;
+    let size = ctx.render(name, &resonance_figure(series, "container height Lz (mm)"))?;
     let ename = "energy_vs_lz_dem";
     ctx.write_csv(
         ename,
@@ -314,13 +327,14 @@ fn zres_energy_vs_lz(
     )?;
     let series: Vec<Series> = curves
         .iter()
-        .map(|(l, x, _, e)| Series { label: l, x, y: e })
+        .zip(&lz_mm)
+        .map(|((l, _, _, e), x)| Series { label: l, x, y: e })
         .collect();
     let esize = ctx.render(
         ename,
         &lines(
             series,
-            "container height Lz (m)",
+            "container height Lz (mm)",
             "energy dissipated by the grains per cycle at resonance (J)",
             1.0,
             "Grain dissipation per cycle at the resonance versus Lz",

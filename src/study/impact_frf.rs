@@ -34,33 +34,36 @@ pub(super) fn energy_vs_frequency(
 ) -> Result<FigureRecord, StudyError> {
     let name = "energy_vs_frequency";
     let f = sw.points.map(|s| s.frequency_hz);
+    let input = sw.points.map(|s| s.energy_input_j_per_cycle);
     let imp = sw.points.map(|s| s.energy_impact_j_per_cycle);
     let vis = sw.points.map(|s| s.energy_viscous_j_per_cycle);
     ctx.write_csv(
         name,
         &[
             "frequency_hz",
+            "energy_input_j_per_cycle",
             "energy_impact_j_per_cycle",
             "energy_viscous_j_per_cycle",
         ],
         &(0..f.len())
-            .map(|i| vec![f[i], imp[i], vis[i]])
+            .map(|i| vec![f[i], input[i], imp[i], vis[i]])
             .collect::<Vec<_>>(),
     )?;
     let fig = energy_figure(
         &f,
         "frequency f (Hz)",
         &[
-            ("impacts (particle)", &imp),
-            ("viscous (primary damper C)", &vis),
+            ("input: base work", &input),
+            ("dissipated: impacts (particle)", &imp),
+            ("dissipated: viscous (primary damper C)", &vis),
         ],
     );
     let size = ctx.render(name, &fig)?;
     Ok(FigureRecord {
         name: name.into(),
         caption: format!(
-            "Impact model (e = 0, gap {SCENE_B_GAP_M} m): energy dissipated per cycle by impacts \
-             and by the primary's damper C versus frequency (the DEM splits the grains' share \
+            "Impact model (e = 0, gap {SCENE_B_GAP_M} m): energy put in per cycle by the base, \
+             and dissipated by impacts and by the primary's damper C, versus frequency (the DEM splits the grains' share \
              into collision and friction: energy_vs_frequency_dem)."
         ),
         spec_item: "collision vs friction energy per cycle versus f".into(),

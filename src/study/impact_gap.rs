@@ -91,6 +91,8 @@ pub(super) fn zres_vs_gap(
     let (x8, z8) = resonance_curve(name, &e8.points, DAMPER_GAP)?;
     let rows: Vec<Vec<f64>> = (0..x0.len()).map(|i| vec![x0[i], z0[i], z8[i]]).collect();
     ctx.write_csv(name, &["gap_m", "zres_e0_m", "zres_e0.8_m"], &rows)?;
+    // drawn in mm, like the amplitude
+    let (x0, x8) = (to_mm(&x0), to_mm(&x8));
     let size = ctx.render(
         name,
         &resonance_figure(
@@ -106,7 +108,7 @@ pub(super) fn zres_vs_gap(
                     y: &z8,
                 },
             ],
-            "gap (m)",
+            "gap (mm)",
         ),
     )?;
     Ok(FigureRecord {
@@ -149,9 +151,10 @@ pub(super) fn energy_vs_gap(
             .map(|i| vec![x0[i], y0[i], y8[i]])
             .collect::<Vec<_>>(),
     )?;
+    let x0 = to_mm(&x0);
     let mut fig = energy_figure(
         &x0,
-        "gap (m)",
+        "gap (mm)",
         &[("impacts, e = 0", &y0), ("impacts, e = 0.8", &y8)],
     );
     fig.title = "Energy dissipated by impacts per cycle at the resonance".into();
@@ -212,4 +215,9 @@ pub(super) fn zres_vs_restitution(ctx: &Ctx, s: &Settings) -> Result<FigureRecor
         reductions: s.reductions(&["duration", "restitutions", "grid"]),
         size_px: size,
     })
+}
+
+/// Lengths in metres as millimetres (the unit of every length drawn in this figure family).
+pub(super) fn to_mm(v: &[f64]) -> Vec<f64> {
+    v.iter().map(|x| 1e3 * x).collect()
 }
