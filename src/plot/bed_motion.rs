@@ -151,7 +151,7 @@ impl Figure for BedMotionFigure<'_> {
                 ))
                 .map_err(draw_err)?;
             legend.push(LegendEntry::new(
-                "force of the grains on the box F_gz (lower panel)",
+                "grains' force on the box F_gz (lower)",
                 color,
                 LegendMark::Line(2),
             ));

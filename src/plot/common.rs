@@ -698,7 +698,10 @@ pub fn side_legend_rows<DB: DrawingBackend>(
                 x0 + 4,
                 TextStyle::from((FONT_FAMILY, 13).into_font()).color(&c),
             ),
-            _ => (x0 + sample + 6, tick_font()),
+            _ => (
+                x0 + sample + 6,
+                fitting_font(panel, &e.label, x0 + sample + 6),
+            ),
         };
         let font = font.pos(plotters::style::text_anchor::Pos::new(
             plotters::style::text_anchor::HPos::Left,
@@ -710,6 +713,28 @@ pub fn side_legend_rows<DB: DrawingBackend>(
         y += row;
     }
     Ok(y - row / 2)
+}
+
+/// The tick font, shrunk (down to 10 px) until `label` fits the panel from column `x`, so that
+/// a long legend entry is never cut at the figure's edge.
+fn fitting_font<DB: DrawingBackend>(
+    panel: &DrawingArea<DB, Shift>,
+    label: &str,
+    x: i32,
+) -> TextStyle<'static> {
+    let room = panel.dim_in_pixel().0 as i32 - x - 4;
+    let mut size = 14;
+    loop {
+        let font: TextStyle<'static> = (FONT_FAMILY, size).into_font().into();
+        let fits = panel
+            .estimate_text_size(label, &font)
+            .map(|(w, _)| w as i32 <= room)
+            .unwrap_or(true);
+        if fits || size <= 10 {
+            return font;
+        }
+        size -= 1;
+    }
 }
 
 /// `c` blended towards white: `t = 1` keeps `c`, `t = 0` gives white.

@@ -54,8 +54,8 @@ pub(super) fn energy_vs_frequency(
         "frequency f (Hz)",
         &[
             ("input: base work", &input),
-            ("dissipated: impacts (particle)", &imp),
-            ("dissipated: viscous (primary damper C)", &vis),
+            ("dissipated: impacts", &imp),
+            ("dissipated: primary's damper C", &vis),
         ],
     );
     let size = ctx.render(name, &fig)?;
