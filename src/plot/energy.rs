@@ -31,7 +31,7 @@ pub fn energy_figure<'a>(
 /// The ledger columns of a DEM run's `series.csv` drawn by [`ledger_figure`], with their
 /// legend labels: cumulative input and dissipation, the stored energies, and the residual.
 pub const LEDGER_COLUMNS: [(&str, &str); 9] = [
-    ("e_base_work_j", "input: base work on the grains"),
+    ("e_base_work_j", "input: base work on the system"),
     ("e_collision_j", "dissipated: collisions"),
     ("e_friction_j", "dissipated: friction"),
     ("e_viscous_j", "dissipated: viscous (primary)"),
