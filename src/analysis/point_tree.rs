@@ -15,14 +15,13 @@
 //! # Ties
 //! [`PointTree::nearest`] returns the minimum of (distance, index) in the lexicographic order —
 //! what a scan by increasing index keeping the first strict minimum returns.
-//! [`PointTree::within`] returns every accepted point; callers sort by (distance, index).
 //!
 //! # Units
 //! Those of the points (the section analyses pass points divided by their extents).
 //!
 //! # Cost
-//! Building: O(n log n). A query: O(log n + k) for well-spread points (k the points reported),
-//! O(n) in the worst case (every point at the same distance).
+//! Building: O(n log n). A query: O(log n) for well-spread points, O(n) in the worst case
+//! (every point at the same distance).
 
 use crate::analysis::section::dist2;
 
@@ -106,7 +105,8 @@ impl PointTree {
         });
         let base = self.boxes.len();
         self.boxes.extend(std::iter::repeat_n(f64::INFINITY, dim));
-        self.boxes.extend(std::iter::repeat_n(f64::NEG_INFINITY, dim));
+        self.boxes
+            .extend(std::iter::repeat_n(f64::NEG_INFINITY, dim));
         for &i in &self.order[start..end] {
             for (d, &x) in flat[i * dim..(i + 1) * dim].iter().enumerate() {
                 let (lo, hi) = (base + d, base + dim + d);
@@ -204,49 +204,6 @@ impl PointTree {
             self.nearest_in(second, q, metric, admissible, best);
         }
     }
-
-    /// Appends to `out` every point with distance ≤ `r` and `admissible(j, distance)`, as
-    /// (distance, index), in no particular order.
-    pub(crate) fn within(
-        &self,
-        q: &[f64],
-        r: f64,
-        metric: Metric,
-        admissible: impl Fn(usize, f64) -> bool,
-        out: &mut Vec<(f64, usize)>,
-    ) {
-        if !self.nodes.is_empty() {
-            self.within_in(0, q, r, metric, &admissible, out);
-        }
-    }
-
-    fn within_in(
-        &self,
-        node: usize,
-        q: &[f64],
-        r: f64,
-        metric: Metric,
-        admissible: &impl Fn(usize, f64) -> bool,
-        out: &mut Vec<(f64, usize)>,
-    ) {
-        if metric.of(self.box_bound(node, q)) > r {
-            return;
-        }
-        let nd = self.nodes[node];
-        if nd.left == 0 {
-            let dim = self.dim;
-            for t in nd.start..nd.end {
-                let d = metric.of(dist2(q, &self.coords[t * dim..(t + 1) * dim]));
-                let j = self.order[t];
-                if d <= r && admissible(j, d) {
-                    out.push((d, j));
-                }
-            }
-            return;
-        }
-        self.within_in(nd.left, q, r, metric, admissible, out);
-        self.within_in(nd.right, q, r, metric, admissible, out);
-    }
 }
 
 #[cfg(test)]
@@ -285,7 +242,7 @@ mod tests {
     }
 
     #[test]
-    fn nearest_and_within_equal_a_scan_with_ties() {
+    fn nearest_equals_a_scan_with_ties() {
         for (dim, n) in [(1, 50), (2, 700), (3, 400), (4, 1000)] {
             let flat = points(n, dim, dim as u64);
             let tree = PointTree::new(&flat, dim, n);
@@ -299,17 +256,6 @@ mod tests {
                         "dim {dim} k {k}"
                     );
                 }
-                let r = 0.2;
-                let mut got = Vec::new();
-                tree.within(q, r, Metric::Euclidean, |j, _| j != k, &mut got);
-                got.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-                let want: Vec<(f64, usize)> = (0..n)
-                    .map(|j| (dist2(q, &flat[j * dim..(j + 1) * dim]).sqrt(), j))
-                    .filter(|&(d, j)| j != k && d <= r)
-                    .collect();
-                let mut want = want;
-                want.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-                assert_eq!(got, want, "dim {dim} k {k}");
             }
         }
     }
@@ -317,7 +263,10 @@ mod tests {
     #[test]
     fn empty_and_all_excluded() {
         let tree = PointTree::new(&[], 2, 0);
-        assert_eq!(tree.nearest(&[0.0, 0.0], Metric::Squared, |_, _| true), None);
+        assert_eq!(
+            tree.nearest(&[0.0, 0.0], Metric::Squared, |_, _| true),
+            None
+        );
         let flat = [0.5; 40];
         let tree = PointTree::new(&flat, 2, 20);
         assert_eq!(

@@ -186,7 +186,7 @@ pub fn section_lyapunov(
         })
         .collect();
     let eps_max = eps.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    let cands = Candidates::within(&tree, &flat, dim, &refs, w, eps_max);
+    let cands = Candidates::within(&flat, dim, usable, &refs, w, eps_max);
     // S(ε, Δ) for every ε at once: per reference, the running sum of the followed distances
     // over its candidates (nearest first) is read at each radius' neighbour count — the same
     // additions in the same order as summing each radius' neighbours directly, and every
@@ -261,11 +261,6 @@ pub fn section_lyapunov(
 /// Most neighbours followed per reference (the nearest ones).
 const MAX_NEIGHBOURS: usize = 200;
 
-/// Order of candidates: by distance, ties by index.
-fn by_distance(a: &(f64, usize), b: &(f64, usize)) -> std::cmp::Ordering {
-    a.0.total_cmp(&b.0).then(a.1.cmp(&b.1))
-}
-
 /// Distance of each reference `k` to its nearest admissible neighbour j (`|j − k| > w`, distance
 /// > 0, j among the tree's points), for the references that have one, in reference order.
 fn nearest_distances(
@@ -294,37 +289,51 @@ struct Candidates {
 }
 
 impl Candidates {
-    /// Fixed-radius search of the admissible neighbours (`|j − k| > w`, 0 < distance ≤
-    /// `eps_max`) of every reference k: the same lists as the [`MAX_NEIGHBOURS`] nearest of
-    /// all admissible points cut at `eps_max`.
+    /// The [`MAX_NEIGHBOURS`] nearest admissible neighbours (`|j − k| > w`, 0 < distance ≤
+    /// `eps_max`, j < `usable`) of every reference k, by (distance, index): the same lists as
+    /// the [`MAX_NEIGHBOURS`] nearest of all admissible points cut at `eps_max`.
+    ///
+    /// A scan of all points per reference (on a chaotic section the radius holds about half of
+    /// them, where a tree saves nothing); the candidates are ranked by one integer key,
+    /// `bits(distance) · 2⁶⁴ + index` (distances are positive and finite, so the bits of an
+    /// f64 order as its value): the order of (distance, index).
     fn within(
-        tree: &PointTree,
         flat: &[f64],
         dim: usize,
+        usable: usize,
         refs: &[usize],
         w: usize,
         eps_max: f64,
     ) -> Candidates {
-        let mut pairs = Vec::new();
+        let mut pairs = Vec::with_capacity(refs.len() * MAX_NEIGHBOURS);
         let mut offsets = Vec::with_capacity(refs.len() + 1);
         offsets.push(0);
-        let mut scratch: Vec<(f64, usize)> = Vec::new();
+        // d² above this cannot give a distance ≤ eps_max (a margin over eps_max², the exact
+        // test is on the square root)
+        let d2_max = eps_max * eps_max * (1.0 + 1e-9);
+        let mut keys: Vec<u128> = Vec::with_capacity(usable);
         for &k in refs {
-            scratch.clear();
+            keys.clear();
             let q = &flat[k * dim..(k + 1) * dim];
-            tree.within(
-                q,
-                eps_max,
-                Metric::Euclidean,
-                |j, d| j.abs_diff(k) > w && d > 0.0,
-                &mut scratch,
-            );
-            if scratch.len() > MAX_NEIGHBOURS {
-                scratch.select_nth_unstable_by(MAX_NEIGHBOURS - 1, by_distance);
-                scratch.truncate(MAX_NEIGHBOURS);
+            for (j, p) in flat[..usable * dim].chunks_exact(dim).enumerate() {
+                let d2 = dist2(q, p);
+                if d2 > d2_max || j.abs_diff(k) <= w {
+                    continue;
+                }
+                let d = d2.sqrt();
+                if d > 0.0 && d <= eps_max {
+                    keys.push(((d.to_bits() as u128) << 64) | j as u128);
+                }
             }
-            scratch.sort_unstable_by(by_distance);
-            pairs.extend_from_slice(&scratch);
+            if keys.len() > MAX_NEIGHBOURS {
+                keys.select_nth_unstable(MAX_NEIGHBOURS - 1);
+                keys.truncate(MAX_NEIGHBOURS);
+            }
+            keys.sort_unstable();
+            pairs.extend(
+                keys.iter()
+                    .map(|&key| (f64::from_bits((key >> 64) as u64), key as u64 as usize)),
+            );
             offsets.push(pairs.len());
         }
         Candidates { pairs, offsets }
@@ -422,7 +431,13 @@ mod tests {
 
     /// The former all-pairs search: every reference's 200 nearest admissible neighbours by
     /// (distance, index), and its nearest distance.
-    fn brute(flat: &[f64], dim: usize, usable: usize, refs: &[usize], w: usize) -> Vec<Vec<(f64, usize)>> {
+    fn brute(
+        flat: &[f64],
+        dim: usize,
+        usable: usize,
+        refs: &[usize],
+        w: usize,
+    ) -> Vec<Vec<(f64, usize)>> {
         let row = |i: usize| &flat[i * dim..(i + 1) * dim];
         refs.iter()
             .map(|&k| {
@@ -431,7 +446,7 @@ mod tests {
                     .map(|j| (dist2(row(k), row(j)).sqrt(), j))
                     .filter(|(d, _)| *d > 0.0)
                     .collect();
-                c.sort_by(by_distance);
+                c.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
                 c.truncate(MAX_NEIGHBOURS);
                 c
             })
@@ -446,9 +461,25 @@ mod tests {
         let sets: Vec<(usize, Vec<f64>)> = vec![
             (2, henon.windows(2).flat_map(|w| [w[1], w[0]]).collect()),
             // ties: a coarse lattice with repeated points, 3 coordinates
-            (3, (0..3 * 1800).map(|_| (rng.random::<f64>() * 5.0).floor() / 5.0).collect()),
+            (
+                3,
+                (0..3 * 1800)
+                    .map(|_| (rng.random::<f64>() * 5.0).floor() / 5.0)
+                    .collect(),
+            ),
             // a dense cluster: more than 200 neighbours within the largest radius
-            (4, (0..4 * 1600).map(|i| if i % 4 == 0 { rng.random::<f64>() } else { 1e-3 * rng.random::<f64>() }).collect()),
+            (
+                4,
+                (0..4 * 1600)
+                    .map(|i| {
+                        if i % 4 == 0 {
+                            rng.random::<f64>()
+                        } else {
+                            1e-3 * rng.random::<f64>()
+                        }
+                    })
+                    .collect(),
+            ),
         ];
         for (dim, flat) in sets {
             let n = flat.len() / dim;
@@ -457,9 +488,13 @@ mod tests {
             let tree = PointTree::new(&flat, dim, usable);
             let want = brute(&flat, dim, usable, &refs, 2);
             let nn: Vec<f64> = want.iter().filter_map(|c| c.first().map(|p| p.0)).collect();
-            assert_eq!(nearest_distances(&tree, &flat, dim, &refs, 2), nn, "dim {dim}");
+            assert_eq!(
+                nearest_distances(&tree, &flat, dim, &refs, 2),
+                nn,
+                "dim {dim}"
+            );
             for eps_max in [1e-3, 0.02, 0.3, 10.0] {
-                let got = Candidates::within(&tree, &flat, dim, &refs, 2, eps_max);
+                let got = Candidates::within(&flat, dim, usable, &refs, 2, eps_max);
                 for (r, c) in want.iter().enumerate() {
                     let cut: Vec<(f64, usize)> =
                         c.iter().copied().take_while(|p| p.0 <= eps_max).collect();
