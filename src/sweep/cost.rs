@@ -193,8 +193,9 @@ mod tests {
             varies: vec![Vary::parse("excitation.frequency=10:15:0.5").unwrap()],
             analyze: false,
         };
-        // 11 values, both branches, blocks of 4 (3 blocks a branch), warm-up 2: 22 points
-        // plus 2 × 2 warm-up points a branch, each 1000 periods × 20 µs
+        // 11 values, both branches, blocks of 4, 4, 3 (3 blocks a branch), warm-up 2 before
+        // the second and third: 22 points plus 2 × 2 warm-up points a branch, each 1000
+        // periods × 20 µs
         let c = Continuation {
             block: Some(4),
             overlap: 2,
@@ -202,7 +203,7 @@ mod tests {
         };
         let cost = sweep_cost_of(&spec, Some(&c), 3).unwrap();
         assert_eq!(cost.points, 22);
-        assert!((cost.total_cpu_s - 26.0 * 0.02).abs() < 1e-9, "{cost:?}");
+        assert!((cost.total_cpu_s - 30.0 * 0.02).abs() < 1e-9, "{cost:?}");
         // 6 blocks in 3 shards of 2: the largest holds 4 + 4 points and 2 warm-up points
         assert!(
             (cost.max_shard_cpu_s - 10.0 * 0.02).abs() < 1e-9,
