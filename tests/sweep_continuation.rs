@@ -10,6 +10,10 @@
 //! - Sharded by blocks of the parameter range with warm-up overlap, the merged sweep.csv,
 //!   strobe.csv, hysteresis.csv and seams.csv equal the single-process run's byte for byte;
 //!   a rerun resumes (nothing recomputed, same files); bad requests are refused.
+//! - `pdamp slurm` with a continuation sweep: the emitted script passes `--continuation`,
+//!   `--block`, `--overlap` and `--hysteresis-tol` to every shard task, and the merge job finds
+//!   them in the shards' manifest; run through a stand-in `sbatch` (each array task, then the
+//!   dependent merge, executed in order by bash), the merged files equal the single run's.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -330,4 +334,180 @@ fn bad_continuation_requests_are_refused() {
         "2",
     ]);
     assert!(e.contains("--overlap"), "{e}");
+}
+
+/// The sweep: 13 values, both branches, blocks of 4 with 2 warm-up points, a non-default
+/// tolerance (so that a dropped flag shows in hysteresis.csv's header or marks).
+const SLURM_ARGS: [&str; 16] = [
+    "--set",
+    "damper.restitution=0.8",
+    "--set",
+    "run.periods=120",
+    "--no-analysis",
+    "--vary",
+    "excitation.frequency=12:18:0.5",
+    "--continuation",
+    "both",
+    "--block",
+    "4",
+    "--overlap",
+    "2",
+    "--hysteresis-tol",
+    "0.07",
+    "-q",
+];
+
+/// A stand-in `sbatch --parsable [--dependency=…]` reading the job script on stdin: an array
+/// job (`#SBATCH --array=0-M[%P]`) runs every task in order with `SLURM_ARRAY_TASK_ID` set,
+/// any other job runs once; prints a job id. A failing task fails the submission.
+const FAKE_SBATCH: &str = r#"#!/usr/bin/env bash
+set -euo pipefail
+script=$(mktemp)
+cat > "$script"
+echo "$*" >> "$(dirname "$0")/sbatch.log"
+range=$(sed -n 's/^#SBATCH --array=0-\([0-9]*\).*/\1/p' "$script")
+if [ -n "$range" ]; then
+  for k in $(seq 0 "$range"); do
+    SLURM_ARRAY_TASK_ID=$k SLURM_CPUS_PER_TASK=1 bash "$script" >> "$(dirname "$0")/tasks.log" 2>&1
+  done
+  echo 101
+else
+  bash "$script" >> "$(dirname "$0")/tasks.log" 2>&1
+  echo 102
+fi
+rm -f "$script"
+"#;
+
+fn slurm_script(dir: &Path, out: &Path, shards: &str, extra: &[&str]) -> Output {
+    let script = dir.join("submit.sh");
+    let mut a = vec![
+        "slurm",
+        SCENE,
+        "--out",
+        out.to_str().unwrap(),
+        "--shards",
+        shards,
+        "--script",
+        script.to_str().unwrap(),
+    ];
+    a.extend(SLURM_ARGS);
+    a.extend(extra);
+    pdamp(&a)
+}
+
+#[test]
+fn slurm_continuation_shards_and_merge_equal_the_single_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let single = dir.path().join("single");
+    let mut a = vec!["sweep", SCENE, "--out", single.to_str().unwrap()];
+    a.extend(SLURM_ARGS);
+    let o = pdamp(&a);
+    assert!(o.status.success(), "{}", text(&o));
+
+    let out = dir.path().join("shared");
+    let o = slurm_script(dir.path(), &out, "3", &[]);
+    assert!(o.status.success(), "{}", text(&o));
+    let s = String::from_utf8(read(dir.path().join("submit.sh"))).unwrap();
+    let task = s
+        .lines()
+        .find(|l| l.contains(" sweep ") && l.contains("--shard"))
+        .unwrap_or_else(|| panic!("no task line in\n{s}"));
+    for want in [
+        "--continuation both",
+        "--block 4",
+        "--overlap 2",
+        "--hysteresis-tol 0.07",
+        "--no-analysis",
+        "--shard \"$SLURM_ARRAY_TASK_ID/3\"",
+    ] {
+        assert!(
+            task.contains(want),
+            "missing {want:?} in the task line {task:?}"
+        );
+    }
+    for want in [
+        "#SBATCH --array=0-2",
+        "--dependency=afterok:",
+        "shards of contiguous blocks of a continuation sweep",
+        // 13 values × 2 branches
+        "# 26 points in 3 shards",
+    ] {
+        assert!(s.contains(want), "missing {want:?} in\n{s}");
+    }
+
+    // run it: the three shard tasks, then the merge
+    let bin = dir.path().join("bin");
+    std::fs::create_dir_all(&bin).unwrap();
+    let sbatch = bin.join("sbatch");
+    std::fs::write(&sbatch, FAKE_SBATCH).unwrap();
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::set_permissions(&sbatch, std::fs::Permissions::from_mode(0o755)).unwrap();
+    }
+    let path = format!(
+        "{}:{}",
+        bin.display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
+    let run = Command::new("bash")
+        .arg(dir.path().join("submit.sh"))
+        .env("PATH", path)
+        .env("RAYON_NUM_THREADS", "2")
+        .output()
+        .unwrap();
+    let log = std::fs::read_to_string(bin.join("tasks.log")).unwrap_or_default();
+    assert!(run.status.success(), "{}\n{log}", text(&run));
+    assert!(
+        text(&run).contains("array job 101 (3 tasks), merge job 102"),
+        "{}",
+        text(&run)
+    );
+    let calls = std::fs::read_to_string(bin.join("sbatch.log")).unwrap();
+    assert!(calls.contains("--dependency=afterok:101"), "{calls}");
+    for f in ["sweep.csv", "strobe.csv", "hysteresis.csv", "seams.csv"] {
+        assert_eq!(read(out.join(f)), read(single.join(f)), "{f}\n{log}");
+    }
+}
+
+#[test]
+fn slurm_continuation_refusals_name_the_flag() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o");
+    // 13 values, blocks of 4: 8 blocks in all, 9 shards are too many
+    let o = slurm_script(dir.path(), &out, "9", &[]);
+    assert!(!o.status.success());
+    let e = text(&o);
+    assert!(e.contains("--shards") && e.contains("8"), "{e}");
+    // the continuation flags still need --continuation
+    let o = pdamp(&[
+        "slurm",
+        SCENE,
+        "--out",
+        out.to_str().unwrap(),
+        "--shards",
+        "2",
+        "--vary",
+        "excitation.frequency=12:18:0.5",
+        "--block",
+        "4",
+    ]);
+    assert!(!o.status.success());
+    assert!(text(&o).contains("--continuation"), "{}", text(&o));
+    // a bad direction
+    let o = pdamp(&[
+        "slurm",
+        SCENE,
+        "--out",
+        out.to_str().unwrap(),
+        "--shards",
+        "2",
+        "--vary",
+        "excitation.frequency=12:18:0.5",
+        "--continuation",
+        "sideways",
+    ]);
+    assert!(!o.status.success());
+    assert!(text(&o).contains("--continuation"), "{}", text(&o));
+    assert!(!dir.path().join("submit.sh").exists());
 }

@@ -25,6 +25,7 @@ pub mod noise_reduction;
 pub mod optimum;
 pub mod phase_lock;
 pub mod poincare;
+pub(crate) mod point_tree;
 pub mod prediction_error;
 pub mod recurrence;
 pub mod regime;

@@ -44,6 +44,7 @@
 //! (1989), ch. 6 (Poincaré maps, rotation numbers); H. Kantz, T. Schreiber, *Nonlinear Time
 //! Series Analysis*, 2nd ed., CUP (2004), §6.2 (determinism by local prediction).
 
+use crate::analysis::point_tree::{Metric, PointTree};
 use crate::error::AnalysisError;
 use serde::{Deserialize, Serialize};
 
@@ -360,29 +361,24 @@ fn groups_separated(u: &[Vec<f64>], p: usize, w: f64) -> bool {
     (0..p).all(|a| (a + 1..p).all(|b| dist2(&c[a], &c[b]).sqrt() >= 4.0 * w))
 }
 
-/// Determinism ratio RMS‖u_{k+1} − u_{j+1}‖ / (√2 w), j the nearest neighbour of k (brute force
-/// over at most 2000 points).
+/// Determinism ratio RMS‖u_{k+1} − u_{j+1}‖ / (√2 w), j the nearest neighbour of k (ties to
+/// the smaller index) over the last at most 2000 points, found with a k-d tree (the same j as
+/// a scan of all pairs).
 fn determinism_ratio(u: &[Vec<f64>], w: f64) -> Option<f64> {
     let n = u.len().min(2000);
     let u = &u[u.len() - n..];
     if n < 16 || w <= 0.0 {
         return None;
     }
+    let dim = u[0].len();
+    let flat: Vec<f64> = u.iter().flatten().copied().collect();
+    // candidates j < n − 1 (j + 1 must exist)
+    let tree = PointTree::new(&flat, dim, n - 1);
     let mut ss = 0.0;
     let mut count = 0usize;
     for k in 0..n - 1 {
-        let mut best = (f64::INFINITY, usize::MAX);
-        for j in 0..n - 1 {
-            if j == k {
-                continue;
-            }
-            let d = dist2(&u[k], &u[j]);
-            if d < best.0 {
-                best = (d, j);
-            }
-        }
-        if best.1 != usize::MAX {
-            ss += dist2(&u[k + 1], &u[best.1 + 1]);
+        if let Some((_, j)) = tree.nearest(&u[k], Metric::Squared, |j, _| j != k) {
+            ss += dist2(&u[k + 1], &u[j + 1]);
             count += 1;
         }
     }
@@ -529,6 +525,30 @@ mod tests {
     fn lcg_noise(n: usize, seed: u64) -> Vec<f64> {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
         (0..n).map(|_| rng.random::<f64>() - 0.5).collect()
+    }
+
+    #[test]
+    fn determinism_ratio_equals_the_all_pairs_scan() {
+        // ties: points on a coarse lattice, many repeated
+        let noise = lcg_noise(3000, 11);
+        let u: Vec<Vec<f64>> = noise
+            .chunks(2)
+            .map(|c| vec![(c[0] * 8.0).floor() / 8.0, (c[1] * 4.0).floor() / 4.0])
+            .collect();
+        let n = u.len();
+        let mut ss = 0.0;
+        for k in 0..n - 1 {
+            let mut best = (f64::INFINITY, usize::MAX);
+            for j in (0..n - 1).filter(|&j| j != k) {
+                let d = dist2(&u[k], &u[j]);
+                if d < best.0 {
+                    best = (d, j);
+                }
+            }
+            ss += dist2(&u[k + 1], &u[best.1 + 1]);
+        }
+        let want = (ss / (n - 1) as f64).sqrt() / (std::f64::consts::SQRT_2 * 0.3);
+        assert_eq!(determinism_ratio(&u, 0.3), Some(want));
     }
 
     #[test]

@@ -45,6 +45,7 @@
 //! H. Kantz, Phys. Lett. A 185, 77–87 (1994), doi:10.1016/0375-9601(94)90991-1; H. Kantz,
 //! T. Schreiber, *Nonlinear Time Series Analysis*, CUP (2004), §5.3 and §9.3 (Poincaré maps).
 
+use crate::analysis::point_tree::{Metric, PointTree};
 use crate::analysis::section::{dist2, normalise};
 use crate::error::AnalysisError;
 use serde::{Deserialize, Serialize};
@@ -161,35 +162,9 @@ pub fn section_lyapunov(
     // the points in one flat array (dist2 on its rows: the same sums as on the rows of `u`)
     let flat: Vec<f64> = u.iter().flatten().copied().collect();
     let row = |i: usize| &flat[i * dim..(i + 1) * dim];
-    // every reference's 200 nearest admissible neighbours (distance, index), nearest first in
-    // the order of a stable sort by distance (ties by index, as the candidates are generated
-    // by increasing index): selected in one scratch buffer, then only those sorted
     let w = opts.theiler;
-    let mut nn = Vec::with_capacity(refs.len());
-    let mut scratch: Vec<(f64, usize)> = Vec::with_capacity(usable);
-    let by_d = |a: &(f64, usize), b: &(f64, usize)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
-    let pair_d: Vec<Vec<(f64, usize)>> = refs
-        .iter()
-        .map(|&k| {
-            scratch.clear();
-            let rk = row(k);
-            scratch.extend(
-                (0..usable)
-                    .filter(|&j| j.abs_diff(k) > w)
-                    .map(|j| (dist2(rk, row(j)).sqrt(), j))
-                    .filter(|(d, _)| *d > 0.0),
-            );
-            if scratch.len() > 200 {
-                scratch.select_nth_unstable_by(199, by_d);
-                scratch.truncate(200);
-            }
-            scratch.sort_unstable_by(by_d);
-            if let Some(first) = scratch.first() {
-                nn.push(first.0);
-            }
-            scratch.clone()
-        })
-        .collect();
+    let tree = PointTree::new(&flat, dim, usable);
+    let mut nn = nearest_distances(&tree, &flat, dim, &refs, w);
     if nn.is_empty() {
         return Err(AnalysisError::NoResult(
             "no section point has a neighbour outside the Theiler window".into(),
@@ -211,6 +186,7 @@ pub fn section_lyapunov(
         })
         .collect();
     let eps_max = eps.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let cands = Candidates::within(&flat, dim, usable, &refs, w, eps_max);
     // S(ε, Δ) for every ε at once: per reference, the running sum of the followed distances
     // over its candidates (nearest first) is read at each radius' neighbour count — the same
     // additions in the same order as summing each radius' neighbours directly, and every
@@ -219,11 +195,12 @@ pub fn section_lyapunov(
     let mut cnt = vec![vec![0usize; steps + 1]; count];
     let mut within = vec![0usize; count];
     let mut running: Vec<f64> = Vec::with_capacity(200);
-    for (&k, cand) in refs.iter().zip(&pair_d) {
+    for (r, &k) in refs.iter().enumerate() {
+        let cand = cands.of(r);
         for (n_e, e) in within.iter_mut().zip(&eps) {
             *n_e = cand.iter().take_while(|(d, _)| *d <= *e).count();
         }
-        let len = cand.iter().take_while(|(d, _)| *d <= eps_max).count();
+        let len = cand.len();
         if len == 0 {
             continue;
         }
@@ -279,6 +256,93 @@ pub fn section_lyapunov(
         curves_fitted: slopes.len(),
         curves,
     })
+}
+
+/// Most neighbours followed per reference (the nearest ones).
+const MAX_NEIGHBOURS: usize = 200;
+
+/// Distance of each reference `k` to its nearest admissible neighbour j (`|j − k| > w`, distance
+/// > 0, j among the tree's points), for the references that have one, in reference order.
+fn nearest_distances(
+    tree: &PointTree,
+    flat: &[f64],
+    dim: usize,
+    refs: &[usize],
+    w: usize,
+) -> Vec<f64> {
+    refs.iter()
+        .filter_map(|&k| {
+            let q = &flat[k * dim..(k + 1) * dim];
+            tree.nearest(q, Metric::Euclidean, |j, d| j.abs_diff(k) > w && d > 0.0)
+                .map(|(d, _)| d)
+        })
+        .collect()
+}
+
+/// Every reference's neighbours within `eps_max` (at most [`MAX_NEIGHBOURS`], nearest first by
+/// (distance, index)), all references' lists in one flat array.
+struct Candidates {
+    /// (distance relative to the extents, index) of the neighbours.
+    pairs: Vec<(f64, usize)>,
+    /// `pairs[offsets[r]..offsets[r + 1]]` belong to reference r.
+    offsets: Vec<usize>,
+}
+
+impl Candidates {
+    /// The [`MAX_NEIGHBOURS`] nearest admissible neighbours (`|j − k| > w`, 0 < distance ≤
+    /// `eps_max`, j < `usable`) of every reference k, by (distance, index): the same lists as
+    /// the [`MAX_NEIGHBOURS`] nearest of all admissible points cut at `eps_max`.
+    ///
+    /// A scan of all points per reference (on a chaotic section the radius holds about half of
+    /// them, where a tree saves nothing); the candidates are ranked by one integer key,
+    /// `bits(distance) · 2⁶⁴ + index` (distances are positive and finite, so the bits of an
+    /// f64 order as its value): the order of (distance, index).
+    fn within(
+        flat: &[f64],
+        dim: usize,
+        usable: usize,
+        refs: &[usize],
+        w: usize,
+        eps_max: f64,
+    ) -> Candidates {
+        let mut pairs = Vec::with_capacity(refs.len() * MAX_NEIGHBOURS);
+        let mut offsets = Vec::with_capacity(refs.len() + 1);
+        offsets.push(0);
+        // d² above this cannot give a distance ≤ eps_max (a margin over eps_max², the exact
+        // test is on the square root)
+        let d2_max = eps_max * eps_max * (1.0 + 1e-9);
+        let mut keys: Vec<u128> = Vec::with_capacity(usable);
+        for &k in refs {
+            keys.clear();
+            let q = &flat[k * dim..(k + 1) * dim];
+            for (j, p) in flat[..usable * dim].chunks_exact(dim).enumerate() {
+                let d2 = dist2(q, p);
+                if d2 > d2_max || j.abs_diff(k) <= w {
+                    continue;
+                }
+                let d = d2.sqrt();
+                if d > 0.0 && d <= eps_max {
+                    keys.push(((d.to_bits() as u128) << 64) | j as u128);
+                }
+            }
+            if keys.len() > MAX_NEIGHBOURS {
+                keys.select_nth_unstable(MAX_NEIGHBOURS - 1);
+                keys.truncate(MAX_NEIGHBOURS);
+            }
+            keys.sort_unstable();
+            pairs.extend(
+                keys.iter()
+                    .map(|&key| (f64::from_bits((key >> 64) as u64), key as u64 as usize)),
+            );
+            offsets.push(pairs.len());
+        }
+        Candidates { pairs, offsets }
+    }
+
+    /// The neighbours of reference number `r` (an index into the reference list).
+    fn of(&self, r: usize) -> &[(f64, usize)] {
+        &self.pairs[self.offsets[r]..self.offsets[r + 1]]
+    }
 }
 
 /// Fits the slope of S over Δ = 0..Δ_end (below saturation).
@@ -363,6 +427,81 @@ mod tests {
         }
         let l = section_lyapunov(&pts, &[1.0], &SectionLyapunovOptions::default()).unwrap();
         assert!((l.per_period - 2f64.ln()).abs() < 0.1 * 2f64.ln(), "{l:?}");
+    }
+
+    /// The former all-pairs search: every reference's 200 nearest admissible neighbours by
+    /// (distance, index), and its nearest distance.
+    fn brute(
+        flat: &[f64],
+        dim: usize,
+        usable: usize,
+        refs: &[usize],
+        w: usize,
+    ) -> Vec<Vec<(f64, usize)>> {
+        let row = |i: usize| &flat[i * dim..(i + 1) * dim];
+        refs.iter()
+            .map(|&k| {
+                let mut c: Vec<(f64, usize)> = (0..usable)
+                    .filter(|&j| j.abs_diff(k) > w)
+                    .map(|j| (dist2(row(k), row(j)).sqrt(), j))
+                    .filter(|(d, _)| *d > 0.0)
+                    .collect();
+                c.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                c.truncate(MAX_NEIGHBOURS);
+                c
+            })
+            .collect()
+    }
+
+    #[test]
+    fn tree_search_returns_the_all_pairs_neighbours() {
+        use rand::{RngExt, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let henon = crate::systems::henon::henon_x(2100);
+        let sets: Vec<(usize, Vec<f64>)> = vec![
+            (2, henon.windows(2).flat_map(|w| [w[1], w[0]]).collect()),
+            // ties: a coarse lattice with repeated points, 3 coordinates
+            (
+                3,
+                (0..3 * 1800)
+                    .map(|_| (rng.random::<f64>() * 5.0).floor() / 5.0)
+                    .collect(),
+            ),
+            // a dense cluster: more than 200 neighbours within the largest radius
+            (
+                4,
+                (0..4 * 1600)
+                    .map(|i| {
+                        if i % 4 == 0 {
+                            rng.random::<f64>()
+                        } else {
+                            1e-3 * rng.random::<f64>()
+                        }
+                    })
+                    .collect(),
+            ),
+        ];
+        for (dim, flat) in sets {
+            let n = flat.len() / dim;
+            let usable = n - 12;
+            let refs: Vec<usize> = (usable.saturating_sub(1500)..usable).collect();
+            let tree = PointTree::new(&flat, dim, usable);
+            let want = brute(&flat, dim, usable, &refs, 2);
+            let nn: Vec<f64> = want.iter().filter_map(|c| c.first().map(|p| p.0)).collect();
+            assert_eq!(
+                nearest_distances(&tree, &flat, dim, &refs, 2),
+                nn,
+                "dim {dim}"
+            );
+            for eps_max in [1e-3, 0.02, 0.3, 10.0] {
+                let got = Candidates::within(&flat, dim, usable, &refs, 2, eps_max);
+                for (r, c) in want.iter().enumerate() {
+                    let cut: Vec<(f64, usize)> =
+                        c.iter().copied().take_while(|p| p.0 <= eps_max).collect();
+                    assert_eq!(got.of(r), &cut[..], "dim {dim} eps {eps_max} ref {r}");
+                }
+            }
+        }
     }
 
     #[test]

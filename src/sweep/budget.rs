@@ -40,9 +40,11 @@ pub struct Budget {
 
 impl Budget {
     /// The estimate for a grid of `varies` whose points have at most `strobe_rows`
-    /// stroboscopic rows each.
-    pub fn estimate(varies: &[Vary], strobe_rows: f64, analyze: bool) -> Budget {
-        let points = super::vary::grid_len(varies);
+    /// stroboscopic rows each, run `branches` times (1; 2 for a `--continuation both` sweep,
+    /// whose up and down branches each compute and write every point of the grid; 0 is taken
+    /// as 1). `points` counts the points of all branches.
+    pub fn estimate(varies: &[Vary], strobe_rows: f64, analyze: bool, branches: usize) -> Budget {
+        let points = super::vary::grid_len(varies).and_then(|n| n.checked_mul(branches.max(1)));
         let n = points.map_or(f64::INFINITY, |n| n as f64);
         let per_point = POINT_BYTES
             + if analyze { ANALYSIS_BYTES } else { 0.0 }
@@ -176,7 +178,7 @@ mod tests {
             Vary::parse("damper.gap=0.001:1:0.001").unwrap(),
         ];
         let n = varies[0].values.len() * varies[1].values.len();
-        let b = Budget::estimate(&varies, 100.0, false);
+        let b = Budget::estimate(&varies, 100.0, false, 1);
         assert_eq!(b.points, Some(n));
         let e = b
             .check(&varies, Some(79e9), Some(21e9))
@@ -191,10 +193,38 @@ mod tests {
         assert!(e.contains("memory"), "{e}");
         // a 10 000-point sweep fits easily
         let small = [Vary::parse("excitation.frequency=1:30:0.0029").unwrap()];
-        let b = Budget::estimate(&small, 1000.0, true);
+        let b = Budget::estimate(&small, 1000.0, true, 1);
         assert!(b.check(&small, Some(79e9), Some(21e9)).is_ok());
         // and a full disk refuses even a small one
         assert!(b.check(&small, Some(1e6), None).is_err());
+    }
+
+    #[test]
+    fn both_branches_double_the_count_and_the_estimate() {
+        let varies = [Vary::parse("excitation.frequency=1:30:0.01").unwrap()];
+        let n = varies[0].values.len();
+        let one = Budget::estimate(&varies, 500.0, true, 1);
+        let both = Budget::estimate(&varies, 500.0, true, 2);
+        assert_eq!(one.points, Some(n));
+        assert_eq!(both.points, Some(2 * n));
+        assert_eq!(both.disk_bytes, 2.0 * one.disk_bytes);
+        assert_eq!(both.memory_bytes, 2.0 * one.memory_bytes);
+        // 0 branches is one run
+        assert_eq!(Budget::estimate(&varies, 500.0, true, 0), one);
+        // a disk that holds one branch but not two: refused with the count of both branches,
+        // the estimate and the key
+        let free = 1.5 * one.disk_bytes;
+        assert!(one.check(&varies, Some(free), None).is_ok());
+        let e = both
+            .check(&varies, Some(free), None)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("excitation.frequency")
+                && e.contains(&format!("{} points", 2 * n))
+                && e.contains("MB"),
+            "{e}"
+        );
     }
 
     #[test]

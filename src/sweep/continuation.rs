@@ -250,6 +250,49 @@ pub fn shard_point_count(values: &[toml::Value], c: &Continuation, shard: Shard)
         .sum()
 }
 
+/// The value indices shard `shard` of a continuation sweep over `values` runs, warm-up points
+/// included, in run order (empty when the shard has no block).
+pub fn shard_value_runs(values: &[toml::Value], c: &Continuation, shard: Shard) -> Vec<usize> {
+    let all = blocks(values, c);
+    if shard.count > all.len() {
+        return Vec::new();
+    }
+    shard_blocks(&all, shard)
+        .iter()
+        .flat_map(|b| b.warmup.iter().chain(&b.points).map(|&(_, v)| v))
+        .collect()
+}
+
+/// Checks a continuation sweep meant to run as `shards` shards (e.g. a Slurm job array)
+/// before anything runs: one numeric `--vary` key, `--block`, `--overlap`,
+/// `--hysteresis-tol` valid, at least `shards` blocks, an impact (or no) damper.
+///
+/// # Errors
+/// [`SimError::Scene`] naming the flag (`--continuation`, `--block`, `--overlap`,
+/// `--hysteresis-tol`, `--shards`) or the scene key.
+pub fn check_shards(spec: &SweepSpec, c: &Continuation, shards: usize) -> Result<(), SimError> {
+    c.check(spec)?;
+    let vary = &spec.varies[0];
+    let nb = blocks(&vary.values, c).len();
+    if shards > nb {
+        return Err(SceneError::invalid(
+            "--shards",
+            shards,
+            format!(
+                "a continuation sweep shards by blocks and this one has {nb} (set --block to \
+                 at most {} points per block for {shards} shards)",
+                (vary.values.len() / shards).max(1),
+            ),
+        )
+        .into());
+    }
+    let shard = Shard {
+        index: 0,
+        count: shards.max(1),
+    };
+    check(spec, c, shard)
+}
+
 /// The scene overrides that start a run from the state of a `strobe.csv` row
 /// `cycle,grain_z_m,box_z_m,grain_v_m_s,box_v_m_s`.
 ///

@@ -17,7 +17,9 @@
 //! The constants were measured on one machine (2 cores, 2026; `figures/TRADEOFF.md` for the
 //! DEM rate); a cluster's cores may be faster or slower. `pdamp slurm` adds a safety factor.
 
+use super::continuation::{shard_value_runs, Continuation};
 use super::runner::SweepSpec;
+use super::shard::Shard;
 use crate::error::SceneError;
 use crate::scene::Scene;
 use crate::setup::Setup;
@@ -110,6 +112,48 @@ pub fn sweep_cost(spec: &SweepSpec, shards: usize) -> Result<SweepCost, SceneErr
     })
 }
 
+/// The cost of `spec` split into `shards` shards: interleaved for an ordinary sweep
+/// ([`sweep_cost`]), contiguous ranges of blocks for a continuation sweep `c` (every branch's
+/// points and every block's warm-up points, [`super::continuation`]).
+///
+/// # Errors
+/// A point's scene errors (naming the key and the point).
+pub fn sweep_cost_of(
+    spec: &SweepSpec,
+    c: Option<&Continuation>,
+    shards: usize,
+) -> Result<SweepCost, SceneError> {
+    let (Some(c), Some(vary)) = (c, spec.varies.first()) else {
+        return sweep_cost(spec, shards);
+    };
+    let values = vary.values.len();
+    let mut per_value = Vec::with_capacity(values);
+    for v in 0..values {
+        per_value.push(point_cost(
+            &super::runner::point_scene(spec, v)?,
+            spec.analyze,
+        )?);
+    }
+    let per_shard: Vec<f64> = (0..shards.max(1))
+        .map(|index| {
+            let shard = Shard {
+                index,
+                count: shards.max(1),
+            };
+            shard_value_runs(&vary.values, c, shard)
+                .iter()
+                .map(|&v| per_value[v].cpu_s)
+                .sum()
+        })
+        .collect();
+    Ok(SweepCost {
+        points: c.points(values),
+        total_cpu_s: per_shard.iter().sum(),
+        max_shard_cpu_s: per_shard.iter().copied().fold(0.0, f64::max),
+        memory_bytes: per_value.iter().map(|p| p.memory_bytes).fold(0.0, f64::max),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -134,5 +178,42 @@ mod tests {
         };
         let (one, two, three) = (dem(1.0), dem(2.0), dem(3.0));
         assert!(one > 0.0 && ((three - two) - (two - one)).abs() < 1e-9 * three);
+    }
+
+    #[test]
+    fn continuation_cost_counts_both_branches_and_the_warm_up() {
+        use crate::sweep::{Direction, Vary};
+        let base = crate::scene::SceneSource::parse(include_str!(
+            "../../data/scenes/thesis_b_impact.toml"
+        ))
+        .unwrap();
+        let spec = SweepSpec {
+            base,
+            set: vec![("run.periods".into(), toml::Value::Integer(1000))],
+            varies: vec![Vary::parse("excitation.frequency=10:15:0.5").unwrap()],
+            analyze: false,
+        };
+        // 11 values, both branches, blocks of 4, 4, 3 (3 blocks a branch), warm-up 2 before
+        // the second and third: 22 points plus 2 × 2 warm-up points a branch, each 1000
+        // periods × 20 µs
+        let c = Continuation {
+            block: Some(4),
+            overlap: 2,
+            ..Continuation::new(Direction::Both)
+        };
+        let cost = sweep_cost_of(&spec, Some(&c), 3).unwrap();
+        assert_eq!(cost.points, 22);
+        assert!((cost.total_cpu_s - 30.0 * 0.02).abs() < 1e-9, "{cost:?}");
+        // 6 blocks in 3 shards of 2: the largest (the down branch's last two blocks) runs
+        // 2 + 4 and 2 + 3 points
+        assert!(
+            (cost.max_shard_cpu_s - 11.0 * 0.02).abs() < 1e-9,
+            "{cost:?}"
+        );
+        // no continuation: the interleaved split
+        assert_eq!(
+            sweep_cost_of(&spec, None, 3).unwrap(),
+            sweep_cost(&spec, 3).unwrap()
+        );
     }
 }

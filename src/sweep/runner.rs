@@ -380,10 +380,7 @@ fn check_budget(spec: &SweepSpec, out: &Path, branches: usize) -> Result<usize, 
     };
     let n = grid_len(&spec.varies);
     let strobe_rows = n.map_or(0.0, |n| rows(0).max(rows(n.saturating_sub(1))));
-    let mut budget = Budget::estimate(&spec.varies, strobe_rows, spec.analyze);
-    budget.points = budget.points.and_then(|p| p.checked_mul(branches));
-    budget.disk_bytes *= branches as f64;
-    budget.memory_bytes *= branches as f64;
+    let budget = Budget::estimate(&spec.varies, strobe_rows, spec.analyze, branches);
     budget.check(&spec.varies, free_disk_bytes(out), available_memory_bytes())?;
     Ok(n.unwrap_or(0))
 }

@@ -8,6 +8,7 @@
 //! that is killed (time limit, node failure) is resubmitted with the same script: the shard
 //! resumes, skipping its finished points.
 
+use super::continuation::{Continuation, Direction};
 use super::cost::SweepCost;
 
 /// What the submission asks of Slurm.
@@ -34,6 +35,35 @@ pub struct SlurmJob {
     pub partition: Option<String>,
     /// `--account`, if given.
     pub account: Option<String>,
+    /// A continuation sweep's settings (its flags are in `sweep_args`; the merge job reads
+    /// them from the shards' manifest `sweep.json`): the shards are contiguous ranges of
+    /// blocks instead of interleaved points.
+    pub continuation: Option<Continuation>,
+}
+
+/// How the points are split over the tasks, for the script's header (one line).
+fn split_note(job: &SlurmJob) -> String {
+    let Some(c) = &job.continuation else {
+        return format!(
+            "interleaved shards (task K runs points i with i mod {} = K)",
+            job.shards
+        );
+    };
+    let branches = match c.direction {
+        Direction::Up => "the up branch",
+        Direction::Down => "the down branch",
+        Direction::Both => "the up and down branches",
+    };
+    let block = c.block.map_or_else(
+        || "one block a branch".to_string(),
+        |b| format!("--block {b}"),
+    );
+    format!(
+        "shards of contiguous blocks of a continuation sweep ({branches}, {block}, --overlap {} \
+         warm-up points before each block after the first, --hysteresis-tol {}; the merge \
+         reads these settings from the shards' sweep.json)",
+        c.overlap, c.tolerance
+    )
 }
 
 /// Shortest time limit asked for (s): Slurm schedules minutes.
@@ -83,7 +113,7 @@ pub fn submit_script(job: &SlurmJob, cost: &SweepCost) -> String {
     format!(
         r#"#!/usr/bin/env bash
 # Slurm submission of a pdamp sweep, written by `pdamp slurm`. Run it with: bash THIS_FILE
-# {points} points in {shards} interleaved shards (task K runs points i with i mod {shards} = K).
+# {points} points in {shards} {split}.
 # Estimated cost: {total_h:.3} core-hours in all; the largest shard {shard_s:.0} CPU-seconds
 # (time limit below: that on {cpus} CPU(s) × {factor} safety factor, at least 2 min);
 # memory {mem_mb} MB per task. A task killed before it finished: run this script again — the
@@ -116,6 +146,7 @@ echo "array job $array_id ({shards} tasks), merge job $merge_id (after all succe
 "#,
         points = cost.points,
         shards = job.shards,
+        split = split_note(job),
         total_h = cost.total_cpu_s / 3600.0,
         shard_s = cost.max_shard_cpu_s,
         factor = job.time_factor,
@@ -147,6 +178,7 @@ mod tests {
             name: "b".into(),
             partition: None,
             account: Some("proj".into()),
+            continuation: None,
         }
     }
 
@@ -173,6 +205,7 @@ mod tests {
         ] {
             assert!(s.contains(want), "missing {want:?} in\n{s}");
         }
+        assert!(s.contains("8 interleaved shards (task K runs points i with i mod 8 = K)"));
         assert_eq!(slurm_time(90_061.2), "1-01:01:02");
         assert_eq!(shell_word("it's"), r"'it'\''s'");
     }

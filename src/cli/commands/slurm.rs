@@ -3,7 +3,8 @@
 //! merge as a dependent job, with time and memory per task estimated from the scenes' cost.
 
 use anyhow::Context;
-use pdamp::sweep::cost::sweep_cost;
+use pdamp::sweep::continuation::check_shards;
+use pdamp::sweep::cost::sweep_cost_of;
 use pdamp::sweep::slurm::{submit_script, SlurmJob};
 use std::path::PathBuf;
 
@@ -13,6 +14,11 @@ pub struct Args {
     /// The sweep (as `pdamp sweep`; --out must be on a file system every node sees).
     #[command(flatten)]
     pub def: super::sweep::SweepDef,
+    /// Continuation sweep (as `pdamp sweep`): the flags are passed to every shard task, the
+    /// shards are contiguous ranges of --block blocks (N ≤ the number of blocks), and the
+    /// merge job reads the settings from the shards' sweep.json.
+    #[command(flatten)]
+    pub cont: super::sweep::ContinuationArgs,
     /// Number of shards N: job-array tasks 0 … N−1.
     #[arg(long)]
     pub shards: usize,
@@ -51,7 +57,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         anyhow::bail!("--time-factor {}: must be ≥ 1", args.time_factor);
     }
     let spec = args.def.spec()?;
-    let cost = sweep_cost(&spec, args.shards)?;
+    let continuation = args.cont.settings()?;
+    if let Some(c) = &continuation {
+        check_shards(&spec, c, args.shards)?;
+    }
+    let cost = sweep_cost_of(&spec, continuation.as_ref(), args.shards)?;
     let abs = |p: &PathBuf| std::path::absolute(p).unwrap_or_else(|_| p.clone());
     let pdamp = match &args.pdamp {
         Some(p) => p.clone(),
@@ -68,6 +78,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if args.def.no_analysis {
         sweep_args.push("--no-analysis".into());
     }
+    sweep_args.extend(args.cont.sweep_args());
     sweep_args.extend(["--out".to_string(), out.clone()]);
     let job = SlurmJob {
         pdamp: pdamp.display().to_string(),
@@ -80,6 +91,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         name: args.job_name.clone(),
         partition: args.partition.clone(),
         account: args.account.clone(),
+        continuation,
     };
     let script = submit_script(&job, &cost);
     match &args.script {

@@ -72,6 +72,15 @@ pub struct Args {
     /// all are done, `pdamp merge DIR…` writes sweep.csv and strobe.csv.
     #[arg(long, value_name = "K/N")]
     pub shard: Option<String>,
+    /// Continuation settings.
+    #[command(flatten)]
+    pub cont: ContinuationArgs,
+}
+
+/// The continuation flags of `pdamp sweep` (and of `pdamp slurm`, which passes them on to its
+/// shard tasks).
+#[derive(Debug, clap::Args)]
+pub struct ContinuationArgs {
     /// Continuation: run the one --vary key in order, each point starting from the previous
     /// point's final state (up: increasing, down: decreasing, both: up then down, with
     /// hysteresis.csv).
@@ -116,6 +125,43 @@ persists, coming down the one with 3 (5–11 % larger amplitude)."
     pub hysteresis_tol: f64,
 }
 
+impl ContinuationArgs {
+    /// The continuation settings, `None` without --continuation.
+    ///
+    /// # Errors
+    /// A --continuation other than up, down or both (naming the flag).
+    pub fn settings(&self) -> anyhow::Result<Option<Continuation>> {
+        let Some(d) = &self.continuation else {
+            return Ok(None);
+        };
+        Ok(Some(Continuation {
+            direction: Direction::parse(d)?,
+            block: self.block,
+            overlap: self.overlap,
+            tolerance: self.hysteresis_tol,
+        }))
+    }
+
+    /// The flags again as `pdamp sweep` arguments (empty without --continuation), each one
+    /// shell word; the tolerance in Rust's shortest round-trip form (the same f64).
+    pub fn sweep_args(&self) -> Vec<String> {
+        let Some(d) = &self.continuation else {
+            return Vec::new();
+        };
+        let mut a = vec!["--continuation".to_string(), d.trim().to_string()];
+        if let Some(b) = self.block {
+            a.extend(["--block".to_string(), b.to_string()]);
+        }
+        a.extend([
+            "--overlap".to_string(),
+            self.overlap.to_string(),
+            "--hysteresis-tol".to_string(),
+            self.hysteresis_tol.to_string(),
+        ]);
+        a
+    }
+}
+
 /// Run `pdamp sweep`.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let spec = args.def.spec()?;
@@ -123,15 +169,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         Some(s) => Shard::parse(s)?,
         None => Shard::WHOLE,
     };
-    let continuation = match &args.continuation {
-        Some(d) => Some(Continuation {
-            direction: Direction::parse(d)?,
-            block: args.block,
-            overlap: args.overlap,
-            tolerance: args.hysteresis_tol,
-        }),
-        None => None,
-    };
+    let continuation = args.cont.settings()?;
     let n = pdamp::sweep::vary::grid_len(&spec.varies).unwrap_or(usize::MAX);
     let mine = match (&continuation, spec.varies.first()) {
         (Some(c), Some(v)) => shard_point_count(&v.values, c, shard),
@@ -169,7 +207,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     );
     if shard.is_whole() && continuation.is_some_and(|c| c.direction == Direction::Both) {
         let marked = hysteresis_values(out);
-        let tol = args.hysteresis_tol;
+        let tol = args.cont.hysteresis_tol;
         if marked.is_empty() {
             println!("no hysteresis: the up and down branches agree within {tol} everywhere");
         } else {
