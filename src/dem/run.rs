@@ -311,7 +311,9 @@ pub(crate) fn run_dem_stepped(
     let (dt, ts) = time_step(model, &drive, cfg)?;
     let (mut world, bed) = settled_bed(model, drive, cfg, dt)?;
     world.start_drive();
-    let watch = EnergyWatch::new(&world, bed.mass_kg, G, world.radius[0]);
+    // the radius of grain 0 (its slot, once the grains are stored along the curve)
+    let slot0 = world.grain_ids().iter().position(|&g| g == 0).unwrap_or(0);
+    let watch = EnergyWatch::new(&world, bed.mass_kg, G, world.radius[slot0]);
     let builds0 = world.neighbor_builds();
     let n_steps = (cfg.duration_s / dt).ceil() as u64;
     let window = |fraction: f64| ((1.0 - fraction) * n_steps as f64).floor() as u64;

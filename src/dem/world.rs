@@ -31,6 +31,9 @@ pub const GRAIN_CHUNK: usize = 512;
 const STAGE: usize = 64;
 /// Default smallest grain count for which a step uses the rayon thread pool.
 pub const PARALLEL_MIN_GRAINS: usize = 2000;
+/// Default smallest grain count for which the grains are stored along the space-filling curve
+/// (re-sorted at every neighbour rebuild); smaller beds fit the caches in any order.
+pub const SORT_MIN_GRAINS: usize = 1000;
 
 /// Bytes a DEM run holds per grain, neighbour structure included: ~520 B of grain arrays
 /// (state, predictions, forces, per-grain coefficients and wall springs, cell list) plus up to
@@ -136,6 +139,15 @@ impl Laws {
 
 /// The state of a DEM damper: grains, box, primary mass, neighbour list and ledger.
 ///
+/// Storage order: beds of at least [`DemWorld::sort_min_grains`] grains are re-sorted along a
+/// Morton (Z-order) curve of their cells at every neighbour rebuild, so that grains close in
+/// space are close in memory. The per-grain public arrays (`pos`, `vel`, `omega`, `force`,
+/// `torque`, `radius`, `mass`, `orientation`) are in that storage order; slot k holds grain
+/// [`DemWorld::grain_ids`]`[k]` (its index in the arrays given to [`DemWorld::new`]), and
+/// what leaves the engine keyed by grain — [`DemWorld::grain_state`] (snapshots),
+/// [`DemWorld::set_velocities`] — is in grain-id order. Sums over grains (centre of mass,
+/// energies, F_gz) do not depend on the order except for round-off.
+///
 /// Lab frame: z up, the floor at z = `box_z`, the ceiling at `box_z + Lz`, side walls at
 /// x ∈ {0, Lx}, y ∈ {0, Ly}. `box_z` is the primary's displacement from its static
 /// equilibrium without grains (SPEC §1), or u(t) for a kinematic box.
@@ -202,12 +214,63 @@ pub struct DemWorld {
     /// Smallest grain count for which a step uses the rayon pool (default
     /// [`PARALLEL_MIN_GRAINS`]); results do not depend on it nor on the thread count.
     pub parallel_min_grains: usize,
+    /// Smallest grain count for which the grains are kept in space-filling-curve order
+    /// (default [`SORT_MIN_GRAINS`]; `usize::MAX`: never sorted, slot = grain id).
+    pub sort_min_grains: usize,
+    /// Grain id of each storage slot.
+    id: Vec<u32>,
+    /// Scratch of the curve sort (reused: no allocation in the step).
+    sort: SortScratch,
+    /// Grain-id-ordered copies for [`DemWorld::grain_state`] (made at the first snapshot).
+    by_id: Option<Box<ById>>,
     /// Time steps taken since construction (settling included).
     pub steps: u64,
 }
 
 /// Sums returned by the contact loops: (F_gz, collision power, friction power).
 type LoopOut = (f64, f64, f64);
+
+/// Buffers of the curve sort, kept between rebuilds.
+#[derive(Debug, Clone, Default)]
+struct SortScratch {
+    /// Old slots in the new order.
+    order: Vec<u32>,
+    /// New slot of each old slot.
+    inv: Vec<u32>,
+    v3: Vec<[f64; 3]>,
+    v1: Vec<f64>,
+    coef: Vec<ContactCoefficients>,
+    hist: Vec<[[f64; 3]; 6]>,
+    quat: Vec<UnitQuaternion<f64>>,
+    ids: Vec<u32>,
+}
+
+/// Per-grain arrays in grain-id order, for snapshots.
+#[derive(Debug, Clone, Default)]
+struct ById {
+    pos: Vec<[f64; 3]>,
+    vel: Vec<[f64; 3]>,
+    omega: Vec<[f64; 3]>,
+    force: Vec<[f64; 3]>,
+    radius: Vec<f64>,
+    orientation: Vec<UnitQuaternion<f64>>,
+}
+
+/// `a` ← `a` gathered along `order` (`a[k]` = old `a[order[k]]`); `tmp` is the spare buffer.
+fn permute<T: Copy>(a: &mut Vec<T>, tmp: &mut Vec<T>, order: &[u32]) {
+    tmp.clear();
+    tmp.extend(order.iter().map(|&k| a[k as usize]));
+    std::mem::swap(a, tmp);
+}
+
+/// `out` ← `a` in grain-id order (`out[id[k]]` = `a[k]`).
+fn scatter_by_id<T: Copy + Default>(a: &[T], id: &[u32], out: &mut Vec<T>) {
+    out.clear();
+    out.resize(a.len(), T::default());
+    for (x, &g) in a.iter().zip(id) {
+        out[g as usize] = *x;
+    }
+}
 
 impl DemWorld {
     /// Builds a world of `model`'s box, material and contact laws with grains at rest at
@@ -307,22 +370,105 @@ impl DemWorld {
             history_carry: Vec::new(),
             partials: Vec::new(),
             parallel_min_grains: PARALLEL_MIN_GRAINS,
+            sort_min_grains: SORT_MIN_GRAINS,
+            id: (0..n as u32).collect(),
+            sort: SortScratch::default(),
+            by_id: None,
             steps: 0,
         })
     }
 
-    /// The grains' state now, for snapshots.
-    pub fn grain_state(&self) -> crate::observe::GrainState<'_> {
+    /// The grains' state now, for snapshots, in grain-id order (copied out of the storage
+    /// order when the grains are sorted; the state itself is not changed).
+    pub fn grain_state(&mut self) -> crate::observe::GrainState<'_> {
+        if self.is_identity_order() {
+            return crate::observe::GrainState {
+                time_s: self.t,
+                pos: &self.pos,
+                vel: &self.vel,
+                omega: &self.omega,
+                radius: &self.radius,
+                orientation: self.orientation.as_deref(),
+                force: &self.force,
+                box_size: self.box_size,
+                box_z: self.box_z,
+            };
+        }
+        let b = self.by_id.get_or_insert_with(Default::default);
+        let id = &self.id;
+        scatter_by_id(&self.pos, id, &mut b.pos);
+        scatter_by_id(&self.vel, id, &mut b.vel);
+        scatter_by_id(&self.omega, id, &mut b.omega);
+        scatter_by_id(&self.force, id, &mut b.force);
+        scatter_by_id(&self.radius, id, &mut b.radius);
+        if let Some(q) = &self.orientation {
+            b.orientation.clear();
+            b.orientation.resize(q.len(), UnitQuaternion::identity());
+            for (x, &g) in q.iter().zip(id) {
+                b.orientation[g as usize] = *x;
+            }
+        }
         crate::observe::GrainState {
             time_s: self.t,
-            pos: &self.pos,
-            vel: &self.vel,
-            omega: &self.omega,
-            radius: &self.radius,
-            orientation: self.orientation.as_deref(),
-            force: &self.force,
+            pos: &b.pos,
+            vel: &b.vel,
+            omega: &b.omega,
+            radius: &b.radius,
+            orientation: self.orientation.as_ref().map(|_| &b.orientation[..]),
+            force: &b.force,
             box_size: self.box_size,
             box_z: self.box_z,
+        }
+    }
+
+    /// Grain id of each storage slot of the per-grain arrays (the identity until the first
+    /// curve sort).
+    pub fn grain_ids(&self) -> &[u32] {
+        &self.id
+    }
+
+    fn is_identity_order(&self) -> bool {
+        self.id.iter().enumerate().all(|(k, &g)| g as usize == k)
+    }
+
+    /// Stores the grains along the space-filling curve of their cells: permutes every
+    /// per-grain array (state, predictions, coefficients, wall springs, ids). Forces and
+    /// torques are carried too (the force pass after the rebuild overwrites them). Leaves the
+    /// new slot of each old slot in `self.sort.inv`.
+    fn sort_along_curve(&mut self) {
+        let shift = [0.0, 0.0, self.box_z];
+        let s = &mut self.sort;
+        self.neighbors.curve_order(&self.pos, shift, &mut s.order);
+        let order = &s.order;
+        s.inv.clear();
+        s.inv.resize(order.len(), 0);
+        for (k, &o) in order.iter().enumerate() {
+            s.inv[o as usize] = k as u32;
+        }
+        for a in [
+            &mut self.pos,
+            &mut self.vel,
+            &mut self.omega,
+            &mut self.vel_pred,
+            &mut self.omega_pred,
+            &mut self.force,
+            &mut self.torque,
+        ] {
+            permute(a, &mut s.v3, order);
+        }
+        for a in [
+            &mut self.radius,
+            &mut self.mass,
+            &mut self.inv_mass,
+            &mut self.inv_inertia,
+        ] {
+            permute(a, &mut s.v1, order);
+        }
+        permute(&mut self.wall_coef, &mut s.coef, order);
+        permute(&mut self.wall_history, &mut s.hist, order);
+        permute(&mut self.id, &mut s.ids, order);
+        if let Some(q) = self.orientation.as_mut() {
+            permute(q, &mut s.quat, order);
         }
     }
 
@@ -584,13 +730,27 @@ impl DemWorld {
         let shift = [0.0, 0.0, self.box_z];
         let carry = self.laws.tangential_kind().has_history();
         let key = |p: &Pair| ((p.i.min(p.j) as u64) << 32) | p.i.max(p.j) as u64;
+        let sort = self.len() >= self.sort_min_grains;
+        if sort {
+            self.sort_along_curve();
+        }
         if carry {
+            // the springs of the old list, keyed by the (new) slots of their grains
             self.history_carry.clear();
+            let inv = &self.sort.inv;
             for (p, st) in self.neighbors.pairs.iter().zip(&self.pair_state) {
                 if st.history != [0.0; 3] {
+                    let p = if sort {
+                        Pair {
+                            i: inv[p.i as usize],
+                            j: inv[p.j as usize],
+                        }
+                    } else {
+                        *p
+                    };
                     let h = st.history;
                     let h = if p.i < p.j { h } else { [-h[0], -h[1], -h[2]] };
-                    self.history_carry.push((key(p), h));
+                    self.history_carry.push((key(&p), h));
                 }
             }
             self.history_carry.sort_unstable_by_key(|e| e.0);
@@ -856,10 +1016,14 @@ impl DemWorld {
         (zm / mt, lo, hi)
     }
 
-    /// Sets grain velocities (m/s) and angular velocities (rad/s), e.g. for tests.
+    /// Sets grain velocities (m/s) and angular velocities (rad/s), given in grain-id order,
+    /// e.g. for tests.
     pub fn set_velocities(&mut self, vel: &[[f64; 3]], omega: &[[f64; 3]]) {
-        self.vel.copy_from_slice(vel);
-        self.omega.copy_from_slice(omega);
+        assert!(vel.len() == self.len() && omega.len() == self.len());
+        for (k, &g) in self.id.iter().enumerate() {
+            self.vel[k] = vel[g as usize];
+            self.omega[k] = omega[g as usize];
+        }
     }
 
     /// Recomputes forces for the current state (call after editing positions or velocities
