@@ -54,6 +54,10 @@ pub struct DemRunConfig {
     pub sample_from_s: f64,
     /// Gravitational acceleration g (m/s², along −z).
     pub gravity_m_s2: f64,
+    /// Book the energy ledger (default true; `run.energy_ledger`). Off: the step computes no
+    /// dissipated powers, the per-cycle energies are absent, the balance residual and its
+    /// relative error are NaN, and the stability check loses its energy-growth test.
+    pub energy_ledger: bool,
 }
 
 impl Default for DemRunConfig {
@@ -68,6 +72,7 @@ impl Default for DemRunConfig {
             samples: true,
             sample_from_s: 0.0,
             gravity_m_s2: G,
+            energy_ledger: true,
         }
     }
 }
@@ -336,7 +341,11 @@ pub(crate) fn run_dem_stepped(
         stepped,
     )?;
     let st = world.energy_state();
-    let (_, rel) = balance(&st, &watch.start, &world.ledger);
+    let (_, rel) = if cfg.energy_ledger {
+        balance(&st, &watch.start, &world.ledger)
+    } else {
+        (f64::NAN, f64::NAN)
+    };
     let scales = TimeStepScales::of(model, &drive)?;
     let energy_balance_warning = (rel > LEDGER_WARNING_LIMIT).then(|| {
         format!(
@@ -348,7 +357,11 @@ pub(crate) fn run_dem_stepped(
                 .unwrap_or_else(|| { "lower the time step and compare".to_string() })
         )
     });
-    let per_cycle = |f| steady.per_cycle(&world, drive.frequency_hz, f);
+    let per_cycle = |f| {
+        steady
+            .per_cycle(&world, drive.frequency_hz, f)
+            .filter(|_| cfg.energy_ledger)
+    };
     Ok(DemSummary {
         amplitude_m: 0.5 * (steady.z_max_m - steady.z_min_m),
         energy_balance_relative_error: rel,
@@ -440,6 +453,7 @@ fn settled_bed(
 ) -> Result<(DemWorld, SettledBed), SimError> {
     let mut world = initial_world(model, drive, dt, 0.0)?;
     world.gravity = cfg.gravity_m_s2;
+    world.energy_ledger = cfg.energy_ledger;
     let m_p: f64 = world.mass.iter().sum();
     let z_hold = match drive.primary {
         Some(p) => -m_p * cfg.gravity_m_s2 / p.stiffness_n_m,

@@ -198,6 +198,10 @@ pub struct DemWorld {
     /// Energy flows since the drive started (collision and friction also accumulate while
     /// settling; [`DemWorld::start_drive`] resets the ledger).
     pub ledger: EnergyLedger,
+    /// Whether the step books the energy flows into [`DemWorld::ledger`] (default true). Off,
+    /// the contact loops are compiled without the dissipated powers (they cost nothing) and
+    /// the ledger stays zero.
+    pub energy_ledger: bool,
     base_power_prev: f64,
     viscous_power_prev: f64,
     laws: Laws,
@@ -359,6 +363,7 @@ impl DemWorld {
             settle_drag: 0.0,
             gravity: G,
             ledger: EnergyLedger::default(),
+            energy_ledger: true,
             base_power_prev: 0.0,
             viscous_power_prev: 0.0,
             laws,
@@ -670,6 +675,10 @@ impl DemWorld {
             self.box_v += h * self.box_a;
         }
         // 7. ledger
+        if !self.energy_ledger {
+            self.steps += 1;
+            return;
+        }
         self.ledger.collision_j += p_coll * dt;
         self.ledger.friction_j += p_fric * dt;
         if self.drive_on {
@@ -785,32 +794,42 @@ impl DemWorld {
         if rebuild {
             self.rebuild_neighbors();
         }
+        if self.energy_ledger {
+            self.forces_of::<true>()
+        } else {
+            self.forces_of::<false>()
+        }
+    }
+
+    /// The force pass of the contact laws, booking the dissipated powers if `LEDGER`
+    /// (otherwise they are not computed and (0, 0) is returned).
+    fn forces_of<const LEDGER: bool>(&mut self) -> (f64, f64) {
         // the laws are matched once per step; each arm runs loops monomorphised on the normal
         // and tangential kernels (rotations and the attraction policy are loop-invariant flags)
         let l = &self.laws;
         let hertz = matches!(l.normal, NormalLaw::HertzKuwabaraKono { .. });
         let out = match (hertz, l.tangential_kind()) {
-            (true, TangentialLaw::None) => self.contacts::<HertzKernel, NoTangential>(),
+            (true, TangentialLaw::None) => self.contacts::<HertzKernel, NoTangential, LEDGER>(),
             (true, TangentialLaw::CoulombViscous { .. })
             | (true, TangentialLaw::LinearDashpotCoulomb { .. }) => {
-                self.contacts::<HertzKernel, CoulombViscousKernel>()
+                self.contacts::<HertzKernel, CoulombViscousKernel, LEDGER>()
             }
             (true, TangentialLaw::MindlinSpring { .. }) => {
-                self.contacts::<HertzKernel, MindlinSpringKernel>()
+                self.contacts::<HertzKernel, MindlinSpringKernel, LEDGER>()
             }
             (true, TangentialLaw::LinearSpring { .. }) => {
-                self.contacts::<HertzKernel, LinearSpringKernel>()
+                self.contacts::<HertzKernel, LinearSpringKernel, LEDGER>()
             }
-            (false, TangentialLaw::None) => self.contacts::<LinearKernel, NoTangential>(),
+            (false, TangentialLaw::None) => self.contacts::<LinearKernel, NoTangential, LEDGER>(),
             (false, TangentialLaw::CoulombViscous { .. })
             | (false, TangentialLaw::LinearDashpotCoulomb { .. }) => {
-                self.contacts::<LinearKernel, CoulombViscousKernel>()
+                self.contacts::<LinearKernel, CoulombViscousKernel, LEDGER>()
             }
             (false, TangentialLaw::MindlinSpring { .. }) => {
-                self.contacts::<LinearKernel, MindlinSpringKernel>()
+                self.contacts::<LinearKernel, MindlinSpringKernel, LEDGER>()
             }
             (false, TangentialLaw::LinearSpring { .. }) => {
-                self.contacts::<LinearKernel, LinearSpringKernel>()
+                self.contacts::<LinearKernel, LinearSpringKernel, LEDGER>()
             }
         };
         self.grain_force_n = out.0;
@@ -820,7 +839,7 @@ impl DemWorld {
     /// Pair pass (every candidate pair's contact response into its [`PairState`]), then the
     /// per-grain pass (gravity, drag, the grain's pair forces gathered in pair order, its
     /// wall contacts). Both passes run in fixed chunks, on the rayon pool for large beds.
-    fn contacts<N: NormalKernel, T: TangentialKernel>(&mut self) -> LoopOut {
+    fn contacts<N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(&mut self) -> LoopOut {
         let par = self.parallel();
         let ctx = PairCtx {
             pos: &self.pos,
@@ -864,7 +883,9 @@ impl DemWorld {
                 .par_chunks_mut(PAIR_CHUNK)
                 .zip(pairs.par_chunks(PAIR_CHUNK))
                 .zip(coef.par_chunks(PAIR_CHUNK))
-                .map(|((s, p), c)| pair_chunk::<N, T, false>(&ctx, p, c, s, &mut [], &mut []))
+                .map(|((s, p), c)| {
+                    pair_chunk::<N, T, false, LEDGER>(&ctx, p, c, s, &mut [], &mut [])
+                })
                 .collect_into_vec(&mut self.partials);
         } else {
             init_forces(&gctx, &mut self.force, &mut self.torque);
@@ -874,8 +895,14 @@ impl DemWorld {
                 .zip(pairs.chunks(PAIR_CHUNK))
                 .zip(coef.chunks(PAIR_CHUNK))
             {
-                let part =
-                    pair_chunk::<N, T, true>(&ctx, p, c, s, &mut self.force, &mut self.torque);
+                let part = pair_chunk::<N, T, true, LEDGER>(
+                    &ctx,
+                    p,
+                    c,
+                    s,
+                    &mut self.force,
+                    &mut self.torque,
+                );
                 self.partials.push(part);
             }
         }
@@ -893,7 +920,9 @@ impl DemWorld {
                 .zip(self.torque.par_chunks_mut(GRAIN_CHUNK))
                 .zip(self.wall_history.par_chunks_mut(GRAIN_CHUNK))
                 .enumerate()
-                .map(|(c, ((f, t), h))| grain_chunk::<N, T, true>(&gctx, c * GRAIN_CHUNK, f, t, h))
+                .map(|(c, ((f, t), h))| {
+                    grain_chunk::<N, T, true, LEDGER>(&gctx, c * GRAIN_CHUNK, f, t, h)
+                })
                 .collect_into_vec(&mut self.partials);
         } else {
             self.partials.clear();
@@ -904,8 +933,13 @@ impl DemWorld {
                 .zip(self.wall_history.chunks_mut(GRAIN_CHUNK))
                 .enumerate()
             {
-                self.partials
-                    .push(grain_chunk::<N, T, false>(&gctx, c * GRAIN_CHUNK, f, t, h));
+                self.partials.push(grain_chunk::<N, T, false, LEDGER>(
+                    &gctx,
+                    c * GRAIN_CHUNK,
+                    f,
+                    t,
+                    h,
+                ));
             }
         }
         let (fgz, wc, wf) = self
@@ -1062,7 +1096,7 @@ struct PairCtx<'a> {
 /// hold gravity and drag already), pair by pair in pair order — the same sums in the same order
 /// as the per-grain gathering of the parallel path, so both give bit-identical results.
 #[inline(never)]
-fn pair_chunk<N: NormalKernel, T: TangentialKernel, const SCATTER: bool>(
+fn pair_chunk<N: NormalKernel, T: TangentialKernel, const SCATTER: bool, const LEDGER: bool>(
     ctx: &PairCtx,
     pairs: &[Pair],
     coef: &[ContactCoefficients],
@@ -1161,8 +1195,10 @@ fn pair_chunk<N: NormalKernel, T: TangentialKernel, const SCATTER: bool>(
                 st.force = r.force;
                 st.torque_arm = r.torque_arm;
             }
-            p_coll += r.p_collision;
-            p_fric += r.p_friction;
+            if LEDGER {
+                p_coll += r.p_collision;
+                p_fric += r.p_friction;
+            }
         }
     }
     [p_coll, p_fric, 0.0]
@@ -1240,7 +1276,7 @@ struct GrainCtx<'a> {
 /// Without `GATHER` (one thread) only the walls are added: gravity, drag and the pair forces
 /// are in `force` already ([`init_forces`], then the scattering [`pair_chunk`]).
 #[inline(never)]
-fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool>(
+fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool, const LEDGER: bool>(
     ctx: &GrainCtx,
     first: usize,
     force: &mut [[f64; 3]],
@@ -1340,8 +1376,10 @@ fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool>(
         for (rs, &e) in resp.iter().zip(block) {
             let l = e as usize / 6;
             let r = ctx.radius[first + l];
-            p_coll += rs.p_collision;
-            p_fric += rs.p_friction;
+            if LEDGER {
+                p_coll += rs.p_collision;
+                p_fric += rs.p_friction;
+            }
             let fi = &mut force[l];
             fi[0] += rs.force[0];
             fi[1] += rs.force[1];

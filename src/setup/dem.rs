@@ -42,6 +42,8 @@ pub struct DemSetup {
     pub snapshots: Option<(PathBuf, SnapshotFormat)>,
     /// Perturbation δ0 (m) of the two-replica test, when run.
     pub replica_m: Option<f64>,
+    /// Book the energy ledger (`run.energy_ledger`).
+    pub energy_ledger: bool,
 }
 
 impl DemSetup {
@@ -57,6 +59,7 @@ impl DemSetup {
             samples: opts.sample_interval_s.is_some(),
             sample_from_s: opts.sample_from_s,
             gravity_m_s2: self.gravity_m_s2,
+            energy_ledger: self.energy_ledger,
         }
     }
 }
@@ -112,6 +115,7 @@ pub fn dem_setup(scene: &Scene) -> Result<DemSetup, SceneError> {
             )
         }),
         replica_m: scene.run.replica,
+        energy_ledger: scene.run.energy_ledger,
     })
 }
 
