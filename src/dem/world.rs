@@ -583,7 +583,10 @@ impl DemWorld {
         let (reference, ref_shift) = self.neighbors.reference();
         let shift = [0.0, 0.0, self.box_z - ref_shift[2]];
         let par = self.parallel();
+        let rot = self.laws.rotations;
         let max_d2 = if par {
+            // one parallel section: translation (kick, drift, displacement check) and the
+            // spins' half kick, chunk by chunk
             let tracked = reference.len() == self.pos.len();
             self.pos
                 .par_chunks_mut(GRAIN_CHUNK)
@@ -591,13 +594,20 @@ impl DemWorld {
                 .zip(self.vel_pred.par_chunks_mut(GRAIN_CHUNK))
                 .zip(self.force.par_chunks(GRAIN_CHUNK))
                 .zip(self.inv_mass.par_chunks(GRAIN_CHUNK))
+                .zip(self.omega.par_chunks_mut(GRAIN_CHUNK))
+                .zip(self.omega_pred.par_chunks_mut(GRAIN_CHUNK))
+                .zip(self.torque.par_chunks(GRAIN_CHUNK))
+                .zip(self.inv_inertia.par_chunks(GRAIN_CHUNK))
                 .enumerate()
-                .map(|(c, ((((x, v), vp), f), im))| {
+                .map(|(c, ((((((((x, v), vp), f), im), w), wp), t), ii))| {
                     let r = if tracked {
                         &reference[c * GRAIN_CHUNK..c * GRAIN_CHUNK + x.len()]
                     } else {
                         &[]
                     };
+                    if rot {
+                        half_kick_predict(w, wp, t, ii, h);
+                    }
                     kick_drift(x, v, vp, f, im, h, dt, r, shift)
                 })
                 .reduce(|| 0.0, f64::max)
@@ -614,23 +624,14 @@ impl DemWorld {
                 shift,
             )
         };
-        if self.laws.rotations {
-            if par {
-                self.omega
-                    .par_chunks_mut(GRAIN_CHUNK)
-                    .zip(self.omega_pred.par_chunks_mut(GRAIN_CHUNK))
-                    .zip(self.torque.par_chunks(GRAIN_CHUNK))
-                    .zip(self.inv_inertia.par_chunks(GRAIN_CHUNK))
-                    .for_each(|(((w, wp), t), ii)| half_kick_predict(w, wp, t, ii, h));
-            } else {
-                half_kick_predict(
-                    &mut self.omega,
-                    &mut self.omega_pred,
-                    &self.torque,
-                    &self.inv_inertia,
-                    h,
-                );
-            }
+        if rot && !par {
+            half_kick_predict(
+                &mut self.omega,
+                &mut self.omega_pred,
+                &self.torque,
+                &self.inv_inertia,
+                h,
+            );
         }
         self.box_v_pred = if primary_free {
             self.box_v + h * self.box_a
@@ -642,35 +643,15 @@ impl DemWorld {
                 advance_orientation(q, *w, dt);
             }
         }
-        // 3.–4. neighbours and forces
+        // 3.–4. neighbours and forces; 6. the grains' second half kick rides on the per-grain
+        // pass of the forces (a grain's force is complete there)
         let rebuild = self.neighbors.exceeded(max_d2);
-        let (p_coll, p_fric) = self.forces(rebuild);
+        let (p_coll, p_fric) = self.forces(rebuild, true);
         // 5. box equation
         if primary_free {
             self.box_a = self.box_acceleration();
         }
-        // 6. second half kick
-        if par {
-            let rot = self.laws.rotations;
-            self.vel
-                .par_chunks_mut(GRAIN_CHUNK)
-                .zip(self.force.par_chunks(GRAIN_CHUNK))
-                .zip(self.inv_mass.par_chunks(GRAIN_CHUNK))
-                .zip(self.omega.par_chunks_mut(GRAIN_CHUNK))
-                .zip(self.torque.par_chunks(GRAIN_CHUNK))
-                .zip(self.inv_inertia.par_chunks(GRAIN_CHUNK))
-                .for_each(|(((((v, f), im), w), t), ii)| {
-                    half_kick(v, f, im, h);
-                    if rot {
-                        half_kick(w, t, ii, h);
-                    }
-                });
-        } else {
-            half_kick(&mut self.vel, &self.force, &self.inv_mass, h);
-            if self.laws.rotations {
-                half_kick(&mut self.omega, &self.torque, &self.inv_inertia, h);
-            }
-        }
+        // 6. the box's second half kick
         if primary_free {
             self.box_v += h * self.box_a;
         }
@@ -725,7 +706,7 @@ impl DemWorld {
         let rebuild = self
             .neighbors
             .needs_rebuild(&self.pos, [0.0, 0.0, self.box_z]);
-        self.forces(rebuild)
+        self.forces(rebuild, false)
     }
 
     /// Whether this step uses the rayon pool.
@@ -790,46 +771,50 @@ impl DemWorld {
         }
     }
 
-    fn forces(&mut self, rebuild: bool) -> (f64, f64) {
+    /// `kick`: the grains' second half kick of the step, v ← v + (dt/2) F/m (and ω), done
+    /// grain by grain as soon as a grain's force is complete.
+    fn forces(&mut self, rebuild: bool, kick: bool) -> (f64, f64) {
         if rebuild {
             self.rebuild_neighbors();
         }
         if self.energy_ledger {
-            self.forces_of::<true>()
+            self.forces_of::<true>(kick)
         } else {
-            self.forces_of::<false>()
+            self.forces_of::<false>(kick)
         }
     }
 
     /// The force pass of the contact laws, booking the dissipated powers if `LEDGER`
     /// (otherwise they are not computed and (0, 0) is returned).
-    fn forces_of<const LEDGER: bool>(&mut self) -> (f64, f64) {
+    fn forces_of<const LEDGER: bool>(&mut self, kick: bool) -> (f64, f64) {
         // the laws are matched once per step; each arm runs loops monomorphised on the normal
         // and tangential kernels (rotations and the attraction policy are loop-invariant flags)
         let l = &self.laws;
         let hertz = matches!(l.normal, NormalLaw::HertzKuwabaraKono { .. });
         let out = match (hertz, l.tangential_kind()) {
-            (true, TangentialLaw::None) => self.contacts::<HertzKernel, NoTangential, LEDGER>(),
+            (true, TangentialLaw::None) => self.contacts::<HertzKernel, NoTangential, LEDGER>(kick),
             (true, TangentialLaw::CoulombViscous { .. })
             | (true, TangentialLaw::LinearDashpotCoulomb { .. }) => {
-                self.contacts::<HertzKernel, CoulombViscousKernel, LEDGER>()
+                self.contacts::<HertzKernel, CoulombViscousKernel, LEDGER>(kick)
             }
             (true, TangentialLaw::MindlinSpring { .. }) => {
-                self.contacts::<HertzKernel, MindlinSpringKernel, LEDGER>()
+                self.contacts::<HertzKernel, MindlinSpringKernel, LEDGER>(kick)
             }
             (true, TangentialLaw::LinearSpring { .. }) => {
-                self.contacts::<HertzKernel, LinearSpringKernel, LEDGER>()
+                self.contacts::<HertzKernel, LinearSpringKernel, LEDGER>(kick)
             }
-            (false, TangentialLaw::None) => self.contacts::<LinearKernel, NoTangential, LEDGER>(),
+            (false, TangentialLaw::None) => {
+                self.contacts::<LinearKernel, NoTangential, LEDGER>(kick)
+            }
             (false, TangentialLaw::CoulombViscous { .. })
             | (false, TangentialLaw::LinearDashpotCoulomb { .. }) => {
-                self.contacts::<LinearKernel, CoulombViscousKernel, LEDGER>()
+                self.contacts::<LinearKernel, CoulombViscousKernel, LEDGER>(kick)
             }
             (false, TangentialLaw::MindlinSpring { .. }) => {
-                self.contacts::<LinearKernel, MindlinSpringKernel, LEDGER>()
+                self.contacts::<LinearKernel, MindlinSpringKernel, LEDGER>(kick)
             }
             (false, TangentialLaw::LinearSpring { .. }) => {
-                self.contacts::<LinearKernel, LinearSpringKernel, LEDGER>()
+                self.contacts::<LinearKernel, LinearSpringKernel, LEDGER>(kick)
             }
         };
         self.grain_force_n = out.0;
@@ -839,7 +824,10 @@ impl DemWorld {
     /// Pair pass (every candidate pair's contact response into its [`PairState`]), then the
     /// per-grain pass (gravity, drag, the grain's pair forces gathered in pair order, its
     /// wall contacts). Both passes run in fixed chunks, on the rayon pool for large beds.
-    fn contacts<N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(&mut self) -> LoopOut {
+    fn contacts<N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
+        &mut self,
+        kick: bool,
+    ) -> LoopOut {
         let par = self.parallel();
         let ctx = PairCtx {
             pos: &self.pos,
@@ -855,11 +843,13 @@ impl DemWorld {
         let (grain_start, grain_items) = self.neighbors.grain_index();
         let gctx = GrainCtx {
             pos: &self.pos,
-            vel: &self.vel,
             vel_pred: &self.vel_pred,
             omega_pred: &self.omega_pred,
             radius: &self.radius,
             mass: &self.mass,
+            inv_mass: &self.inv_mass,
+            inv_inertia: &self.inv_inertia,
+            kick,
             wall_coef: &self.wall_coef,
             grain_start,
             grain_items,
@@ -888,7 +878,7 @@ impl DemWorld {
                 })
                 .collect_into_vec(&mut self.partials);
         } else {
-            init_forces(&gctx, &mut self.force, &mut self.torque);
+            init_forces(&gctx, &self.vel, &mut self.force, &mut self.torque);
             self.partials.clear();
             for ((s, p), c) in state
                 .chunks_mut(PAIR_CHUNK)
@@ -919,18 +909,22 @@ impl DemWorld {
                 .par_chunks_mut(GRAIN_CHUNK)
                 .zip(self.torque.par_chunks_mut(GRAIN_CHUNK))
                 .zip(self.wall_history.par_chunks_mut(GRAIN_CHUNK))
+                .zip(self.vel.par_chunks_mut(GRAIN_CHUNK))
+                .zip(self.omega.par_chunks_mut(GRAIN_CHUNK))
                 .enumerate()
-                .map(|(c, ((f, t), h))| {
-                    grain_chunk::<N, T, true, LEDGER>(&gctx, c * GRAIN_CHUNK, f, t, h)
+                .map(|(c, ((((f, t), h), v), w))| {
+                    grain_chunk::<N, T, true, LEDGER>(&gctx, c * GRAIN_CHUNK, f, t, h, v, w)
                 })
                 .collect_into_vec(&mut self.partials);
         } else {
             self.partials.clear();
-            for (c, ((f, t), h)) in self
+            for (c, ((((f, t), h), v), w)) in self
                 .force
                 .chunks_mut(GRAIN_CHUNK)
                 .zip(self.torque.chunks_mut(GRAIN_CHUNK))
                 .zip(self.wall_history.chunks_mut(GRAIN_CHUNK))
+                .zip(self.vel.chunks_mut(GRAIN_CHUNK))
+                .zip(self.omega.chunks_mut(GRAIN_CHUNK))
                 .enumerate()
             {
                 self.partials.push(grain_chunk::<N, T, false, LEDGER>(
@@ -939,6 +933,8 @@ impl DemWorld {
                     f,
                     t,
                     h,
+                    v,
+                    w,
                 ));
             }
         }
@@ -1219,13 +1215,13 @@ fn wall_overlaps(ctx: &GrainCtx, i: usize) -> [f64; 6] {
     ]
 }
 
-/// Gravity and settling drag on grain i, and a zero torque (N, N m).
+/// Gravity and settling drag on grain i of velocity `v` (m/s), and a zero torque (N, N m).
 #[inline(always)]
-fn init_force(ctx: &GrainCtx, i: usize) -> ([f64; 3], [f64; 3]) {
+fn init_force(ctx: &GrainCtx, i: usize, v: [f64; 3]) -> ([f64; 3], [f64; 3]) {
     let m = ctx.mass[i];
     let mut f = [0.0, 0.0, -m * ctx.gravity];
     if ctx.drag > 0.0 {
-        let (v, s) = (ctx.vel[i], -m * ctx.drag);
+        let s = -m * ctx.drag;
         f[0] += s * v[0];
         f[1] += s * v[1];
         f[2] += s * v[2];
@@ -1234,9 +1230,9 @@ fn init_force(ctx: &GrainCtx, i: usize) -> ([f64; 3], [f64; 3]) {
 }
 
 /// [`init_force`] for every grain (the one-thread path, before the scattering pair pass).
-fn init_forces(ctx: &GrainCtx, force: &mut [[f64; 3]], torque: &mut [[f64; 3]]) {
+fn init_forces(ctx: &GrainCtx, vel: &[[f64; 3]], force: &mut [[f64; 3]], torque: &mut [[f64; 3]]) {
     for (i, (f, t)) in force.iter_mut().zip(torque.iter_mut()).enumerate() {
-        let (a, b) = init_force(ctx, i);
+        let (a, b) = init_force(ctx, i, vel[i]);
         *f = a;
         if ctx.rotations {
             *t = b;
@@ -1247,11 +1243,14 @@ fn init_forces(ctx: &GrainCtx, force: &mut [[f64; 3]], torque: &mut [[f64; 3]]) 
 /// Shared inputs of the per-grain pass.
 struct GrainCtx<'a> {
     pos: &'a [[f64; 3]],
-    vel: &'a [[f64; 3]],
     vel_pred: &'a [[f64; 3]],
     omega_pred: &'a [[f64; 3]],
     radius: &'a [f64],
     mass: &'a [f64],
+    inv_mass: &'a [f64],
+    inv_inertia: &'a [f64],
+    /// Whether the chunk ends with the grains' second half kick (during a step).
+    kick: bool,
     wall_coef: &'a [ContactCoefficients],
     grain_start: &'a [u32],
     grain_items: &'a [u32],
@@ -1275,6 +1274,10 @@ struct GrainCtx<'a> {
 ///
 /// Without `GATHER` (one thread) only the walls are added: gravity, drag and the pair forces
 /// are in `force` already ([`init_forces`], then the scattering [`pair_chunk`]).
+///
+/// With `ctx.kick` the chunk's grains then get the step's second half kick (2.2.5),
+/// v ← v + (dt/2) F/m and ω ← ω + (dt/2) τ/I, their forces being complete.
+#[allow(clippy::too_many_arguments)]
 #[inline(never)]
 fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool, const LEDGER: bool>(
     ctx: &GrainCtx,
@@ -1282,6 +1285,8 @@ fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool, const L
     force: &mut [[f64; 3]],
     torque: &mut [[f64; 3]],
     wall_history: &mut [[[f64; 3]; 6]],
+    vel: &mut [[f64; 3]],
+    omega: &mut [[f64; 3]],
 ) -> [f64; 3] {
     let vw = ctx.wall_v;
     let (mut fgz, mut p_coll, mut p_fric) = (0.0, 0.0, 0.0);
@@ -1296,7 +1301,7 @@ fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool, const L
         let i = first + l;
         let r = ctx.radius[i];
         if GATHER {
-            let (mut f, mut t) = init_force(ctx, i);
+            let (mut f, mut t) = init_force(ctx, i, vel[l]);
             let items =
                 &ctx.grain_items[ctx.grain_start[i] as usize..ctx.grain_start[i + 1] as usize];
             for &e in items {
@@ -1391,6 +1396,14 @@ fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool, const L
                 ti[2] -= r * rs.torque_arm[2];
             }
             fgz -= rs.force[2];
+        }
+    }
+    if ctx.kick {
+        let h = 0.5 * ctx.dt;
+        let n = force.len();
+        half_kick(vel, force, &ctx.inv_mass[first..first + n], h);
+        if ctx.rotations {
+            half_kick(omega, torque, &ctx.inv_inertia[first..first + n], h);
         }
     }
     [fgz, p_coll, p_fric]
