@@ -1,5 +1,6 @@
 //! `run.energy_ledger = false` (issue 12: "energy bookkeeping must cost nothing when not asked
-//! for"): the same trajectory bit for bit, no flows booked, no per-cycle energies, NaN balance.
+//! for"): the same trajectory bit for bit, no flows booked, no per-cycle energies, no balance;
+//! `pdamp simulate` runs such a scene end to end.
 
 use pdamp::dem::run::{initial_world, settle};
 use pdamp::dem::stability::{choose_dt, DEFAULT_DT_FRACTION};
@@ -55,7 +56,8 @@ fn a_run_without_ledger_reports_no_energies() {
     let s = pdamp::setup::dem::run_params(&p, drive(), &cfg, &mut v).unwrap();
     assert!(s.energy_collision_j_per_cycle.is_none() && s.energy_base_work_j_per_cycle.is_none());
     assert!(s.energy_balance_relative_error.is_nan() && s.energy_balance_warning.is_none());
-    assert!(!v.is_empty() && v.iter().all(|x| x.dem.e_collision_j.is_nan()));
+    assert!(!v.is_empty() && v.iter().all(|x| x.dem.e_collision_j == 0.0));
+    assert!(v.iter().all(|x| x.dem.e_balance_residual_j == 0.0));
     assert!(v.iter().all(|x| x.dem.e_kinetic_j.is_finite()));
 }
 
@@ -66,4 +68,26 @@ fn the_scene_key_parses_and_defaults_to_on() {
     assert!(on.run.energy_ledger);
     let off = Scene::from_toml(&format!("{base}energy_ledger = false\n")).unwrap();
     assert!(!off.run.energy_ledger);
+}
+
+#[test]
+fn pdamp_simulate_runs_without_a_ledger() {
+    let out = std::env::temp_dir().join(format!("pdamp_ledger_off_{}", std::process::id()));
+    let st = std::process::Command::new(env!("CARGO_BIN_EXE_pdamp"))
+        .args(["simulate", "bench/dem_bed.toml", "--no-analysis", "--out"])
+        .arg(&out)
+        .args([
+            "--set",
+            "run.energy_ledger=false",
+            "--set",
+            "run.duration=0.01",
+            "--set",
+            "damper.settle_time=0.02",
+        ])
+        .output()
+        .unwrap();
+    assert!(st.status.success(), "{}", String::from_utf8_lossy(&st.stderr));
+    let s = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    assert!(!s.contains("energy_collision_j_per_cycle\": 0"), "{s}");
+    let _ = std::fs::remove_dir_all(&out);
 }

@@ -55,8 +55,9 @@ pub struct DemRunConfig {
     /// Gravitational acceleration g (m/s², along −z).
     pub gravity_m_s2: f64,
     /// Book the energy ledger (default true; `run.energy_ledger`). Off: the step computes no
-    /// dissipated powers, the per-cycle energies are absent, the balance residual and its
-    /// relative error are NaN, and the stability check loses its energy-growth test.
+    /// dissipated powers, the per-cycle energies are absent, the samples' ledger columns and
+    /// residual are 0, the summary's relative error is NaN (null in `summary.json`), and the
+    /// stability check loses its energy-growth test.
     pub energy_ledger: bool,
 }
 

@@ -135,7 +135,8 @@ impl EnergyWatch {
     }
 
     /// [`EnergyWatch::sample`] and the ledger's residual E − E₀ − W_base + D (J) in it.
-    /// Without a ledger ([`DemWorld::energy_ledger`] off) the flows and the residual are NaN.
+    /// Without a ledger ([`DemWorld::energy_ledger`] off) the flows and the residual are 0
+    /// (nothing booked; the series stays finite).
     fn sample_and_residual(&self, w: &DemWorld) -> (Sample, f64) {
         let e0 = &self.start;
         let (zcm, lo, hi) = w.z_stats();
@@ -144,14 +145,7 @@ impl EnergyWatch {
         let (res, l) = if w.energy_ledger {
             (balance(&st, e0, &w.ledger).0, w.ledger)
         } else {
-            let nan = f64::NAN;
-            let l = EnergyLedger {
-                collision_j: nan,
-                friction_j: nan,
-                viscous_j: nan,
-                base_work_j: nan,
-            };
-            (nan, l)
+            (0.0, EnergyLedger::default())
         };
         let sample = Sample {
             time_s: w.t,

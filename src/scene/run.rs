@@ -61,9 +61,10 @@ pub struct Run {
     /// DEM energy ledger (2.6.1–2.6.6): `true` (default) books the collision and friction
     /// dissipation, the viscous loss in C and the base work every step, checks the balance
     /// and reports it; `false` skips that bookkeeping (the contact loops then compute no
-    /// dissipated powers): the per-cycle energies are left out of `summary.json`, the
-    /// ledger columns of `series.csv` and the balance residual are NaN, and the stability
-    /// check no longer tests for energy growth. The impact model ignores it.
+    /// dissipated powers): the per-cycle energies are left out of `summary.json` (its
+    /// balance error is null), the ledger columns of `series.csv` and the balance residual
+    /// are 0 (nothing booked), and the stability check no longer tests for energy growth.
+    /// The impact model ignores it.
     #[serde(default = "default_energy_ledger")]
     pub energy_ledger: bool,
 }
