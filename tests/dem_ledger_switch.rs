@@ -86,7 +86,11 @@ fn pdamp_simulate_runs_without_a_ledger() {
         ])
         .output()
         .unwrap();
-    assert!(st.status.success(), "{}", String::from_utf8_lossy(&st.stderr));
+    assert!(
+        st.status.success(),
+        "{}",
+        String::from_utf8_lossy(&st.stderr)
+    );
     let s = std::fs::read_to_string(out.join("summary.json")).unwrap();
     assert!(!s.contains("energy_collision_j_per_cycle\": 0"), "{s}");
     let _ = std::fs::remove_dir_all(&out);

@@ -219,8 +219,8 @@ pub fn check_memory(est: &MemoryEstimate, available: Option<f64>) -> Result<(), 
     use crate::packing::advancing_front::MAX_GRID_CELLS;
     let need = est.total_bytes();
     let grid_budget = MAX_GRID_CELLS * PACKING_BYTES_PER_CELL;
-    let over_grid = !(est.packing_cells <= MAX_GRID_CELLS);
-    let over_machine = available.is_some_and(|have| !(need <= have));
+    let over_grid = est.packing_cells.is_nan() || est.packing_cells > MAX_GRID_CELLS;
+    let over_machine = available.is_some_and(|have| need.is_nan() || need > have);
     if !over_grid && !over_machine {
         return Ok(());
     }
