@@ -36,7 +36,8 @@ pub const PARALLEL_MIN_GRAINS: usize = 2000;
 pub const SORT_MIN_GRAINS: usize = 1000;
 
 /// Bytes a DEM run holds per grain, neighbour structure included: ~520 B of grain arrays
-/// (state, predictions, forces, per-grain coefficients and wall springs, cell list) plus up to
+/// (state, predictions, forces, per-grain coefficients and wall springs, cell list), ~230 B of
+/// curve-sort scratch and grain ids (~110 B more of grain-id copies with snapshots) plus up to
 /// ~8 candidate pairs of 120 B (pair, coefficients, state, per-grain index), rounded up.
 pub const BYTES_PER_GRAIN: f64 = 2048.0;
 
