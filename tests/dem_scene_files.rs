@@ -150,3 +150,29 @@ fn snapshots_are_written_as_csv_and_vtk_xml() {
         );
     }
 }
+
+/// `damper.radius = 3e-5` (issue 12, bad input): one check, the memory estimate, decides. With
+/// the lattice, 250 such grains need ~0.5 MB (the cell list is O(N), not a grid over the box)
+/// and the scene resolves; with the advancing front, the packer's grid over the box (7.7e8
+/// cells) is refused naming damper.radius and the estimate in GB.
+#[test]
+fn tiny_grains_are_judged_by_the_memory_estimate() {
+    let text = std::fs::read_to_string("data/scenes/thesis_b_soft.toml").unwrap();
+    let tiny = text.replace("radius = 0.003 ", "radius = 3e-5 ");
+    assert_ne!(tiny, text);
+    let scene = Scene::from_toml(&tiny).unwrap();
+    scene.resolve().expect("250 grains of 3e-5 m fit in memory");
+    let af = tiny.replace(
+        "contact = \"hertz-kk\"",
+        "contact = \"hertz-kk\"\npacking = \"advancing-front\"",
+    );
+    let e = Scene::from_toml(&af)
+        .unwrap()
+        .resolve()
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("damper.radius = 3e-5 m") && e.contains("18.4 GB") && !e.contains("damper.box"),
+        "{e}"
+    );
+}

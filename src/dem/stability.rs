@@ -260,14 +260,14 @@ pub fn check(world: &DemWorld, residual_j: f64, relative_balance: f64) -> Result
         });
     }
     let b = world.box_size;
-    for i in 0..world.len() {
+    for (i, &id) in world.grain_ids().iter().enumerate() {
         let p = world.pos[i];
         let v = world.vel[i];
         if !(p.iter().chain(v.iter()).all(|x| x.is_finite())) {
             return Err(SimError::Unstable {
                 t_s: t,
                 reason: format!(
-                    "grain {i} has a non-finite position or velocity: time step too large for the contact \
+                    "grain {id} has a non-finite position or velocity: time step too large for the contact \
                      stiffness (lower the time step or its fraction of the contact time, or the Young's modulus)"
                 ),
             });
@@ -278,7 +278,7 @@ pub fn check(world: &DemWorld, residual_j: f64, relative_balance: f64) -> Result
             return Err(SimError::Unstable {
                 t_s: t,
                 reason: format!(
-                    "grain {i} left the box (centre at {:?} m, box z = {:.4e} m): contacts too stiff for the \
+                    "grain {id} left the box (centre at {:?} m, box z = {:.4e} m): contacts too stiff for the \
                      time step or impact speeds above the auto-dt estimate; lower the time step or its fraction of the contact time",
                     p, world.box_z
                 ),

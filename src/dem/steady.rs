@@ -135,13 +135,18 @@ impl EnergyWatch {
     }
 
     /// [`EnergyWatch::sample`] and the ledger's residual E − E₀ − W_base + D (J) in it.
+    /// Without a ledger ([`DemWorld::energy_ledger`] off) the flows and the residual are 0
+    /// (nothing booked; the series stays finite).
     fn sample_and_residual(&self, w: &DemWorld) -> (Sample, f64) {
         let e0 = &self.start;
         let (zcm, lo, hi) = w.z_stats();
         let (u, _) = w.base_now();
         let st = w.energy_state();
-        let (res, _) = balance(&st, e0, &w.ledger);
-        let l: EnergyLedger = w.ledger;
+        let (res, l) = if w.energy_ledger {
+            (balance(&st, e0, &w.ledger).0, w.ledger)
+        } else {
+            (0.0, EnergyLedger::default())
+        };
         let sample = Sample {
             time_s: w.t,
             base_u_m: u,
@@ -175,6 +180,11 @@ impl EnergyWatch {
     /// [`SimError::Unstable`] from [`check`].
     pub fn checked_sample(&self, w: &DemWorld) -> Result<Sample, SimError> {
         let (s, residual) = self.sample_and_residual(w);
+        if !w.energy_ledger {
+            // no ledger: only the finite-state and escape checks
+            check(w, -1.0, 0.0)?;
+            return Ok(s);
+        }
         let scale = w
             .ledger
             .base_work_j

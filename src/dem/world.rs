@@ -31,9 +31,13 @@ pub const GRAIN_CHUNK: usize = 512;
 const STAGE: usize = 64;
 /// Default smallest grain count for which a step uses the rayon thread pool.
 pub const PARALLEL_MIN_GRAINS: usize = 2000;
+/// Default smallest grain count for which the grains are stored along the space-filling curve
+/// (re-sorted at every neighbour rebuild); smaller beds fit the caches in any order.
+pub const SORT_MIN_GRAINS: usize = 1000;
 
 /// Bytes a DEM run holds per grain, neighbour structure included: ~520 B of grain arrays
-/// (state, predictions, forces, per-grain coefficients and wall springs, cell list) plus up to
+/// (state, predictions, forces, per-grain coefficients and wall springs, cell list), ~230 B of
+/// curve-sort scratch and grain ids (~110 B more of grain-id copies with snapshots) plus up to
 /// ~8 candidate pairs of 120 B (pair, coefficients, state, per-grain index), rounded up.
 pub const BYTES_PER_GRAIN: f64 = 2048.0;
 
@@ -136,6 +140,15 @@ impl Laws {
 
 /// The state of a DEM damper: grains, box, primary mass, neighbour list and ledger.
 ///
+/// Storage order: beds of at least [`DemWorld::sort_min_grains`] grains are re-sorted along a
+/// Morton (Z-order) curve of their cells at every neighbour rebuild, so that grains close in
+/// space are close in memory. The per-grain public arrays (`pos`, `vel`, `omega`, `force`,
+/// `torque`, `radius`, `mass`, `orientation`) are in that storage order; slot k holds grain
+/// [`DemWorld::grain_ids`]`[k]` (its index in the arrays given to [`DemWorld::new`]), and
+/// what leaves the engine keyed by grain — [`DemWorld::grain_state`] (snapshots),
+/// [`DemWorld::set_velocities`] — is in grain-id order. Sums over grains (centre of mass,
+/// energies, F_gz) do not depend on the order except for round-off.
+///
 /// Lab frame: z up, the floor at z = `box_z`, the ceiling at `box_z + Lz`, side walls at
 /// x ∈ {0, Lx}, y ∈ {0, Ly}. `box_z` is the primary's displacement from its static
 /// equilibrium without grains (SPEC §1), or u(t) for a kinematic box.
@@ -186,6 +199,10 @@ pub struct DemWorld {
     /// Energy flows since the drive started (collision and friction also accumulate while
     /// settling; [`DemWorld::start_drive`] resets the ledger).
     pub ledger: EnergyLedger,
+    /// Whether the step books the energy flows into [`DemWorld::ledger`] (default true). Off,
+    /// the contact loops are compiled without the dissipated powers (they cost nothing) and
+    /// the ledger stays zero.
+    pub energy_ledger: bool,
     base_power_prev: f64,
     viscous_power_prev: f64,
     laws: Laws,
@@ -202,12 +219,63 @@ pub struct DemWorld {
     /// Smallest grain count for which a step uses the rayon pool (default
     /// [`PARALLEL_MIN_GRAINS`]); results do not depend on it nor on the thread count.
     pub parallel_min_grains: usize,
+    /// Smallest grain count for which the grains are kept in space-filling-curve order
+    /// (default [`SORT_MIN_GRAINS`]; `usize::MAX`: never sorted, slot = grain id).
+    pub sort_min_grains: usize,
+    /// Grain id of each storage slot.
+    id: Vec<u32>,
+    /// Scratch of the curve sort (reused: no allocation in the step).
+    sort: SortScratch,
+    /// Grain-id-ordered copies for [`DemWorld::grain_state`] (made at the first snapshot).
+    by_id: Option<Box<ById>>,
     /// Time steps taken since construction (settling included).
     pub steps: u64,
 }
 
 /// Sums returned by the contact loops: (F_gz, collision power, friction power).
 type LoopOut = (f64, f64, f64);
+
+/// Buffers of the curve sort, kept between rebuilds.
+#[derive(Debug, Clone, Default)]
+struct SortScratch {
+    /// Old slots in the new order.
+    order: Vec<u32>,
+    /// New slot of each old slot.
+    inv: Vec<u32>,
+    v3: Vec<[f64; 3]>,
+    v1: Vec<f64>,
+    coef: Vec<ContactCoefficients>,
+    hist: Vec<[[f64; 3]; 6]>,
+    quat: Vec<UnitQuaternion<f64>>,
+    ids: Vec<u32>,
+}
+
+/// Per-grain arrays in grain-id order, for snapshots.
+#[derive(Debug, Clone, Default)]
+struct ById {
+    pos: Vec<[f64; 3]>,
+    vel: Vec<[f64; 3]>,
+    omega: Vec<[f64; 3]>,
+    force: Vec<[f64; 3]>,
+    radius: Vec<f64>,
+    orientation: Vec<UnitQuaternion<f64>>,
+}
+
+/// `a` ← `a` gathered along `order` (`a[k]` = old `a[order[k]]`); `tmp` is the spare buffer.
+fn permute<T: Copy>(a: &mut Vec<T>, tmp: &mut Vec<T>, order: &[u32]) {
+    tmp.clear();
+    tmp.extend(order.iter().map(|&k| a[k as usize]));
+    std::mem::swap(a, tmp);
+}
+
+/// `out` ← `a` in grain-id order (`out[id[k]]` = `a[k]`).
+fn scatter_by_id<T: Copy + Default>(a: &[T], id: &[u32], out: &mut Vec<T>) {
+    out.clear();
+    out.resize(a.len(), T::default());
+    for (x, &g) in a.iter().zip(id) {
+        out[g as usize] = *x;
+    }
+}
 
 impl DemWorld {
     /// Builds a world of `model`'s box, material and contact laws with grains at rest at
@@ -296,6 +364,7 @@ impl DemWorld {
             settle_drag: 0.0,
             gravity: G,
             ledger: EnergyLedger::default(),
+            energy_ledger: true,
             base_power_prev: 0.0,
             viscous_power_prev: 0.0,
             laws,
@@ -307,22 +376,105 @@ impl DemWorld {
             history_carry: Vec::new(),
             partials: Vec::new(),
             parallel_min_grains: PARALLEL_MIN_GRAINS,
+            sort_min_grains: SORT_MIN_GRAINS,
+            id: (0..n as u32).collect(),
+            sort: SortScratch::default(),
+            by_id: None,
             steps: 0,
         })
     }
 
-    /// The grains' state now, for snapshots.
-    pub fn grain_state(&self) -> crate::observe::GrainState<'_> {
+    /// The grains' state now, for snapshots, in grain-id order (copied out of the storage
+    /// order when the grains are sorted; the state itself is not changed).
+    pub fn grain_state(&mut self) -> crate::observe::GrainState<'_> {
+        if self.is_identity_order() {
+            return crate::observe::GrainState {
+                time_s: self.t,
+                pos: &self.pos,
+                vel: &self.vel,
+                omega: &self.omega,
+                radius: &self.radius,
+                orientation: self.orientation.as_deref(),
+                force: &self.force,
+                box_size: self.box_size,
+                box_z: self.box_z,
+            };
+        }
+        let b = self.by_id.get_or_insert_with(Default::default);
+        let id = &self.id;
+        scatter_by_id(&self.pos, id, &mut b.pos);
+        scatter_by_id(&self.vel, id, &mut b.vel);
+        scatter_by_id(&self.omega, id, &mut b.omega);
+        scatter_by_id(&self.force, id, &mut b.force);
+        scatter_by_id(&self.radius, id, &mut b.radius);
+        if let Some(q) = &self.orientation {
+            b.orientation.clear();
+            b.orientation.resize(q.len(), UnitQuaternion::identity());
+            for (x, &g) in q.iter().zip(id) {
+                b.orientation[g as usize] = *x;
+            }
+        }
         crate::observe::GrainState {
             time_s: self.t,
-            pos: &self.pos,
-            vel: &self.vel,
-            omega: &self.omega,
-            radius: &self.radius,
-            orientation: self.orientation.as_deref(),
-            force: &self.force,
+            pos: &b.pos,
+            vel: &b.vel,
+            omega: &b.omega,
+            radius: &b.radius,
+            orientation: self.orientation.as_ref().map(|_| &b.orientation[..]),
+            force: &b.force,
             box_size: self.box_size,
             box_z: self.box_z,
+        }
+    }
+
+    /// Grain id of each storage slot of the per-grain arrays (the identity until the first
+    /// curve sort).
+    pub fn grain_ids(&self) -> &[u32] {
+        &self.id
+    }
+
+    fn is_identity_order(&self) -> bool {
+        self.id.iter().enumerate().all(|(k, &g)| g as usize == k)
+    }
+
+    /// Stores the grains along the space-filling curve of their cells: permutes every
+    /// per-grain array (state, predictions, coefficients, wall springs, ids). Forces and
+    /// torques are carried too (the force pass after the rebuild overwrites them). Leaves the
+    /// new slot of each old slot in `self.sort.inv`.
+    fn sort_along_curve(&mut self) {
+        let shift = [0.0, 0.0, self.box_z];
+        let s = &mut self.sort;
+        self.neighbors.curve_order(&self.pos, shift, &mut s.order);
+        let order = &s.order;
+        s.inv.clear();
+        s.inv.resize(order.len(), 0);
+        for (k, &o) in order.iter().enumerate() {
+            s.inv[o as usize] = k as u32;
+        }
+        for a in [
+            &mut self.pos,
+            &mut self.vel,
+            &mut self.omega,
+            &mut self.vel_pred,
+            &mut self.omega_pred,
+            &mut self.force,
+            &mut self.torque,
+        ] {
+            permute(a, &mut s.v3, order);
+        }
+        for a in [
+            &mut self.radius,
+            &mut self.mass,
+            &mut self.inv_mass,
+            &mut self.inv_inertia,
+        ] {
+            permute(a, &mut s.v1, order);
+        }
+        permute(&mut self.wall_coef, &mut s.coef, order);
+        permute(&mut self.wall_history, &mut s.hist, order);
+        permute(&mut self.id, &mut s.ids, order);
+        if let Some(q) = self.orientation.as_mut() {
+            permute(q, &mut s.quat, order);
         }
     }
 
@@ -432,7 +584,10 @@ impl DemWorld {
         let (reference, ref_shift) = self.neighbors.reference();
         let shift = [0.0, 0.0, self.box_z - ref_shift[2]];
         let par = self.parallel();
+        let rot = self.laws.rotations;
         let max_d2 = if par {
+            // one parallel section: translation (kick, drift, displacement check) and the
+            // spins' half kick, chunk by chunk
             let tracked = reference.len() == self.pos.len();
             self.pos
                 .par_chunks_mut(GRAIN_CHUNK)
@@ -440,13 +595,20 @@ impl DemWorld {
                 .zip(self.vel_pred.par_chunks_mut(GRAIN_CHUNK))
                 .zip(self.force.par_chunks(GRAIN_CHUNK))
                 .zip(self.inv_mass.par_chunks(GRAIN_CHUNK))
+                .zip(self.omega.par_chunks_mut(GRAIN_CHUNK))
+                .zip(self.omega_pred.par_chunks_mut(GRAIN_CHUNK))
+                .zip(self.torque.par_chunks(GRAIN_CHUNK))
+                .zip(self.inv_inertia.par_chunks(GRAIN_CHUNK))
                 .enumerate()
-                .map(|(c, ((((x, v), vp), f), im))| {
+                .map(|(c, ((((((((x, v), vp), f), im), w), wp), t), ii))| {
                     let r = if tracked {
                         &reference[c * GRAIN_CHUNK..c * GRAIN_CHUNK + x.len()]
                     } else {
                         &[]
                     };
+                    if rot {
+                        half_kick_predict(w, wp, t, ii, h);
+                    }
                     kick_drift(x, v, vp, f, im, h, dt, r, shift)
                 })
                 .reduce(|| 0.0, f64::max)
@@ -463,23 +625,14 @@ impl DemWorld {
                 shift,
             )
         };
-        if self.laws.rotations {
-            if par {
-                self.omega
-                    .par_chunks_mut(GRAIN_CHUNK)
-                    .zip(self.omega_pred.par_chunks_mut(GRAIN_CHUNK))
-                    .zip(self.torque.par_chunks(GRAIN_CHUNK))
-                    .zip(self.inv_inertia.par_chunks(GRAIN_CHUNK))
-                    .for_each(|(((w, wp), t), ii)| half_kick_predict(w, wp, t, ii, h));
-            } else {
-                half_kick_predict(
-                    &mut self.omega,
-                    &mut self.omega_pred,
-                    &self.torque,
-                    &self.inv_inertia,
-                    h,
-                );
-            }
+        if rot && !par {
+            half_kick_predict(
+                &mut self.omega,
+                &mut self.omega_pred,
+                &self.torque,
+                &self.inv_inertia,
+                h,
+            );
         }
         self.box_v_pred = if primary_free {
             self.box_v + h * self.box_a
@@ -491,39 +644,23 @@ impl DemWorld {
                 advance_orientation(q, *w, dt);
             }
         }
-        // 3.–4. neighbours and forces
+        // 3.–4. neighbours and forces; 6. the grains' second half kick rides on the per-grain
+        // pass of the forces (a grain's force is complete there)
         let rebuild = self.neighbors.exceeded(max_d2);
-        let (p_coll, p_fric) = self.forces(rebuild);
+        let (p_coll, p_fric) = self.forces(rebuild, true);
         // 5. box equation
         if primary_free {
             self.box_a = self.box_acceleration();
         }
-        // 6. second half kick
-        if par {
-            let rot = self.laws.rotations;
-            self.vel
-                .par_chunks_mut(GRAIN_CHUNK)
-                .zip(self.force.par_chunks(GRAIN_CHUNK))
-                .zip(self.inv_mass.par_chunks(GRAIN_CHUNK))
-                .zip(self.omega.par_chunks_mut(GRAIN_CHUNK))
-                .zip(self.torque.par_chunks(GRAIN_CHUNK))
-                .zip(self.inv_inertia.par_chunks(GRAIN_CHUNK))
-                .for_each(|(((((v, f), im), w), t), ii)| {
-                    half_kick(v, f, im, h);
-                    if rot {
-                        half_kick(w, t, ii, h);
-                    }
-                });
-        } else {
-            half_kick(&mut self.vel, &self.force, &self.inv_mass, h);
-            if self.laws.rotations {
-                half_kick(&mut self.omega, &self.torque, &self.inv_inertia, h);
-            }
-        }
+        // 6. the box's second half kick
         if primary_free {
             self.box_v += h * self.box_a;
         }
         // 7. ledger
+        if !self.energy_ledger {
+            self.steps += 1;
+            return;
+        }
         self.ledger.collision_j += p_coll * dt;
         self.ledger.friction_j += p_fric * dt;
         if self.drive_on {
@@ -570,7 +707,7 @@ impl DemWorld {
         let rebuild = self
             .neighbors
             .needs_rebuild(&self.pos, [0.0, 0.0, self.box_z]);
-        self.forces(rebuild)
+        self.forces(rebuild, false)
     }
 
     /// Whether this step uses the rayon pool.
@@ -584,13 +721,27 @@ impl DemWorld {
         let shift = [0.0, 0.0, self.box_z];
         let carry = self.laws.tangential_kind().has_history();
         let key = |p: &Pair| ((p.i.min(p.j) as u64) << 32) | p.i.max(p.j) as u64;
+        let sort = self.len() >= self.sort_min_grains;
+        if sort {
+            self.sort_along_curve();
+        }
         if carry {
+            // the springs of the old list, keyed by the (new) slots of their grains
             self.history_carry.clear();
+            let inv = &self.sort.inv;
             for (p, st) in self.neighbors.pairs.iter().zip(&self.pair_state) {
                 if st.history != [0.0; 3] {
+                    let p = if sort {
+                        Pair {
+                            i: inv[p.i as usize],
+                            j: inv[p.j as usize],
+                        }
+                    } else {
+                        *p
+                    };
                     let h = st.history;
                     let h = if p.i < p.j { h } else { [-h[0], -h[1], -h[2]] };
-                    self.history_carry.push((key(p), h));
+                    self.history_carry.push((key(&p), h));
                 }
             }
             self.history_carry.sort_unstable_by_key(|e| e.0);
@@ -621,36 +772,50 @@ impl DemWorld {
         }
     }
 
-    fn forces(&mut self, rebuild: bool) -> (f64, f64) {
+    /// `kick`: the grains' second half kick of the step, v ← v + (dt/2) F/m (and ω), done
+    /// grain by grain as soon as a grain's force is complete.
+    fn forces(&mut self, rebuild: bool, kick: bool) -> (f64, f64) {
         if rebuild {
             self.rebuild_neighbors();
         }
+        if self.energy_ledger {
+            self.forces_of::<true>(kick)
+        } else {
+            self.forces_of::<false>(kick)
+        }
+    }
+
+    /// The force pass of the contact laws, booking the dissipated powers if `LEDGER`
+    /// (otherwise they are not computed and (0, 0) is returned).
+    fn forces_of<const LEDGER: bool>(&mut self, kick: bool) -> (f64, f64) {
         // the laws are matched once per step; each arm runs loops monomorphised on the normal
         // and tangential kernels (rotations and the attraction policy are loop-invariant flags)
         let l = &self.laws;
         let hertz = matches!(l.normal, NormalLaw::HertzKuwabaraKono { .. });
         let out = match (hertz, l.tangential_kind()) {
-            (true, TangentialLaw::None) => self.contacts::<HertzKernel, NoTangential>(),
+            (true, TangentialLaw::None) => self.contacts::<HertzKernel, NoTangential, LEDGER>(kick),
             (true, TangentialLaw::CoulombViscous { .. })
             | (true, TangentialLaw::LinearDashpotCoulomb { .. }) => {
-                self.contacts::<HertzKernel, CoulombViscousKernel>()
+                self.contacts::<HertzKernel, CoulombViscousKernel, LEDGER>(kick)
             }
             (true, TangentialLaw::MindlinSpring { .. }) => {
-                self.contacts::<HertzKernel, MindlinSpringKernel>()
+                self.contacts::<HertzKernel, MindlinSpringKernel, LEDGER>(kick)
             }
             (true, TangentialLaw::LinearSpring { .. }) => {
-                self.contacts::<HertzKernel, LinearSpringKernel>()
+                self.contacts::<HertzKernel, LinearSpringKernel, LEDGER>(kick)
             }
-            (false, TangentialLaw::None) => self.contacts::<LinearKernel, NoTangential>(),
+            (false, TangentialLaw::None) => {
+                self.contacts::<LinearKernel, NoTangential, LEDGER>(kick)
+            }
             (false, TangentialLaw::CoulombViscous { .. })
             | (false, TangentialLaw::LinearDashpotCoulomb { .. }) => {
-                self.contacts::<LinearKernel, CoulombViscousKernel>()
+                self.contacts::<LinearKernel, CoulombViscousKernel, LEDGER>(kick)
             }
             (false, TangentialLaw::MindlinSpring { .. }) => {
-                self.contacts::<LinearKernel, MindlinSpringKernel>()
+                self.contacts::<LinearKernel, MindlinSpringKernel, LEDGER>(kick)
             }
             (false, TangentialLaw::LinearSpring { .. }) => {
-                self.contacts::<LinearKernel, LinearSpringKernel>()
+                self.contacts::<LinearKernel, LinearSpringKernel, LEDGER>(kick)
             }
         };
         self.grain_force_n = out.0;
@@ -660,7 +825,10 @@ impl DemWorld {
     /// Pair pass (every candidate pair's contact response into its [`PairState`]), then the
     /// per-grain pass (gravity, drag, the grain's pair forces gathered in pair order, its
     /// wall contacts). Both passes run in fixed chunks, on the rayon pool for large beds.
-    fn contacts<N: NormalKernel, T: TangentialKernel>(&mut self) -> LoopOut {
+    fn contacts<N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
+        &mut self,
+        kick: bool,
+    ) -> LoopOut {
         let par = self.parallel();
         let ctx = PairCtx {
             pos: &self.pos,
@@ -676,11 +844,13 @@ impl DemWorld {
         let (grain_start, grain_items) = self.neighbors.grain_index();
         let gctx = GrainCtx {
             pos: &self.pos,
-            vel: &self.vel,
             vel_pred: &self.vel_pred,
             omega_pred: &self.omega_pred,
             radius: &self.radius,
             mass: &self.mass,
+            inv_mass: &self.inv_mass,
+            inv_inertia: &self.inv_inertia,
+            kick,
             wall_coef: &self.wall_coef,
             grain_start,
             grain_items,
@@ -704,18 +874,26 @@ impl DemWorld {
                 .par_chunks_mut(PAIR_CHUNK)
                 .zip(pairs.par_chunks(PAIR_CHUNK))
                 .zip(coef.par_chunks(PAIR_CHUNK))
-                .map(|((s, p), c)| pair_chunk::<N, T, false>(&ctx, p, c, s, &mut [], &mut []))
+                .map(|((s, p), c)| {
+                    pair_chunk::<N, T, false, LEDGER>(&ctx, p, c, s, &mut [], &mut [])
+                })
                 .collect_into_vec(&mut self.partials);
         } else {
-            init_forces(&gctx, &mut self.force, &mut self.torque);
+            init_forces(&gctx, &self.vel, &mut self.force, &mut self.torque);
             self.partials.clear();
             for ((s, p), c) in state
                 .chunks_mut(PAIR_CHUNK)
                 .zip(pairs.chunks(PAIR_CHUNK))
                 .zip(coef.chunks(PAIR_CHUNK))
             {
-                let part =
-                    pair_chunk::<N, T, true>(&ctx, p, c, s, &mut self.force, &mut self.torque);
+                let part = pair_chunk::<N, T, true, LEDGER>(
+                    &ctx,
+                    p,
+                    c,
+                    s,
+                    &mut self.force,
+                    &mut self.torque,
+                );
                 self.partials.push(part);
             }
         }
@@ -732,20 +910,33 @@ impl DemWorld {
                 .par_chunks_mut(GRAIN_CHUNK)
                 .zip(self.torque.par_chunks_mut(GRAIN_CHUNK))
                 .zip(self.wall_history.par_chunks_mut(GRAIN_CHUNK))
+                .zip(self.vel.par_chunks_mut(GRAIN_CHUNK))
+                .zip(self.omega.par_chunks_mut(GRAIN_CHUNK))
                 .enumerate()
-                .map(|(c, ((f, t), h))| grain_chunk::<N, T, true>(&gctx, c * GRAIN_CHUNK, f, t, h))
+                .map(|(c, ((((f, t), h), v), w))| {
+                    grain_chunk::<N, T, true, LEDGER>(&gctx, c * GRAIN_CHUNK, f, t, h, v, w)
+                })
                 .collect_into_vec(&mut self.partials);
         } else {
             self.partials.clear();
-            for (c, ((f, t), h)) in self
+            for (c, ((((f, t), h), v), w)) in self
                 .force
                 .chunks_mut(GRAIN_CHUNK)
                 .zip(self.torque.chunks_mut(GRAIN_CHUNK))
                 .zip(self.wall_history.chunks_mut(GRAIN_CHUNK))
+                .zip(self.vel.chunks_mut(GRAIN_CHUNK))
+                .zip(self.omega.chunks_mut(GRAIN_CHUNK))
                 .enumerate()
             {
-                self.partials
-                    .push(grain_chunk::<N, T, false>(&gctx, c * GRAIN_CHUNK, f, t, h));
+                self.partials.push(grain_chunk::<N, T, false, LEDGER>(
+                    &gctx,
+                    c * GRAIN_CHUNK,
+                    f,
+                    t,
+                    h,
+                    v,
+                    w,
+                ));
             }
         }
         let (fgz, wc, wf) = self
@@ -856,10 +1047,14 @@ impl DemWorld {
         (zm / mt, lo, hi)
     }
 
-    /// Sets grain velocities (m/s) and angular velocities (rad/s), e.g. for tests.
+    /// Sets grain velocities (m/s) and angular velocities (rad/s), given in grain-id order,
+    /// e.g. for tests.
     pub fn set_velocities(&mut self, vel: &[[f64; 3]], omega: &[[f64; 3]]) {
-        self.vel.copy_from_slice(vel);
-        self.omega.copy_from_slice(omega);
+        assert!(vel.len() == self.len() && omega.len() == self.len());
+        for (k, &g) in self.id.iter().enumerate() {
+            self.vel[k] = vel[g as usize];
+            self.omega[k] = omega[g as usize];
+        }
     }
 
     /// Recomputes forces for the current state (call after editing positions or velocities
@@ -898,7 +1093,7 @@ struct PairCtx<'a> {
 /// hold gravity and drag already), pair by pair in pair order — the same sums in the same order
 /// as the per-grain gathering of the parallel path, so both give bit-identical results.
 #[inline(never)]
-fn pair_chunk<N: NormalKernel, T: TangentialKernel, const SCATTER: bool>(
+fn pair_chunk<N: NormalKernel, T: TangentialKernel, const SCATTER: bool, const LEDGER: bool>(
     ctx: &PairCtx,
     pairs: &[Pair],
     coef: &[ContactCoefficients],
@@ -997,8 +1192,10 @@ fn pair_chunk<N: NormalKernel, T: TangentialKernel, const SCATTER: bool>(
                 st.force = r.force;
                 st.torque_arm = r.torque_arm;
             }
-            p_coll += r.p_collision;
-            p_fric += r.p_friction;
+            if LEDGER {
+                p_coll += r.p_collision;
+                p_fric += r.p_friction;
+            }
         }
     }
     [p_coll, p_fric, 0.0]
@@ -1019,13 +1216,13 @@ fn wall_overlaps(ctx: &GrainCtx, i: usize) -> [f64; 6] {
     ]
 }
 
-/// Gravity and settling drag on grain i, and a zero torque (N, N m).
+/// Gravity and settling drag on grain i of velocity `v` (m/s), and a zero torque (N, N m).
 #[inline(always)]
-fn init_force(ctx: &GrainCtx, i: usize) -> ([f64; 3], [f64; 3]) {
+fn init_force(ctx: &GrainCtx, i: usize, v: [f64; 3]) -> ([f64; 3], [f64; 3]) {
     let m = ctx.mass[i];
     let mut f = [0.0, 0.0, -m * ctx.gravity];
     if ctx.drag > 0.0 {
-        let (v, s) = (ctx.vel[i], -m * ctx.drag);
+        let s = -m * ctx.drag;
         f[0] += s * v[0];
         f[1] += s * v[1];
         f[2] += s * v[2];
@@ -1034,9 +1231,9 @@ fn init_force(ctx: &GrainCtx, i: usize) -> ([f64; 3], [f64; 3]) {
 }
 
 /// [`init_force`] for every grain (the one-thread path, before the scattering pair pass).
-fn init_forces(ctx: &GrainCtx, force: &mut [[f64; 3]], torque: &mut [[f64; 3]]) {
+fn init_forces(ctx: &GrainCtx, vel: &[[f64; 3]], force: &mut [[f64; 3]], torque: &mut [[f64; 3]]) {
     for (i, (f, t)) in force.iter_mut().zip(torque.iter_mut()).enumerate() {
-        let (a, b) = init_force(ctx, i);
+        let (a, b) = init_force(ctx, i, vel[i]);
         *f = a;
         if ctx.rotations {
             *t = b;
@@ -1047,11 +1244,14 @@ fn init_forces(ctx: &GrainCtx, force: &mut [[f64; 3]], torque: &mut [[f64; 3]]) 
 /// Shared inputs of the per-grain pass.
 struct GrainCtx<'a> {
     pos: &'a [[f64; 3]],
-    vel: &'a [[f64; 3]],
     vel_pred: &'a [[f64; 3]],
     omega_pred: &'a [[f64; 3]],
     radius: &'a [f64],
     mass: &'a [f64],
+    inv_mass: &'a [f64],
+    inv_inertia: &'a [f64],
+    /// Whether the chunk ends with the grains' second half kick (during a step).
+    kick: bool,
     wall_coef: &'a [ContactCoefficients],
     grain_start: &'a [u32],
     grain_items: &'a [u32],
@@ -1075,13 +1275,19 @@ struct GrainCtx<'a> {
 ///
 /// Without `GATHER` (one thread) only the walls are added: gravity, drag and the pair forces
 /// are in `force` already ([`init_forces`], then the scattering [`pair_chunk`]).
+///
+/// With `ctx.kick` the chunk's grains then get the step's second half kick (2.2.5),
+/// v ← v + (dt/2) F/m and ω ← ω + (dt/2) τ/I, their forces being complete.
+#[allow(clippy::too_many_arguments)]
 #[inline(never)]
-fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool>(
+fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool, const LEDGER: bool>(
     ctx: &GrainCtx,
     first: usize,
     force: &mut [[f64; 3]],
     torque: &mut [[f64; 3]],
     wall_history: &mut [[[f64; 3]; 6]],
+    vel: &mut [[f64; 3]],
+    omega: &mut [[f64; 3]],
 ) -> [f64; 3] {
     let vw = ctx.wall_v;
     let (mut fgz, mut p_coll, mut p_fric) = (0.0, 0.0, 0.0);
@@ -1096,7 +1302,7 @@ fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool>(
         let i = first + l;
         let r = ctx.radius[i];
         if GATHER {
-            let (mut f, mut t) = init_force(ctx, i);
+            let (mut f, mut t) = init_force(ctx, i, vel[l]);
             let items =
                 &ctx.grain_items[ctx.grain_start[i] as usize..ctx.grain_start[i + 1] as usize];
             for &e in items {
@@ -1176,8 +1382,10 @@ fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool>(
         for (rs, &e) in resp.iter().zip(block) {
             let l = e as usize / 6;
             let r = ctx.radius[first + l];
-            p_coll += rs.p_collision;
-            p_fric += rs.p_friction;
+            if LEDGER {
+                p_coll += rs.p_collision;
+                p_fric += rs.p_friction;
+            }
             let fi = &mut force[l];
             fi[0] += rs.force[0];
             fi[1] += rs.force[1];
@@ -1189,6 +1397,14 @@ fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool>(
                 ti[2] -= r * rs.torque_arm[2];
             }
             fgz -= rs.force[2];
+        }
+    }
+    if ctx.kick {
+        let h = 0.5 * ctx.dt;
+        let n = force.len();
+        half_kick(vel, force, &ctx.inv_mass[first..first + n], h);
+        if ctx.rotations {
+            half_kick(omega, torque, &ctx.inv_inertia[first..first + n], h);
         }
     }
     [fgz, p_coll, p_fric]

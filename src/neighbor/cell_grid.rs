@@ -2,7 +2,10 @@
 //!
 //! Grains are keyed by their cell (cubic-ish cells of side ≥ 2 R_max + skin in the box frame)
 //! and sorted by key; only occupied cells are kept, and a neighbour cell is found by binary
-//! search among them, so the memory does not grow with the box volume; each cell is compared with itself and its 13
+//! search among them, so the memory does not grow with the box volume. The key is the cell's
+//! Morton (Z-order) code, so cells — and the pairs, which are listed cell by cell — follow a
+//! space-filling curve; [`NeighborList::curve_order`] gives the same order for the grains, so
+//! that the engine can store them along the curve. Each cell is compared with itself and its 13
 //! "forward" neighbours, so every pair is found once (i < j in cell order) and its force is
 //! computed once (Newton's third law). The list keeps every pair closer than
 //! R_i + R_j + skin; it stays valid while every grain has moved less than skin/2 relative to
@@ -129,9 +132,31 @@ impl NeighborList {
         c
     }
 
+    /// Morton (Z-order) code of cell `c`: the bits of x, y, z interleaved (21 bits each).
     #[inline]
     fn key(&self, c: [usize; 3]) -> u64 {
-        ((c[2] as u64 * self.dims[1] as u64) + c[1] as u64) * self.dims[0] as u64 + c[0] as u64
+        spread3(c[0] as u64) | (spread3(c[1] as u64) << 1) | (spread3(c[2] as u64) << 2)
+    }
+
+    /// Sorts the grains by their cell's Morton code (ties by index) for positions `pos`
+    /// (lab frame, m) and box origin `shift` (m), and writes into `order` the grain indices
+    /// in that order: the permutation that stores the grains along the space-filling curve.
+    /// A following [`NeighborList::rebuild`] of the permuted positions finds its cell list
+    /// already sorted.
+    pub fn curve_order(&mut self, pos: &[[f64; 3]], shift: [f64; 3], order: &mut Vec<u32>) {
+        self.fill_keys(pos, shift);
+        order.clear();
+        order.extend(self.keyed.iter().map(|e| e.1));
+    }
+
+    /// `keyed` = (cell key, grain) of every grain, sorted.
+    fn fill_keys(&mut self, pos: &[[f64; 3]], shift: [f64; 3]) {
+        self.keyed.clear();
+        for (i, q) in pos.iter().enumerate() {
+            let c = self.cell_coords([q[0] - shift[0], q[1] - shift[1], q[2] - shift[2]]);
+            self.keyed.push((self.key(c), i as u32));
+        }
+        self.keyed.sort_unstable();
     }
 
     /// True when some grain moved more than skin/2 relative to the common `shift` (m) since
@@ -168,7 +193,7 @@ impl NeighborList {
     }
 
     /// Rebuilds the pair list: all pairs with |r_i − r_j| < R_i + R_j + skin, in the order of
-    /// the cells' linear index (z, y, x), then the half stencil, then the grains' indices —
+    /// the cells' Morton codes, then the half stencil, then the grains' indices —
     /// and the per-grain index of those pairs.
     ///
     /// `pos` are lab-frame centres (m), `shift` the box origin in the lab frame (m).
@@ -179,12 +204,7 @@ impl NeighborList {
         self.ref_pos.extend_from_slice(pos);
         self.ref_shift = shift;
         // sorted cell list: (key, grain), occupied cells and their ranges
-        self.keyed.clear();
-        for (i, q) in pos.iter().enumerate() {
-            let c = self.cell_coords([q[0] - shift[0], q[1] - shift[1], q[2] - shift[2]]);
-            self.keyed.push((self.key(c), i as u32));
-        }
-        self.keyed.sort_unstable();
+        self.fill_keys(pos, shift);
         self.cell_keys.clear();
         self.cell_start.clear();
         for (a, &(k, _)) in self.keyed.iter().enumerate() {
@@ -199,9 +219,9 @@ impl NeighborList {
         let skin = self.skin_m;
         for c in 0..self.cell_keys.len() {
             let key = self.cell_keys[c];
-            let cx = (key % nx as u64) as usize;
-            let cy = ((key / nx as u64) % ny as u64) as usize;
-            let cz = (key / (nx as u64 * ny as u64)) as usize;
+            let cx = compact3(key) as usize;
+            let cy = compact3(key >> 1) as usize;
+            let cz = compact3(key >> 2) as usize;
             let (a0, a1) = (self.cell_start[c] as usize, self.cell_start[c + 1] as usize);
             for (dx, dy, dz) in HALF_STENCIL {
                 let (x, y, z) = (cx as isize + dx, cy as isize + dy, cz as isize + dz);
@@ -276,6 +296,30 @@ impl NeighborList {
     }
 }
 
+/// The low 21 bits of `x` spread to every third bit (bit k → bit 3k).
+#[inline]
+fn spread3(x: u64) -> u64 {
+    let mut x = x & 0x1f_ffff;
+    x = (x | (x << 32)) & 0x001f_0000_0000_ffff;
+    x = (x | (x << 16)) & 0x001f_0000_ff00_00ff;
+    x = (x | (x << 8)) & 0x100f_00f0_0f00_f00f;
+    x = (x | (x << 4)) & 0x10c3_0c30_c30c_30c3;
+    x = (x | (x << 2)) & 0x1249_2492_4924_9249;
+    x
+}
+
+/// Inverse of [`spread3`]: every third bit of `x` (from bit 0) packed into 21 bits.
+#[inline]
+fn compact3(x: u64) -> u64 {
+    let mut x = x & 0x1249_2492_4924_9249;
+    x = (x | (x >> 2)) & 0x10c3_0c30_c30c_30c3;
+    x = (x | (x >> 4)) & 0x100f_00f0_0f00_f00f;
+    x = (x | (x >> 8)) & 0x001f_0000_ff00_00ff;
+    x = (x | (x >> 16)) & 0x001f_0000_0000_ffff;
+    x = (x | (x >> 32)) & 0x1f_ffff;
+    x
+}
+
 /// Own cell plus the 13 forward neighbours: each unordered cell pair is visited once.
 const HALF_STENCIL: [(isize, isize, isize); 14] = [
     (0, 0, 0),
@@ -297,6 +341,18 @@ const HALF_STENCIL: [(isize, isize, isize); 14] = [
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn morton_codes_round_trip_and_interleave() {
+        for x in [0u64, 1, 2, 5, 1000, (1 << 20) - 1, (1 << 21) - 1] {
+            assert_eq!(compact3(spread3(x)), x);
+        }
+        let nl = NeighborList::new([1.0; 3], 0.01, 0.001);
+        assert_eq!(nl.key([1, 0, 0]), 1);
+        assert_eq!(nl.key([0, 1, 0]), 2);
+        assert_eq!(nl.key([0, 0, 1]), 4);
+        assert_eq!(nl.key([3, 3, 3]), 63);
+    }
 
     #[test]
     fn grid_finds_exactly_the_brute_force_pairs() {

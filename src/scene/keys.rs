@@ -32,3 +32,5 @@ pub const RUN_ANALYSIS_FRACTION: &str = "run.analysis_fraction";
 pub const RUN_SAMPLE_INTERVAL: &str = "run.sample_interval";
 /// `run.dt_fraction`: DEM time step as a fraction of the contact time.
 pub const RUN_DT_FRACTION: &str = "run.dt_fraction";
+/// `run.energy_ledger`: book the DEM energy ledger (default true).
+pub const RUN_ENERGY_LEDGER: &str = "run.energy_ledger";

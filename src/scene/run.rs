@@ -58,6 +58,15 @@ pub struct Run {
         deserialize_with = "replica_delta"
     )]
     pub replica: Option<f64>,
+    /// DEM energy ledger (2.6.1–2.6.6): `true` (default) books the collision and friction
+    /// dissipation, the viscous loss in C and the base work every step, checks the balance
+    /// and reports it; `false` skips that bookkeeping (the contact loops then compute no
+    /// dissipated powers): the per-cycle energies are left out of `summary.json` (its
+    /// balance error is null), the ledger columns of `series.csv` and the balance residual
+    /// are 0 (nothing booked), and the stability check no longer tests for energy growth.
+    /// The impact model ignores it.
+    #[serde(default = "default_energy_ledger")]
+    pub energy_ledger: bool,
 }
 
 /// `run.replica`: `true` → the default δ0, `false` → off, a number → δ0 (m).
@@ -96,6 +105,9 @@ fn default_sample_interval() -> f64 {
 fn default_dt_fraction() -> f64 {
     0.01
 }
+fn default_energy_ledger() -> bool {
+    true
+}
 fn default_analysis_max_samples() -> usize {
     20_000
 }
@@ -114,6 +126,7 @@ impl Run {
             seed: 0,
             analysis_max_samples: default_analysis_max_samples(),
             replica: None,
+            energy_ledger: default_energy_ledger(),
         }
     }
 

@@ -13,8 +13,9 @@
 //! - duration: finite and > 0, at least one sample interval;
 //! - integration steps ≤ [`MAX_STEPS`]; samples ≤ [`MAX_SAMPLES`]; snapshot files ≤
 //!   [`MAX_SNAPSHOT_FILES`];
-//! - the DEM's box at most [`MAX_BOX_CELLS`] grain diameters in volume, and its grains fit it
-//!   by the scene's packing (the packing is built here);
+//! - the DEM's grains fit its box by the scene's packing (the packing is built here); what
+//!   the DEM needs in memory (grains, neighbour list, the packer's grid) is judged by one check,
+//!   the memory estimate of [`super::dem::check_memory`], when the model is resolved;
 //! - output ≤ `--max-output` (default [`DEFAULT_MAX_OUTPUT_BYTES`]).
 
 use crate::error::SceneError;
@@ -29,8 +30,6 @@ pub const MAX_STEPS: f64 = 1e11;
 pub const MAX_SAMPLES: f64 = 1e10;
 /// Most snapshot files of one run.
 pub const MAX_SNAPSHOT_FILES: f64 = 1e5;
-/// Most grain-diameter cells in a DEM box (the neighbour grid has about one per diameter).
-pub const MAX_BOX_CELLS: f64 = 1e8;
 /// Default limit of a run's output (bytes): 4 GB.
 pub const DEFAULT_MAX_OUTPUT_BYTES: f64 = 4e9;
 
@@ -280,25 +279,8 @@ fn dem_plan(d: &super::DemSetup, duration_s: f64) -> Result<RunPlan, SceneError>
             ),
         ));
     }
-    // the neighbour grid and the packing's search grid have about one cell per grain diameter
-    let r_max = d.model.grains.r_max_m;
-    let cells: f64 = d
-        .model
-        .box_size_m
-        .iter()
-        .map(|l| (l / (2.0 * r_max)).ceil().max(1.0))
-        .product();
-    if cells.is_nan() || cells > MAX_BOX_CELLS {
-        return Err(SceneError::invalid(
-            "damper.box",
-            format!("{:?}", d.model.box_size_m),
-            format!(
-                "is {cells:.1e} grain diameters (2 × {r_max:e} m) in volume, more than \
-                 {MAX_BOX_CELLS:.0e}: the neighbour grid would not fit in memory; make the box \
-                 smaller or the grains larger"
-            ),
-        ));
-    }
+    // memory (grains, neighbour list, the packer's grid) was judged once, by the memory
+    // estimate, when the model was resolved (`super::dem::dem_model`)
     crate::dem::initial_positions(&d.model).map_err(super::scene_error)?;
     let n = d.model.grains.radius_m.len() as f64;
     let steps = (duration_s + d.model.settle_time_s) / dt_s;
