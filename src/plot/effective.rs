@@ -4,7 +4,9 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::common::{self, check_finite, check_len, draw_err, padded_range, Figure};
+use super::common::{
+    self, check_finite, check_len, draw_err, padded_range, Figure, LegendEntry, LegendMark,
+};
 use crate::error::PlotError;
 
 /// Effective-parameter figure: two panels (M_ef on top, C_ef or C_ef/C below).
@@ -65,10 +67,9 @@ impl Figure for EffectiveFigure<'_> {
         root: &DrawingArea<DB, Shift>,
         title: &str,
     ) -> Result<(), PlotError> {
-        let root = root
-            .titled(title, common::caption_font())
-            .map_err(draw_err)?;
+        let (root, side) = common::with_side_panel(root, title, 0.24, 200)?;
         let panels = root.split_evenly((2, 1));
+        let sides = side.split_evenly((2, 1));
         let scale = self.damping_n_s_m.map_or(1.0, |c| 1.0 / c);
         let c: Vec<f64> = self.damping_ef_n_s_m.iter().map(|v| v * scale).collect();
         let cs: Vec<f64> = self
@@ -100,7 +101,9 @@ impl Figure for EffectiveFigure<'_> {
             ),
         ];
         let (x_lo, x_hi) = padded_range([self.x], 0.05);
-        for (area, (label, y, s, reference, color, ref_name)) in panels.iter().zip(blocks) {
+        for ((area, side), (label, y, s, reference, color, ref_name)) in
+            panels.iter().zip(&sides).zip(blocks)
+        {
             let lo: Vec<f64> = y.iter().zip(s).map(|(y, s)| y - s).collect();
             let hi: Vec<f64> = y.iter().zip(s).map(|(y, s)| y + s).collect();
             let r: Vec<f64> = reference.into_iter().collect();
@@ -112,6 +115,7 @@ impl Figure for EffectiveFigure<'_> {
                 .build_cartesian_2d(x_lo..x_hi, y_lo..y_hi)
                 .map_err(draw_err)?;
             common::mesh(&mut chart, &self.x_label, label)?;
+            let mut legend = Vec::new();
             if let Some(v) = reference {
                 let style = ShapeStyle::from(BLACK.mix(0.6)).stroke_width(2);
                 let name = match (ref_name, self.mass_kg) {
@@ -125,9 +129,12 @@ impl Figure for EffectiveFigure<'_> {
                         5,
                         style,
                     ))
-                    .map_err(draw_err)?
-                    .label(name)
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
+                    .map_err(draw_err)?;
+                legend.push(LegendEntry::new(
+                    name,
+                    RGBColor(102, 102, 102),
+                    LegendMark::Dashed(2),
+                ));
             }
             let pts: Vec<(f64, f64)> = self.x.iter().copied().zip(y.iter().copied()).collect();
             chart
@@ -137,13 +144,16 @@ impl Figure for EffectiveFigure<'_> {
                 .draw_series(self.x.iter().zip(y).zip(s).map(|((&x, &y), &s)| {
                     ErrorBar::new_vertical(x, y - s, y, y + s, color.stroke_width(2), 8)
                 }))
-                .map_err(draw_err)?
-                .label("fit ± 1 standard error")
-                .legend(move |(x, y)| Circle::new((x + 10, y), 4, color.filled()));
+                .map_err(draw_err)?;
             chart
                 .draw_series(pts.iter().map(|&p| Circle::new(p, 4, color.filled())))
                 .map_err(draw_err)?;
-            common::legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+            legend.push(LegendEntry::new(
+                "fit ± 1 standard error",
+                color,
+                LegendMark::DotErr(4),
+            ));
+            common::side_legend(side, &legend)?;
         }
         Ok(())
     }

@@ -12,6 +12,7 @@ pub mod fnn;
 pub mod frequency_panel;
 pub mod frf;
 pub mod kantz;
+pub mod labels;
 pub mod lines;
 pub mod mutual;
 pub mod pareto;

@@ -4,7 +4,8 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::common::{self, draw_err, series_color, Figure};
+use super::common::{self, draw_err, series_color, Figure, LegendEntry, LegendMark};
+use super::labels::{place_labels, segment_box, Marker, Rect};
 use crate::error::PlotError;
 
 /// One setting of a Pareto figure.
@@ -86,7 +87,11 @@ impl Figure for ParetoFigure {
         root: &DrawingArea<DB, Shift>,
         title: &str,
     ) -> Result<(), PlotError> {
+        let (root, panel) = common::with_side_panel(root, title, 0.2, 190)?;
         let err = |p: &ParetoPoint| p.error.max(self.error_floor);
+        let reference = self
+            .reference_wall_time_s
+            .filter(|r| *r > 0.0 && r.is_finite());
         let (mut x_lo, mut x_hi) = (f64::INFINITY, 0.0f64);
         let (mut y_lo, mut y_hi) = (f64::INFINITY, 0.0f64);
         for p in &self.points {
@@ -95,20 +100,16 @@ impl Figure for ParetoFigure {
             y_lo = y_lo.min(err(p));
             y_hi = y_hi.max(err(p));
         }
-        if let Some(r) = self
-            .reference_wall_time_s
-            .filter(|r| *r > 0.0 && r.is_finite())
-        {
+        if let Some(r) = reference {
             x_lo = x_lo.min(r);
             x_hi = x_hi.max(r);
         }
-        let (x_lo, x_hi) = (x_lo / 2.0, x_hi * 2.0);
-        let (y_lo, y_hi) = (y_lo / 2.0, y_hi * 3.0);
-        let mut chart = ChartBuilder::on(root)
-            .caption(title, common::caption_font())
-            .margin(common::scaled(root, 0.02, 8))
-            .x_label_area_size(common::scaled(root, 0.08, 40))
-            .y_label_area_size(common::scaled(root, 0.11, 60))
+        let (x_lo, x_hi) = (x_lo / 2.0, x_hi * 3.0);
+        let (y_lo, y_hi) = (y_lo / 2.0, y_hi * 2.0);
+        let mut chart = ChartBuilder::on(&root)
+            .margin(common::scaled(&root, 0.02, 8))
+            .x_label_area_size(common::scaled(&root, 0.08, 40))
+            .y_label_area_size(common::scaled(&root, 0.11, 60))
             .build_cartesian_2d((x_lo..x_hi).log_scale(), (y_lo..y_hi).log_scale())
             .map_err(draw_err)?;
         chart
@@ -122,10 +123,8 @@ impl Figure for ParetoFigure {
             .light_line_style(WHITE.mix(0.0))
             .draw()
             .map_err(draw_err)?;
-        if let Some(r) = self
-            .reference_wall_time_s
-            .filter(|r| *r > 0.0 && r.is_finite())
-        {
+        let mut legend = Vec::new();
+        if let Some(r) = reference {
             chart
                 .draw_series(DashedLineSeries::new(
                     vec![(r, y_lo), (r, y_hi)],
@@ -133,15 +132,108 @@ impl Figure for ParetoFigure {
                     4,
                     BLACK.mix(0.5).stroke_width(1),
                 ))
-                .map_err(draw_err)?
-                .label("reference wall time")
-                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.mix(0.5)));
+                .map_err(draw_err)?;
+            legend.push(LegendEntry::new(
+                "reference wall time",
+                RGBColor(128, 128, 128),
+                LegendMark::Dashed(1),
+            ));
         }
+        let stair = self.front_staircase();
+        let mut obstacles: Vec<Rect> = stair
+            .windows(2)
+            .map(|w| segment_box(chart.backend_coord(&w[0]), chart.backend_coord(&w[1])))
+            .collect();
+        if let Some(r) = reference {
+            obstacles.push(segment_box(
+                chart.backend_coord(&(r, y_lo)),
+                chart.backend_coord(&(r, y_hi)),
+            ));
+        }
+        if stair.len() > 1 {
+            chart
+                .draw_series(LineSeries::new(stair, BLACK.stroke_width(2)))
+                .map_err(draw_err)?;
+            legend.push(LegendEntry::new("Pareto front", BLACK, LegendMark::Line(2)));
+        }
+        let groups = self.groups();
+        let radius = |p: &ParetoPoint| if p.on_front { 7 } else { 5 };
+        for (gi, g) in groups.iter().enumerate() {
+            let color = series_color(gi);
+            chart
+                .draw_series(
+                    self.points
+                        .iter()
+                        .filter(|p| p.group == *g)
+                        .map(|p| Circle::new((p.wall_time_s, err(p)), radius(p), color.filled())),
+                )
+                .map_err(draw_err)?;
+            legend.push(LegendEntry::new(*g, color, LegendMark::Dot(5)));
+        }
+        legend.push(LegendEntry::note("larger marker: on the front"));
+        // labels: next to their markers, clear of each other, the markers and the edges
+        let font = common::small_font();
+        let markers: Vec<Marker> = self
+            .points
+            .iter()
+            .map(|p| {
+                let (x, y) = chart.backend_coord(&(p.wall_time_s, err(p)));
+                Marker { x, y, r: radius(p) }
+            })
+            .collect();
+        let mut sizes = Vec::with_capacity(self.points.len());
+        for p in &self.points {
+            let (w, h) = root.estimate_text_size(&p.label, &font).map_err(draw_err)?;
+            sizes.push((w as i32, h as i32));
+        }
+        let (xr, yr) = chart.plotting_area().get_pixel_range();
+        let bounds = Rect {
+            x: xr.start,
+            y: yr.start,
+            w: xr.end - xr.start,
+            h: yr.end - yr.start,
+        };
+        let placed = place_labels(&markers, &sizes, &obstacles, bounds);
+        let area = chart.plotting_area();
+        for ((p, m), q) in self.points.iter().zip(&markers).zip(&placed) {
+            let at = (p.wall_time_s, err(p));
+            let (dx, dy) = (q.rect.x - m.x, q.rect.y - m.y);
+            if q.detached {
+                // a leader line from the marker's edge to the nearest point of the label box
+                let tx = (m.x).clamp(q.rect.x, q.rect.x + q.rect.w) - m.x;
+                let ty = (m.y).clamp(q.rect.y, q.rect.y + q.rect.h) - m.y;
+                area.draw(
+                    &(EmptyElement::at(at)
+                        + PathElement::new(vec![(0, 0), (tx, ty)], BLACK.mix(0.4))),
+                )
+                .map_err(draw_err)?;
+            }
+            area.draw(&(EmptyElement::at(at) + Text::new(p.label.clone(), (dx, dy), font.clone())))
+                .map_err(draw_err)?;
+        }
+        common::side_legend(&panel, &legend)
+    }
+}
+
+impl ParetoFigure {
+    /// The groups in order of first appearance (legend order, colour index).
+    fn groups(&self) -> Vec<&str> {
+        let mut groups: Vec<&str> = Vec::new();
+        for p in &self.points {
+            if !groups.contains(&p.group.as_str()) {
+                groups.push(&p.group);
+            }
+        }
+        groups
+    }
+
+    /// The Pareto front as a staircase through its points, in order of wall time.
+    fn front_staircase(&self) -> Vec<(f64, f64)> {
         let mut front: Vec<(f64, f64)> = self
             .points
             .iter()
             .filter(|p| p.on_front)
-            .map(|p| (p.wall_time_s, err(p)))
+            .map(|p| (p.wall_time_s, p.error.max(self.error_floor)))
             .collect();
         front.sort_by(|a, b| a.0.total_cmp(&b.0));
         let mut stair = Vec::new();
@@ -151,46 +243,7 @@ impl Figure for ParetoFigure {
             }
             stair.push((x, y));
         }
-        if stair.len() > 1 {
-            chart
-                .draw_series(LineSeries::new(stair, BLACK.stroke_width(2)))
-                .map_err(draw_err)?
-                .label("Pareto front")
-                .legend(|(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2))
-                });
-        }
-        let mut groups: Vec<&str> = Vec::new();
-        for p in &self.points {
-            if !groups.contains(&p.group.as_str()) {
-                groups.push(&p.group);
-            }
-        }
-        for (gi, g) in groups.iter().enumerate() {
-            let color = series_color(gi);
-            let pts: Vec<&ParetoPoint> = self.points.iter().filter(|p| p.group == *g).collect();
-            chart
-                .draw_series(pts.iter().map(|p| {
-                    Circle::new(
-                        (p.wall_time_s, err(p)),
-                        if p.on_front { 7 } else { 5 },
-                        color.filled(),
-                    )
-                }))
-                .map_err(draw_err)?
-                .label(*g)
-                .legend(move |(x, y)| Circle::new((x + 10, y), 5, color.filled()));
-            chart
-                .draw_series(pts.iter().map(|p| {
-                    Text::new(
-                        p.label.clone(),
-                        (p.wall_time_s * 1.08, err(p) * 1.08),
-                        common::small_font(),
-                    )
-                }))
-                .map_err(draw_err)?;
-        }
-        common::legend(&mut chart, SeriesLabelPosition::UpperRight)
+        stair
     }
 }
 
