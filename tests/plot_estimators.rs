@@ -177,3 +177,32 @@ fn figures_reject_unusable_data() {
     };
     assert!(render_rgb(&f, &o).unwrap_err().to_string().contains("fnn"));
 }
+
+#[test]
+fn pareto_from_a_tradeoff_settings_table() {
+    let settings = concat!(env!("CARGO_MANIFEST_DIR"), "/figures/tradeoff_settings.csv");
+    let dir = scratch::tempdir().unwrap();
+    let png = dir.path().join("pareto.png");
+    let p = png.to_str().unwrap();
+    let (err, ok) = pdamp(&[
+        "plot",
+        "pareto",
+        settings,
+        "--y",
+        "dissipation_max_rel_error",
+        "-o",
+        p,
+    ]);
+    assert!(ok, "{err}");
+    let img = image::open(&png).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (1024, 768));
+    // the first knob (dt-fraction) in Okabe–Ito blue, the second (softening) in vermillion
+    assert!(count_color(&img, BLUE) > 20 && count_color(&img, RED) > 20);
+    // an unknown error column is refused naming the option and the choices
+    let (err, ok) = pdamp(&["plot", "pareto", settings, "--y", "nope", "-o", p]);
+    assert!(!ok);
+    assert!(
+        err.contains("y: `nope`") && err.contains("c_ef_rel_error"),
+        "{err}"
+    );
+}

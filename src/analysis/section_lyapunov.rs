@@ -161,7 +161,6 @@ pub fn section_lyapunov(
     let refs: Vec<usize> = (usable.saturating_sub(opts.max_references.max(1))..usable).collect();
     // the points in one flat array (dist2 on its rows: the same sums as on the rows of `u`)
     let flat: Vec<f64> = u.iter().flatten().copied().collect();
-    let row = |i: usize| &flat[i * dim..(i + 1) * dim];
     let w = opts.theiler;
     let tree = PointTree::new(&flat, dim, usable);
     let mut nn = nearest_distances(&tree, &flat, dim, &refs, w);
@@ -187,36 +186,60 @@ pub fn section_lyapunov(
         .collect();
     let eps_max = eps.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     let cands = Candidates::within(&flat, dim, usable, &refs, w, eps_max);
-    // S(ε, Δ) for every ε at once: per reference, the running sum of the followed distances
-    // over its candidates (nearest first) is read at each radius' neighbour count — the same
-    // additions in the same order as summing each radius' neighbours directly, and every
-    // (ε, Δ) sum accumulates over the references in the same order as one radius at a time
+    // S(ε, Δ) for every ε at once: the radii are nested, so each candidate goes to the bin of
+    // the smallest radius that holds it, and a radius' sum over its neighbours is the running
+    // sum of the bins up to its own (each (ε, Δ) sum accumulates over the references in
+    // reference order; within a bin the candidates add in the order of the candidate list)
     let mut sum = vec![vec![0.0; steps + 1]; count];
     let mut cnt = vec![vec![0usize; steps + 1]; count];
-    let mut within = vec![0usize; count];
-    let mut running: Vec<f64> = Vec::with_capacity(200);
+    let mut by_bin: Vec<usize> = Vec::with_capacity(MAX_NEIGHBOURS);
+    let mut bin_of: Vec<usize> = Vec::with_capacity(MAX_NEIGHBOURS);
+    let mut bin_count = vec![0usize; count];
+    let mut bin_start = vec![0usize; count];
+    // bin_sum[b · (steps + 1) + Δ]: the followed distances of bin b's candidates at Δ
+    let mut bin_sum = vec![0.0f64; count * (steps + 1)];
     for (r, &k) in refs.iter().enumerate() {
         let cand = cands.of(r);
-        for (n_e, e) in within.iter_mut().zip(&eps) {
-            *n_e = cand.iter().take_while(|(d, _)| *d <= *e).count();
-        }
-        let len = cand.len();
-        if len == 0 {
+        if cand.is_empty() {
             continue;
         }
+        // the candidates grouped by bin (a counting sort, list order kept within a bin)
+        bin_count.fill(0);
+        bin_of.clear();
+        for &(d, _) in cand {
+            // every candidate is within eps_max = the last radius
+            let b = eps.iter().position(|&e| d <= e).unwrap_or(count - 1);
+            bin_count[b] += 1;
+            bin_of.push(b);
+        }
+        let mut start = 0;
+        for (s, &c) in bin_start.iter_mut().zip(&bin_count) {
+            *s = start;
+            start += c;
+        }
+        by_bin.resize(cand.len(), 0);
+        for (&(_, j), &b) in cand.iter().zip(&bin_of) {
+            by_bin[bin_start[b]] = j;
+            bin_start[b] += 1;
+        }
+        bin_sum.fill(0.0);
+        let mut at = 0;
+        for (b, &bc) in bin_count.iter().enumerate() {
+            let dst = &mut bin_sum[b * (steps + 1)..(b + 1) * (steps + 1)];
+            for &j in &by_bin[at..at + bc] {
+                add_followed(&flat, dim, k, j, dst);
+            }
+            at += bc;
+        }
         for dn in 0..=steps {
-            let rk = row(k + dn);
-            let mut acc = 0.0;
-            running.clear();
-            running.extend(cand[..len].iter().map(|(_, j)| {
-                acc += dist2(rk, row(j + dn)).sqrt();
-                acc
-            }));
-            for ((&n_e, s), c) in within.iter().zip(&mut sum).zip(&mut cnt) {
+            let (mut acc, mut n_e) = (0.0, 0usize);
+            for (b, (s, c)) in sum.iter_mut().zip(&mut cnt).enumerate() {
+                acc += bin_sum[b * (steps + 1) + dn];
+                n_e += bin_count[b];
                 if n_e == 0 {
                     continue;
                 }
-                let mean_d = running[n_e - 1] / n_e as f64;
+                let mean_d = acc / n_e as f64;
                 if mean_d > 0.0 {
                     s[dn] += mean_d.ln();
                     c[dn] += 1;
@@ -258,6 +281,96 @@ pub fn section_lyapunov(
     })
 }
 
+/// Adds `‖u_{k+Δ} − u_{j+Δ}‖` to `dst[Δ]` for Δ = 0..dst.len() (rows of `flat`, `dim`
+/// coordinates each): the followed distances of one candidate, all Δ in one pass over the two
+/// runs of consecutive rows. Specialised for 1–4 coordinates (the section's state).
+#[inline]
+fn add_followed(flat: &[f64], dim: usize, k: usize, j: usize, dst: &mut [f64]) {
+    match dim {
+        1 => add_followed_n::<1>(flat, k, j, dst),
+        2 => add_followed_n::<2>(flat, k, j, dst),
+        3 => add_followed_n::<3>(flat, k, j, dst),
+        4 => add_followed_n::<4>(flat, k, j, dst),
+        _ => {
+            let len = dst.len() * dim;
+            let (a, c) = (&flat[k * dim..k * dim + len], &flat[j * dim..j * dim + len]);
+            for ((x, y), o) in a.chunks_exact(dim).zip(c.chunks_exact(dim)).zip(dst) {
+                *o += dist2(x, y).sqrt();
+            }
+        }
+    }
+}
+
+/// [`add_followed`] for `D` coordinates, four Δ at a time (lanes: the same additions in the
+/// same order as [`dist2`] per Δ, so that the compiler can use vector square roots).
+#[inline]
+fn add_followed_n<const D: usize>(flat: &[f64], k: usize, j: usize, dst: &mut [f64]) {
+    let len = dst.len() * D;
+    let (a, c) = (&flat[k * D..k * D + len], &flat[j * D..j * D + len]);
+    let mut blocks = dst.chunks_exact_mut(4);
+    let mut at = 0;
+    for o in &mut blocks {
+        let (x, y) = (&a[at..at + 4 * D], &c[at..at + 4 * D]);
+        let mut acc = [0.0f64; 4];
+        for d in 0..D {
+            for l in 0..4 {
+                let t = x[l * D + d] - y[l * D + d];
+                acc[l] += t * t;
+            }
+        }
+        for l in 0..4 {
+            o[l] += acc[l].sqrt();
+        }
+        at += 4 * D;
+    }
+    for (i, o) in blocks.into_remainder().iter_mut().enumerate() {
+        let b = at + i * D;
+        *o += dist2(&a[b..b + D], &c[b..b + D]).sqrt();
+    }
+}
+
+/// `out[j] = ‖q − row j of rows‖` (the square root of [`dist2`]) for every row (`q.len()`
+/// coordinates each); four rows at a time for 1–4 coordinates.
+fn distances_from(q: &[f64], rows: &[f64], out: &mut [f64]) {
+    match q.len() {
+        1 => distances_from_n::<1>(q, rows, out),
+        2 => distances_from_n::<2>(q, rows, out),
+        3 => distances_from_n::<3>(q, rows, out),
+        4 => distances_from_n::<4>(q, rows, out),
+        dim => {
+            for (p, o) in rows.chunks_exact(dim).zip(out) {
+                *o = dist2(q, p).sqrt();
+            }
+        }
+    }
+}
+
+/// [`distances_from`] for `D` coordinates (lanes: the additions of [`dist2`] in its order).
+#[inline]
+fn distances_from_n<const D: usize>(q: &[f64], rows: &[f64], out: &mut [f64]) {
+    let q: [f64; D] = q.try_into().expect("D coordinates");
+    let mut blocks = out.chunks_exact_mut(4);
+    let mut at = 0;
+    for o in &mut blocks {
+        let y = &rows[at..at + 4 * D];
+        let mut acc = [0.0f64; 4];
+        for (d, &qd) in q.iter().enumerate() {
+            for l in 0..4 {
+                let t = qd - y[l * D + d];
+                acc[l] += t * t;
+            }
+        }
+        for l in 0..4 {
+            o[l] = acc[l].sqrt();
+        }
+        at += 4 * D;
+    }
+    for (i, o) in blocks.into_remainder().iter_mut().enumerate() {
+        let b = at + i * D;
+        *o = dist2(&q, &rows[b..b + D]).sqrt();
+    }
+}
+
 /// Most neighbours followed per reference (the nearest ones).
 const MAX_NEIGHBOURS: usize = 200;
 
@@ -279,8 +392,9 @@ fn nearest_distances(
         .collect()
 }
 
-/// Every reference's neighbours within `eps_max` (at most [`MAX_NEIGHBOURS`], nearest first by
-/// (distance, index)), all references' lists in one flat array.
+/// Every reference's neighbours within `eps_max` (at most [`MAX_NEIGHBOURS`], the nearest by
+/// (distance, index), in no particular but a deterministic order), all references' lists in
+/// one flat array.
 struct Candidates {
     /// (distance relative to the extents, index) of the neighbours.
     pairs: Vec<(f64, usize)>,
@@ -291,12 +405,13 @@ struct Candidates {
 impl Candidates {
     /// The [`MAX_NEIGHBOURS`] nearest admissible neighbours (`|j − k| > w`, 0 < distance ≤
     /// `eps_max`, j < `usable`) of every reference k, by (distance, index): the same lists as
-    /// the [`MAX_NEIGHBOURS`] nearest of all admissible points cut at `eps_max`.
+    /// the [`MAX_NEIGHBOURS`] nearest of all admissible points cut at `eps_max`, unsorted.
     ///
     /// A scan of all points per reference (on a chaotic section the radius holds about half of
-    /// them, where a tree saves nothing); the candidates are ranked by one integer key,
-    /// `bits(distance) · 2⁶⁴ + index` (distances are positive and finite, so the bits of an
-    /// f64 order as its value): the order of (distance, index).
+    /// them, where a tree saves nothing): the distances four at a time, then the nearest
+    /// selected (not sorted) by one integer key, `bits(distance) · 2⁶⁴ + index` (distances are
+    /// positive and finite, so the bits of an f64 order as its value): the order of
+    /// (distance, index).
     fn within(
         flat: &[f64],
         dim: usize,
@@ -308,28 +423,25 @@ impl Candidates {
         let mut pairs = Vec::with_capacity(refs.len() * MAX_NEIGHBOURS);
         let mut offsets = Vec::with_capacity(refs.len() + 1);
         offsets.push(0);
-        // d² above this cannot give a distance ≤ eps_max (a margin over eps_max², the exact
-        // test is on the square root)
-        let d2_max = eps_max * eps_max * (1.0 + 1e-9);
-        let mut keys: Vec<u128> = Vec::with_capacity(usable);
+        // every point's key is written and the count advances only for an admissible one: no
+        // branch on the (on a chaotic section, coin-flip) test
+        let mut keys: Vec<u128> = vec![0; usable];
+        let mut dists = vec![0.0f64; usable];
         for &k in refs {
-            keys.clear();
             let q = &flat[k * dim..(k + 1) * dim];
-            for (j, p) in flat[..usable * dim].chunks_exact(dim).enumerate() {
-                let d2 = dist2(q, p);
-                if d2 > d2_max || j.abs_diff(k) <= w {
-                    continue;
-                }
-                let d = d2.sqrt();
-                if d > 0.0 && d <= eps_max {
-                    keys.push(((d.to_bits() as u128) << 64) | j as u128);
-                }
+            distances_from(q, &flat[..usable * dim], &mut dists);
+            let mut len = 0;
+            for (j, &d) in dists.iter().enumerate() {
+                keys[len] = ((d.to_bits() as u128) << 64) | j as u128;
+                len += usize::from((d > 0.0) & (d <= eps_max) & (j.abs_diff(k) > w));
             }
-            if keys.len() > MAX_NEIGHBOURS {
+            let keys = &mut keys[..len];
+            let keys = if keys.len() > MAX_NEIGHBOURS {
                 keys.select_nth_unstable(MAX_NEIGHBOURS - 1);
-                keys.truncate(MAX_NEIGHBOURS);
-            }
-            keys.sort_unstable();
+                &keys[..MAX_NEIGHBOURS]
+            } else {
+                keys
+            };
             pairs.extend(
                 keys.iter()
                     .map(|&key| (f64::from_bits((key >> 64) as u64), key as u64 as usize)),
@@ -498,7 +610,41 @@ mod tests {
                 for (r, c) in want.iter().enumerate() {
                     let cut: Vec<(f64, usize)> =
                         c.iter().copied().take_while(|p| p.0 <= eps_max).collect();
-                    assert_eq!(got.of(r), &cut[..], "dim {dim} eps {eps_max} ref {r}");
+                    let mut got_r = got.of(r).to_vec();
+                    got_r.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                    assert_eq!(got_r, cut, "dim {dim} eps {eps_max} ref {r}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn four_lane_kernels_equal_dist2_bit_for_bit() {
+        use rand::{RngExt, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+        for dim in 1..=6 {
+            let n = 40;
+            let flat: Vec<f64> = (0..n * dim).map(|_| rng.random::<f64>() - 0.3).collect();
+            let row = |i: usize| &flat[i * dim..(i + 1) * dim];
+            // distances from one point to all: lengths that are and are not multiples of 4
+            for rows in [n, n - 3] {
+                let mut out = vec![f64::NAN; rows];
+                distances_from(row(5), &flat[..rows * dim], &mut out);
+                for (j, &d) in out.iter().enumerate() {
+                    assert_eq!(
+                        d.to_bits(),
+                        dist2(row(5), row(j)).sqrt().to_bits(),
+                        "dim {dim}"
+                    );
+                }
+            }
+            // followed distances of a pair over 13 and 6 steps, added to what is there
+            for steps in [13, 6] {
+                let mut dst: Vec<f64> = (0..steps).map(|i| i as f64 * 0.1).collect();
+                add_followed(&flat, dim, 3, 17, &mut dst);
+                for (dn, &v) in dst.iter().enumerate() {
+                    let want = dn as f64 * 0.1 + dist2(row(3 + dn), row(17 + dn)).sqrt();
+                    assert_eq!(v.to_bits(), want.to_bits(), "dim {dim} Δ {dn}");
                 }
             }
         }

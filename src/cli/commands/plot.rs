@@ -89,6 +89,11 @@ pub enum Kind {
     /// False nearest neighbours (%) versus m with the suggested dimension (≤ 1 %) marked;
     /// -M min,max (default 1,6), -d, -f ratio (default 10), -t, --tisean as `pdamp fnn`.
     Fnn,
+    /// `tradeoff_settings.csv` of `pdamp tradeoff`: the error in column --y (default
+    /// `amplitude_max_rel_error`; also `dissipation_max_rel_error`, `c_ef_rel_error`,
+    /// `mle_max_abs_error_per_s`) against `wall_time_s`, log–log, one labelled marker per setting
+    /// coloured by `axis`, the Pareto front as a staircase, the reference's wall time dashed.
+    Pareto,
 }
 
 /// Arguments of `pdamp plot`.
@@ -603,6 +608,45 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 sums: &sums,
                 estimate: est.as_ref(),
             };
+            draw(&fig, out, &opts)
+        }
+        Kind::Pareto => {
+            one()?;
+            let column = o.y.as_deref().unwrap_or("amplitude_max_rel_error");
+            let Some(plot) = super::tradeoff::PARETO_FIGURES
+                .iter()
+                .find(|p| p.column == column)
+            else {
+                let known: Vec<&str> = super::tradeoff::PARETO_FIGURES
+                    .iter()
+                    .map(|p| p.column)
+                    .collect();
+                let msg = format!("`{column}`: choose one of {}", known.join(", "));
+                return Err(pdamp::error::PlotError::bad("pareto", "y", msg).into());
+            };
+            let (labels, groups) = (first.str_column("setting")?, first.str_column("axis")?);
+            let wall = first.opt_f64_column("wall_time_s")?;
+            let err = first.opt_f64_column(column)?;
+            let rows: Vec<super::tradeoff::ParetoRow> = labels
+                .into_iter()
+                .zip(groups)
+                .zip(wall.into_iter().zip(err))
+                .map(|((label, group), (w, error))| super::tradeoff::ParetoRow {
+                    label,
+                    group,
+                    wall_time_s: w.unwrap_or(f64::NAN),
+                    error,
+                })
+                .collect();
+            let fig =
+                super::tradeoff::pareto_figure(&rows, plot.label, "Speed against accuracy".into())
+                    .ok_or_else(|| {
+                        let msg = format!(
+                            "{}: no setting has both a wall time and a finite `{column}`",
+                            first.path
+                        );
+                        pdamp::error::PlotError::bad("pareto", "y", msg)
+                    })?;
             draw(&fig, out, &opts)
         }
         Kind::RegimeMap => {

@@ -120,88 +120,140 @@ fn pct(e: Option<f64>) -> String {
     e.map_or("n/a".into(), |e| format!("{:.2} %", 100.0 * e))
 }
 
+/// One Pareto plot: the file, the column of `tradeoff_settings.csv` it draws, the same value
+/// of a measured setting, and the y-axis label.
+pub(crate) struct ParetoPlot {
+    pub file: &'static str,
+    pub column: &'static str,
+    pub get: fn(&pdamp::tradeoff::study::SettingRow) -> Option<f64>,
+    pub label: &'static str,
+}
+
 /// The Pareto plots: Z, dissipation, C_ef and Lyapunov-exponent errors against wall time.
-fn plot_all(study: &Study, out: &Path) -> anyhow::Result<()> {
-    type Get = fn(&pdamp::tradeoff::study::SettingRow) -> Option<f64>;
-    let figs: [(&str, &str, Get); 4] = [
-        (
-            "tradeoff_amplitude.png",
-            "largest relative error of Z (–)",
-            |s| s.amplitude_max_rel_error,
-        ),
-        (
-            "tradeoff_dissipation.png",
-            "largest relative error of the grains' dissipation per cycle (–)",
-            |s| s.dissipation_max_rel_error,
-        ),
-        (
-            "tradeoff_effective.png",
-            "relative error of C_ef (–)",
-            |s| s.c_ef_rel_error,
-        ),
-        (
-            "tradeoff_lyapunov.png",
-            "largest |λ − λ_ref| (1/s)",
-            |s| s.mle_max_abs_error_per_s,
-        ),
-    ];
-    let ref_wall = study
-        .settings
+pub(crate) const PARETO_FIGURES: [ParetoPlot; 4] = [
+    ParetoPlot {
+        file: "tradeoff_amplitude.png",
+        column: "amplitude_max_rel_error",
+        get: |s| s.amplitude_max_rel_error,
+        label: "largest relative error of Z (–)",
+    },
+    ParetoPlot {
+        file: "tradeoff_dissipation.png",
+        column: "dissipation_max_rel_error",
+        get: |s| s.dissipation_max_rel_error,
+        label: "largest relative error of the grains' dissipation per cycle (–)",
+    },
+    ParetoPlot {
+        file: "tradeoff_effective.png",
+        column: "c_ef_rel_error",
+        get: |s| s.c_ef_rel_error,
+        label: "relative error of C_ef (–)",
+    },
+    ParetoPlot {
+        file: "tradeoff_lyapunov.png",
+        column: "mle_max_abs_error_per_s",
+        get: |s| s.mle_max_abs_error_per_s,
+        label: "largest |λ − λ_ref| (1/s)",
+    },
+];
+
+/// One setting as the Pareto figures see it.
+pub(crate) struct ParetoRow {
+    /// Label (`setting`).
+    pub label: String,
+    /// Knob (`axis`); `reference` for the reference row.
+    pub group: String,
+    /// Summed wall time (s).
+    pub wall_time_s: f64,
+    /// The error drawn, if measured.
+    pub error: Option<f64>,
+}
+
+/// The Pareto figure of `rows` (the reference row gives the dashed wall-time line; settings
+/// without a positive finite wall time or a finite error are left out), `None` when no
+/// setting is left.
+pub(crate) fn pareto_figure(
+    rows: &[ParetoRow],
+    y_label: &str,
+    title: String,
+) -> Option<ParetoFigure> {
+    let reference = rows
         .iter()
-        .find(|s| s.axis == pdamp::tradeoff::Axis::Reference)
-        .map(|s| s.wall_time_s);
-    for (file, label, get) in figs {
-        let rows: Vec<(&pdamp::tradeoff::study::SettingRow, f64)> = study
+        .find(|r| r.group == pdamp::tradeoff::Axis::Reference.as_str())
+        .map(|r| r.wall_time_s);
+    let kept: Vec<(&ParetoRow, f64)> = rows
+        .iter()
+        .filter(|r| {
+            r.group != pdamp::tradeoff::Axis::Reference.as_str()
+                && r.wall_time_s > 0.0
+                && r.wall_time_s.is_finite()
+        })
+        .filter_map(|r| r.error.filter(|e| e.is_finite()).map(|e| (r, e)))
+        .collect();
+    if kept.is_empty() {
+        return None;
+    }
+    let front = pdamp::tradeoff::pareto::pareto_front(
+        &kept
+            .iter()
+            .map(|(r, e)| (r.wall_time_s, *e))
+            .collect::<Vec<_>>(),
+    );
+    let points = kept
+        .iter()
+        .zip(front)
+        .map(|((r, e), f)| ParetoPoint {
+            label: r.label.clone(),
+            group: r.group.clone(),
+            wall_time_s: r.wall_time_s,
+            error: *e,
+            on_front: f,
+        })
+        .collect();
+    Some(ParetoFigure {
+        points,
+        y_label: y_label.into(),
+        error_floor: 1e-4,
+        reference_wall_time_s: reference,
+        title,
+    })
+}
+
+/// Size of the Pareto figures (px).
+pub(crate) const PARETO_SIZE: (u32, u32) = (1400, 1000);
+
+/// Draws the Pareto plots of a study into `out`.
+fn plot_all(study: &Study, out: &Path) -> anyhow::Result<()> {
+    let title = format!(
+        "Speed against accuracy, {} Hz",
+        study
+            .frequencies_hz
+            .iter()
+            .map(|f| format!("{f}"))
+            .collect::<Vec<_>>()
+            .join(" / ")
+    );
+    for plot in &PARETO_FIGURES {
+        let rows: Vec<ParetoRow> = study
             .settings
             .iter()
-            .filter(|s| {
-                s.axis != pdamp::tradeoff::Axis::Reference
-                    && s.wall_time_s > 0.0
-                    && s.wall_time_s.is_finite()
-            })
-            .filter_map(|s| get(s).filter(|e| e.is_finite()).map(|e| (s, e)))
-            .collect();
-        if rows.is_empty() {
-            continue;
-        }
-        let front = pdamp::tradeoff::pareto::pareto_front(
-            &rows
-                .iter()
-                .map(|(s, e)| (s.wall_time_s, *e))
-                .collect::<Vec<_>>(),
-        );
-        let points = rows
-            .iter()
-            .zip(front)
-            .map(|((s, e), f)| ParetoPoint {
+            .map(|s| ParetoRow {
                 label: s.setting.clone(),
                 group: s.axis.as_str().into(),
                 wall_time_s: s.wall_time_s,
-                error: *e,
-                on_front: f,
+                error: (plot.get)(s),
             })
             .collect();
-        let fig = ParetoFigure {
-            points,
-            y_label: label.into(),
-            error_floor: 1e-4,
-            reference_wall_time_s: ref_wall,
-            title: format!(
-                "Speed against accuracy, {} Hz",
-                study
-                    .frequencies_hz
-                    .iter()
-                    .map(|f| format!("{f}"))
-                    .collect::<Vec<_>>()
-                    .join(" / ")
-            ),
+        let Some(fig) = pareto_figure(&rows, plot.label, title.clone()) else {
+            continue;
         };
         let opts = FigureOptions {
-            width: 1400,
-            height: 1000,
+            width: PARETO_SIZE.0,
+            height: PARETO_SIZE.1,
             title: None,
         };
-        render(&fig, &out.join(file), &opts).with_context(|| format!("drawing {file}"))?;
+        render(&fig, &out.join(plot.file), &opts)
+            .with_context(|| format!("drawing {}", plot.file))?;
     }
     Ok(())
 }
