@@ -138,16 +138,16 @@ pub fn rescale_unit(x: &[f64]) -> Result<Rescaled, AnalysisError> {
     Ok(Rescaled { values, min, range })
 }
 
-/// Population standard deviation `sqrt(mean(x²) − mean(x)²)` (TISEAN's `variance` routine,
-/// which returns the standard deviation despite its name).
+/// Population standard deviation `sqrt(mean((x − mean(x))²))`, in two passes. (TISEAN's
+/// `variance` routine computes `sqrt(|mean(x²) − mean(x)²|)` in one pass, which cancels to 0 for
+/// a series with a large offset, e.g. 10⁹ + 10⁻⁷·noise; the two agree to rounding otherwise.)
 pub fn standard_deviation(x: &[f64]) -> f64 {
     if x.is_empty() {
         return 0.0;
     }
     let n = x.len() as f64;
     let mean = x.iter().sum::<f64>() / n;
-    let mean_sq = x.iter().map(|v| v * v).sum::<f64>() / n;
-    (mean_sq - mean * mean).abs().sqrt()
+    (x.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n).sqrt()
 }
 
 /// True when samples `i` and `j` are far enough apart in time to count as neighbours:
@@ -200,5 +200,15 @@ mod tests {
     #[test]
     fn standard_deviation_of_two_values() {
         assert!((standard_deviation(&[0.0, 2.0]) - 1.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn standard_deviation_survives_a_large_offset() {
+        // ±1e-7 around 1e9: the one-pass formula loses every digit (gives 0 or noise)
+        let x: Vec<f64> = (0..100)
+            .map(|i| 1e9 + if i % 2 == 0 { 1e-7 } else { -1e-7 })
+            .collect();
+        let sd = standard_deviation(&x);
+        assert!((sd / 1.1920928955078125e-7 - 1.0).abs() < 0.3, "{sd}");
     }
 }

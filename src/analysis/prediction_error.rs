@@ -127,6 +127,13 @@ pub fn prediction_error(x: &[f64], opts: &PredictionErrorOptions) -> Result<f64,
     let (lo, hi) = min_max(x);
     let range = hi - lo;
     let mut eps = opts.epsilon * sd;
+    if !(eps > 0.0 && eps.is_finite() && range.is_finite()) {
+        // the ε loop below must grow from a positive radius to the range
+        return Err(AnalysisError::NoResult(format!(
+            "the nonlinear prediction error needs a spread that floating point resolves: \
+             standard deviation {sd:e}, range {range:e}; rescale the series"
+        )));
+    }
     let mut pending: Vec<usize> = (first..n_end).collect();
     let count = pending.len();
     let mut sum_sq = 0.0;
@@ -173,6 +180,19 @@ mod tests {
         let x: Vec<f64> = (0..700).map(|i| ((i * 3) % 7) as f64).collect();
         let e = prediction_error(&x, &PredictionErrorOptions::default()).unwrap();
         assert!(e < 1e-12, "{e}");
+    }
+
+    #[test]
+    fn unresolvable_spread_is_an_error_not_a_hang() {
+        // found by the mutation fuzzer: the deviations square to 0, so ε = 0 never grew
+        let x: Vec<f64> = (0..300)
+            .map(|i| if (i * 7) % 3 == 0 { 5e-324 } else { 0.0 })
+            .collect();
+        let e = prediction_error(&x, &PredictionErrorOptions::default());
+        assert!(matches!(e, Err(AnalysisError::NoResult(_))), "{e:?}");
+        // a large offset is fine: the standard deviation is taken in two passes
+        let y: Vec<f64> = (0..300).map(|i| 1e9 + 1e-6 * (0.3 * i as f64).sin()).collect();
+        assert!(prediction_error(&y, &PredictionErrorOptions::default()).is_ok());
     }
 
     #[test]
