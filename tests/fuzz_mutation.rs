@@ -13,7 +13,9 @@
 //! or spliced from another seed, "interesting" tokens such as `1e308`, `5e-324`, `nan`,
 //! `-9223372036854775808`, `,`, `;`), deterministically from `PDAMP_FUZZ_SEED` (default 1).
 //! A panic is caught, counted and its input printed; an execution slower than
-//! [`HANG_S`] seconds counts as a hang. The test fails on any panic or hang.
+//! [`HANG_S`] seconds counts as a hang. The test fails on any panic or hang. An execution
+//! that has not ended after [`ABORT_S`] seconds (an endless loop) stops the run with its input
+//! saved under `target/fuzz-findings/`.
 
 #[path = "../fuzz/targets.rs"]
 #[allow(dead_code)]
@@ -25,6 +27,10 @@ use std::time::{Duration, Instant};
 
 /// An execution slower than this counts as a hang (s).
 const HANG_S: f64 = 2.0;
+
+/// An execution still running after this long is a hang that may never end (an endless loop):
+/// a watchdog saves its input, prints it and stops the process (s).
+const ABORT_S: u64 = 60;
 
 /// Tokens spliced into inputs.
 const TOKENS: [&str; 30] = [
@@ -190,7 +196,42 @@ struct Outcome {
     elapsed: Duration,
 }
 
-fn run_target(name: &str, f: fn(&[u8]), execs: u64, seed: u64) -> Outcome {
+/// The execution in progress, for the watchdog: its input and when it started.
+struct Current {
+    input: Vec<u8>,
+    started: Instant,
+    target: &'static str,
+}
+
+/// Starts a thread that stops the process when one execution runs longer than [`ABORT_S`],
+/// saving and printing its input first.
+fn watchdog(current: std::sync::Arc<std::sync::Mutex<Option<Current>>>) {
+    std::thread::spawn(move || loop {
+        std::thread::sleep(Duration::from_secs(1));
+        let guard = current.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(c) = guard.as_ref() {
+            let dt = c.started.elapsed();
+            if dt > Duration::from_secs(ABORT_S) {
+                let path = save_finding(c.target, "endless", 0, &c.input);
+                eprintln!(
+                    "{}: an execution has run for {:.0} s (endless loop?) on {:?} (whole input: {path})",
+                    c.target,
+                    dt.as_secs_f64(),
+                    String::from_utf8_lossy(&c.input[..c.input.len().min(400)])
+                );
+                std::process::exit(101);
+            }
+        }
+    });
+}
+
+fn run_target(
+    name: &'static str,
+    f: fn(&[u8]),
+    execs: u64,
+    seed: u64,
+    current: &std::sync::Mutex<Option<Current>>,
+) -> Outcome {
     let pool = seeds(name);
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ name.len() as u64);
     let mut out = Outcome {
@@ -208,6 +249,11 @@ fn run_target(name: &str, f: fn(&[u8]), execs: u64, seed: u64) -> Outcome {
             mutate(&mut rng, base, &pool)
         };
         let t0 = Instant::now();
+        *current.lock().unwrap_or_else(|e| e.into_inner()) = Some(Current {
+            input: input.clone(),
+            started: t0,
+            target: name,
+        });
         let r = std::panic::catch_unwind(|| f(&input));
         let dt = t0.elapsed().as_secs_f64();
         if let Err(payload) = r {
@@ -223,6 +269,7 @@ fn run_target(name: &str, f: fn(&[u8]), execs: u64, seed: u64) -> Outcome {
         }
         out.execs += 1;
     }
+    *current.lock().unwrap_or_else(|e| e.into_inner()) = None;
     out.elapsed = start.elapsed();
     out
 }
@@ -242,6 +289,8 @@ fn mutation_fuzz_every_target() {
     // the panics are caught and reported below, not printed one by one
     let hook = std::panic::take_hook();
     std::panic::set_hook(Box::new(|_| {}));
+    let current = std::sync::Arc::new(std::sync::Mutex::new(None));
+    watchdog(current.clone());
     let mut failed = Vec::new();
     println!("| target | executions | panics | hangs (> {HANG_S} s) | time |");
     println!("|---|---|---|---|---|");
@@ -249,7 +298,7 @@ fn mutation_fuzz_every_target() {
         if only.as_deref().is_some_and(|o| o != name) {
             continue;
         }
-        let o = run_target(name, f, execs, seed);
+        let o = run_target(name, f, execs, seed, &current);
         println!(
             "| {name} | {} | {} | {} | {:.1} s |",
             o.execs,
