@@ -268,6 +268,15 @@ fn run_target(
             out.hangs.push((dt, input));
         }
         out.execs += 1;
+        if out.execs.is_multiple_of(100_000) {
+            eprintln!(
+                "{name}: {} executions, {} panics, {} hangs, {:.0} s",
+                out.execs,
+                out.panics.len(),
+                out.hangs.len(),
+                start.elapsed().as_secs_f64()
+            );
+        }
     }
     *current.lock().unwrap_or_else(|e| e.into_inner()) = None;
     out.elapsed = start.elapsed();

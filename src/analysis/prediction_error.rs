@@ -191,7 +191,9 @@ mod tests {
         let e = prediction_error(&x, &PredictionErrorOptions::default());
         assert!(matches!(e, Err(AnalysisError::NoResult(_))), "{e:?}");
         // a large offset is fine: the standard deviation is taken in two passes
-        let y: Vec<f64> = (0..300).map(|i| 1e9 + 1e-6 * (0.3 * i as f64).sin()).collect();
+        let y: Vec<f64> = (0..300)
+            .map(|i| 1e9 + 1e-6 * (0.3 * i as f64).sin())
+            .collect();
         assert!(prediction_error(&y, &PredictionErrorOptions::default()).is_ok());
     }
 
