@@ -35,8 +35,11 @@ pub struct FrfFitted {
     pub base_amplitude_m: f64,
 }
 
-/// FRF figure: amplitude (mm) versus frequency (Hz), markers and lines per series, dashed
-/// reference curves, dotted fitted curves.
+/// Most points of a series that the FRF figure marks (a denser series is drawn as a line).
+pub const MAX_MARKED_POINTS: usize = 60;
+
+/// FRF figure: amplitude (mm) versus frequency (Hz), a line per series (with markers when it
+/// has at most [`MAX_MARKED_POINTS`] points), dashed reference curves, dotted fitted curves.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FrfFigure<'a> {
     /// Simulated or measured curves: x = `frequency_hz`, y = `amplitude_m`.
@@ -209,10 +212,16 @@ impl Figure for FrfFigure<'_> {
             chart
                 .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
                 .map_err(draw_err)?;
-            chart
-                .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
-                .map_err(draw_err)?;
-            legend.push(LegendEntry::new(s.label, color, LegendMark::Line(2)));
+            // a coarse sweep shows its points; on a dense one markers would only hide the curve
+            let mark = if pts.len() <= MAX_MARKED_POINTS {
+                chart
+                    .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
+                    .map_err(draw_err)?;
+                LegendMark::LineDot(2)
+            } else {
+                LegendMark::Line(2)
+            };
+            legend.push(LegendEntry::new(s.label, color, mark));
         }
         for fit in &self.fitted {
             let color = series_color(fit.series);
