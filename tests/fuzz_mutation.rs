@@ -6,6 +6,8 @@
 //! ```text
 //! cargo test --release --test fuzz_mutation -- --ignored --nocapture
 //! PDAMP_FUZZ_EXECS=1000000 cargo test --release --test fuzz_mutation -- --ignored --nocapture
+//! PDAMP_FUZZ_TARGET=analysis PDAMP_FUZZ_REPLAY=target/fuzz-findings/analysis-hang-0 \
+//!     cargo test --release --test fuzz_mutation -- --ignored --nocapture   # replay one input
 //! ```
 //!
 //! Seeds: the files in `data/` (scenes, the series) and a few hand-written inputs per target.
@@ -295,6 +297,23 @@ fn mutation_fuzz_every_target() {
         .map(|s| s.parse().expect("PDAMP_FUZZ_SEED is a number"))
         .unwrap_or(1);
     let only = std::env::var("PDAMP_FUZZ_TARGET").ok();
+    if let Ok(path) = std::env::var("PDAMP_FUZZ_REPLAY") {
+        // one saved input (e.g. from target/fuzz-findings/) through the chosen target, timed
+        let input = std::fs::read(&path).expect("PDAMP_FUZZ_REPLAY names a readable file");
+        let name = only
+            .as_deref()
+            .expect("PDAMP_FUZZ_REPLAY needs PDAMP_FUZZ_TARGET");
+        let (_, f) = targets::TARGETS
+            .iter()
+            .find(|(n, _)| *n == name)
+            .expect("PDAMP_FUZZ_TARGET names a target");
+        for _ in 0..3 {
+            let t0 = Instant::now();
+            f(&input);
+            println!("{name} on {path}: {:.3} s", t0.elapsed().as_secs_f64());
+        }
+        return;
+    }
     // the panics are caught and reported below, not printed one by one
     let hook = std::panic::take_hook();
     std::panic::set_hook(Box::new(|_| {}));
