@@ -461,7 +461,17 @@ fn field_count_message(got: usize, lay: &Layout, opts: &SeriesReadOptions, line:
         lay.fields,
         lay.delimiter.name()
     );
-    if !opts.decimal_comma && lay.delimiter == Delimiter::Comma && !line.contains('.') {
+    // a digit, a comma, a digit: the row may hold decimal commas (a row without a comma, or
+    // with a point, is just short or long)
+    let comma_between_digits = line
+        .as_bytes()
+        .windows(3)
+        .any(|w| w[0].is_ascii_digit() && w[1] == b',' && w[2].is_ascii_digit());
+    if !opts.decimal_comma
+        && lay.delimiter == Delimiter::Comma
+        && !line.contains('.')
+        && comma_between_digits
+    {
         m.push_str("; ");
         m.push_str(DECIMAL_COMMA_FIX);
     }
@@ -645,6 +655,15 @@ mod tests {
         );
         let e = err("1 2\n3 4 5\n", &opts(&["1"]));
         assert!(e.starts_with("f:2:"), "{e}");
+        // a short row without any comma is short, not a decimal-comma row
+        let e = err("a,b\n1,2\n3\n", &opts(&["1"]));
+        assert!(
+            e.contains("1 fields") && !e.contains("decimal commas"),
+            "{e}"
+        );
+        // a row of three integer-looking fields in a comma file may be decimal commas
+        let e = err("a,b\n1,2\n1,5,3\n", &opts(&["1"]));
+        assert!(e.contains("decimal commas"), "{e}");
     }
 
     #[test]

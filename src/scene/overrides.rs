@@ -139,7 +139,12 @@ pub fn parse_value(raw: &str) -> toml::Value {
         Ok(mut t) => t
             .remove("v")
             .unwrap_or_else(|| toml::Value::String(raw.to_string())),
-        Err(_) => toml::Value::String(raw.to_string()),
+        // TOML refuses a float that overflows (`1.8e308`): keep it a number (±inf), so that
+        // the key's own check names it, instead of a string of the wrong type
+        Err(_) => match raw.parse::<f64>() {
+            Ok(v) => toml::Value::Float(v),
+            Err(_) => toml::Value::String(raw.to_string()),
+        },
     }
 }
 
@@ -163,6 +168,19 @@ mod tests {
     use super::*;
 
     const BASE: &str = "[primary]\nmass = 1.0\nstiffness = 100.0\ndamping = 0.1\n[excitation]\namplitude = 0.001\nfrequency = 1.0\n[run]\nduration = 1.0\n";
+
+    #[test]
+    fn an_overflowing_number_stays_a_number() {
+        assert_eq!(parse_value("1.8e308"), toml::Value::Float(f64::INFINITY));
+        assert_eq!(parse_value("-1e999"), toml::Value::Float(f64::NEG_INFINITY));
+        assert_eq!(parse_value("impact"), toml::Value::String("impact".into()));
+        let src = SceneSource::parse(BASE).unwrap();
+        let err = src
+            .scene(&[parse_assignment("primary.stiffness=1.8e308").unwrap()])
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("primary.stiffness"), "{err}");
+    }
 
     #[test]
     fn set_overrides_and_validates() {
