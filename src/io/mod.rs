@@ -3,6 +3,7 @@
 //! atomic file writes ([`atomic_write`], synced; the one copy every writer uses).
 
 pub mod atomic;
+pub mod clock;
 pub mod csv_out;
 pub mod run_dir;
 pub mod series;

@@ -114,11 +114,8 @@ impl RunDir {
             path: path.to_path_buf(),
         };
         let marker = format!(
-            "running since {} s after the Unix epoch (process {}); a run killed or failed \
-             leaves this file\n",
-            std::time::SystemTime::now()
-                .duration_since(std::time::UNIX_EPOCH)
-                .map_or(0, |d| d.as_secs()),
+            "running since {} (process {}); a run killed or failed leaves this file\n",
+            crate::io::clock::utc_datetime(crate::io::clock::unix_now_s()),
             std::process::id()
         );
         crate::io::atomic_write(&dir.file(RUNNING), marker.as_bytes())
