@@ -200,7 +200,7 @@ def test_ctrl_c_stops_a_long_run(tmp_path):
     # 2 000 000 forcing periods take ~7 s; SIGINT from 0.5 s on must stop the run within a few
     # periods (checked at the progress reports), not after it ends. The signal is repeated
     # every 0.5 s while the call runs, as a user presses Ctrl-C again: one CI run (of many) ran
-    # to the end after a single SIGINT from the timer thread, not reproduced in 40 reruns.
+    # to the end after a single SIGINT from the timer thread, not reproduced in 21 reruns.
     import signal
     import threading
     import time
