@@ -90,10 +90,6 @@ fn main() -> anyhow::Result<()> {
         })
         .collect();
     let elapsed = start.elapsed().as_secs_f64();
-    let days = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)?
-        .as_secs()
-        / 86_400;
     let mut text = String::new();
     writeln!(
         text,
@@ -126,7 +122,7 @@ fn main() -> anyhow::Result<()> {
             .join(","),
         opts.separation,
         env!("CARGO_PKG_VERSION"),
-        civil_date(days as i64),
+        pdamp::io::clock::utc_date(pdamp::io::clock::unix_now_s()),
     )?;
     writeln!(
         text,
@@ -145,18 +141,4 @@ fn main() -> anyhow::Result<()> {
     std::fs::rename(&tmp, &out)?;
     eprintln!("wrote {out} ({} rows, {elapsed:.0} s)", jobs.len());
     Ok(())
-}
-
-/// Gregorian date YYYY-MM-DD of a day count since 1970-01-01 (H. Hinnant's civil_from_days).
-fn civil_date(days: i64) -> String {
-    let z = days + 719_468;
-    let era = z.div_euclid(146_097);
-    let doe = z - era * 146_097;
-    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
-    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    let mp = (5 * doy + 2) / 153;
-    let d = doy - (153 * mp + 2) / 5 + 1;
-    let m = if mp < 10 { mp + 3 } else { mp - 9 };
-    let y = yoe + era * 400 + i64::from(m <= 2);
-    format!("{y:04}-{m:02}-{d:02}")
 }
