@@ -192,10 +192,7 @@ pub fn section_lyapunov(
     // reference order; within a bin the candidates add in the order of the candidate list)
     let mut sum = vec![vec![0.0; steps + 1]; count];
     let mut cnt = vec![vec![0usize; steps + 1]; count];
-    let mut by_bin: Vec<usize> = Vec::with_capacity(MAX_NEIGHBOURS);
-    let mut bin_of: Vec<usize> = Vec::with_capacity(MAX_NEIGHBOURS);
     let mut bin_count = vec![0usize; count];
-    let mut bin_start = vec![0usize; count];
     // bin_sum[b · (steps + 1) + Δ]: the followed distances of bin b's candidates at Δ
     let mut bin_sum = vec![0.0f64; count * (steps + 1)];
     for (r, &k) in refs.iter().enumerate() {
@@ -203,33 +200,19 @@ pub fn section_lyapunov(
         if cand.is_empty() {
             continue;
         }
-        // the candidates grouped by bin (a counting sort, list order kept within a bin)
         bin_count.fill(0);
-        bin_of.clear();
-        for &(d, _) in cand {
+        bin_sum.fill(0.0);
+        for &(d, j) in cand {
             // every candidate is within eps_max = the last radius
             let b = eps.iter().position(|&e| d <= e).unwrap_or(count - 1);
             bin_count[b] += 1;
-            bin_of.push(b);
-        }
-        let mut start = 0;
-        for (s, &c) in bin_start.iter_mut().zip(&bin_count) {
-            *s = start;
-            start += c;
-        }
-        by_bin.resize(cand.len(), 0);
-        for (&(_, j), &b) in cand.iter().zip(&bin_of) {
-            by_bin[bin_start[b]] = j;
-            bin_start[b] += 1;
-        }
-        bin_sum.fill(0.0);
-        let mut at = 0;
-        for (b, &bc) in bin_count.iter().enumerate() {
-            let dst = &mut bin_sum[b * (steps + 1)..(b + 1) * (steps + 1)];
-            for &j in &by_bin[at..at + bc] {
-                add_followed(&flat, dim, k, j, dst);
-            }
-            at += bc;
+            add_followed(
+                &flat,
+                dim,
+                k,
+                j,
+                &mut bin_sum[b * (steps + 1)..(b + 1) * (steps + 1)],
+            );
         }
         for dn in 0..=steps {
             let (mut acc, mut n_e) = (0.0, 0usize);
@@ -301,8 +284,7 @@ fn add_followed(flat: &[f64], dim: usize, k: usize, j: usize, dst: &mut [f64]) {
     }
 }
 
-/// [`add_followed`] for `D` coordinates, four Δ at a time (lanes: the same additions in the
-/// same order as [`dist2`] per Δ, so that the compiler can use vector square roots).
+/// [`add_followed`] for `D` coordinates, four Δ at a time.
 #[inline]
 fn add_followed_n<const D: usize>(flat: &[f64], k: usize, j: usize, dst: &mut [f64]) {
     let len = dst.len() * D;
@@ -310,16 +292,9 @@ fn add_followed_n<const D: usize>(flat: &[f64], k: usize, j: usize, dst: &mut [f
     let mut blocks = dst.chunks_exact_mut(4);
     let mut at = 0;
     for o in &mut blocks {
-        let (x, y) = (&a[at..at + 4 * D], &c[at..at + 4 * D]);
-        let mut acc = [0.0f64; 4];
-        for d in 0..D {
-            for l in 0..4 {
-                let t = x[l * D + d] - y[l * D + d];
-                acc[l] += t * t;
-            }
-        }
-        for l in 0..4 {
-            o[l] += acc[l].sqrt();
+        let d4 = four_distances::<D>(&a[at..at + 4 * D], D, &c[at..at + 4 * D]);
+        for (o, d) in o.iter_mut().zip(d4) {
+            *o += d;
         }
         at += 4 * D;
     }
@@ -327,6 +302,22 @@ fn add_followed_n<const D: usize>(flat: &[f64], k: usize, j: usize, dst: &mut [f
         let b = at + i * D;
         *o += dist2(&a[b..b + D], &c[b..b + D]).sqrt();
     }
+}
+
+/// Four distances at once: lane l is `√Σ_d (a[l·stride + d] − b[l·D + d])²` with the additions
+/// of [`dist2`] in its order (so each lane equals `dist2(…).sqrt()` bit for bit, and the
+/// compiler can use vector square roots). `stride = D`: four rows of `a`; `stride = 0`: one
+/// row of `a` against four rows of `b`.
+#[inline(always)]
+fn four_distances<const D: usize>(a: &[f64], stride: usize, b: &[f64]) -> [f64; 4] {
+    let mut acc = [0.0f64; 4];
+    for d in 0..D {
+        for (l, acc) in acc.iter_mut().enumerate() {
+            let t = a[l * stride + d] - b[l * D + d];
+            *acc += t * t;
+        }
+    }
+    acc.map(f64::sqrt)
 }
 
 /// `out[j] = ‖q − row j of rows‖` (the square root of [`dist2`]) for every row (`q.len()`
@@ -345,29 +336,18 @@ fn distances_from(q: &[f64], rows: &[f64], out: &mut [f64]) {
     }
 }
 
-/// [`distances_from`] for `D` coordinates (lanes: the additions of [`dist2`] in its order).
+/// [`distances_from`] for `D` coordinates, four rows at a time.
 #[inline]
 fn distances_from_n<const D: usize>(q: &[f64], rows: &[f64], out: &mut [f64]) {
-    let q: [f64; D] = q.try_into().expect("D coordinates");
     let mut blocks = out.chunks_exact_mut(4);
     let mut at = 0;
     for o in &mut blocks {
-        let y = &rows[at..at + 4 * D];
-        let mut acc = [0.0f64; 4];
-        for (d, &qd) in q.iter().enumerate() {
-            for l in 0..4 {
-                let t = qd - y[l * D + d];
-                acc[l] += t * t;
-            }
-        }
-        for l in 0..4 {
-            o[l] = acc[l].sqrt();
-        }
+        o.copy_from_slice(&four_distances::<D>(q, 0, &rows[at..at + 4 * D]));
         at += 4 * D;
     }
     for (i, o) in blocks.into_remainder().iter_mut().enumerate() {
         let b = at + i * D;
-        *o = dist2(&q, &rows[b..b + D]).sqrt();
+        *o = dist2(q, &rows[b..b + D]).sqrt();
     }
 }
 
