@@ -200,7 +200,7 @@ struct Outcome {
 
 /// The execution in progress, for the watchdog: its input and when it started.
 struct Current {
-    input: Vec<u8>,
+    input: std::sync::Arc<Vec<u8>>,
     started: Instant,
     target: &'static str,
 }
@@ -245,14 +245,15 @@ fn run_target(
     let start = Instant::now();
     for k in 0..execs {
         let base = &pool[(k as usize) % pool.len()];
-        let input = if k < pool.len() as u64 {
+        // shared with the watchdog without copying the bytes
+        let input = std::sync::Arc::new(if k < pool.len() as u64 {
             base.clone()
         } else {
             mutate(&mut rng, base, &pool)
-        };
+        });
         let t0 = Instant::now();
         *current.lock().unwrap_or_else(|e| e.into_inner()) = Some(Current {
-            input: input.clone(),
+            input: std::sync::Arc::clone(&input),
             started: t0,
             target: name,
         });
@@ -264,10 +265,10 @@ fn run_target(
                 .cloned()
                 .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
                 .unwrap_or_default();
-            out.panics.push((msg, input.clone()));
+            out.panics.push((msg, input.to_vec()));
         }
         if dt > HANG_S {
-            out.hangs.push((dt, input));
+            out.hangs.push((dt, input.to_vec()));
         }
         out.execs += 1;
         if out.execs.is_multiple_of(100_000) {

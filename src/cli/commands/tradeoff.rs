@@ -220,7 +220,7 @@ pub(crate) fn pareto_figure(
 }
 
 /// Size of the Pareto figures (px).
-pub(crate) const PARETO_SIZE: (u32, u32) = (1400, 1000);
+const PARETO_SIZE: (u32, u32) = (1400, 1000);
 
 /// Draws the Pareto plots of a study into `out`.
 fn plot_all(study: &Study, out: &Path) -> anyhow::Result<()> {
