@@ -47,6 +47,7 @@ pub mod plot;
 pub mod prelude;
 pub mod scene;
 pub mod setup;
+pub mod simd;
 pub mod study;
 pub mod sweep;
 pub mod systems;

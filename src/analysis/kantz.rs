@@ -29,6 +29,7 @@ use crate::analysis::{
     outside_theiler_window, reject_monotonic, require_positive, rescale_unit, validate_series,
 };
 use crate::error::AnalysisError;
+use crate::simd::Simd;
 
 /// Largest embedding dimension supported by [`kantz`].
 pub const MAX_DIMENSION: usize = 16;
@@ -756,8 +757,9 @@ fn accumulate_squared_differences(a: &[f64], b: &[f64], g: &mut [f64], count: bo
 fn reference_rms(job: &Job, i: usize, sc: &mut Scratch, simd: Simd) {
     match simd {
         #[cfg(target_arch = "x86_64")]
-        // SAFETY: `Simd::Avx2` is only constructed after `is_x86_feature_detected!("avx2")`.
-        Simd::Avx2 => unsafe { reference_rms_avx2(job, i, sc) },
+        // SAFETY: `Simd::Avx2`/`Avx512` are only constructed after `is_x86_feature_detected!`
+        // found AVX2 (AVX-512 F implies it).
+        Simd::Avx2 | Simd::Avx512 => unsafe { reference_rms_avx2(job, i, sc) },
         Simd::Baseline => reference_rms_impl(job, i, sc),
     }
 }
@@ -768,26 +770,6 @@ fn reference_rms(job: &Job, i: usize, sc: &mut Scratch, simd: Simd) {
 #[target_feature(enable = "avx2")]
 fn reference_rms_avx2(job: &Job, i: usize, sc: &mut Scratch) {
     reference_rms_impl(job, i, sc);
-}
-
-/// Instruction set for the pair loops, detected once per run.
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Simd {
-    /// The target's baseline (SSE2 on x86-64).
-    Baseline,
-    /// AVX2 available at run time.
-    #[cfg(target_arch = "x86_64")]
-    Avx2,
-}
-
-impl Simd {
-    fn detect() -> Self {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            return Simd::Avx2;
-        }
-        Simd::Baseline
-    }
 }
 
 #[inline(always)]
@@ -945,8 +927,8 @@ fn finish_reference(
 ) {
     match simd {
         #[cfg(target_arch = "x86_64")]
-        // SAFETY: `Simd::Avx2` is only constructed after `is_x86_feature_detected!("avx2")`.
-        Simd::Avx2 => unsafe { finish_reference_avx2(job, sc, products, totals) },
+        // SAFETY: as in `reference_rms`.
+        Simd::Avx2 | Simd::Avx512 => unsafe { finish_reference_avx2(job, sc, products, totals) },
         Simd::Baseline => finish_reference_impl(job, sc, products, totals),
     }
 }

@@ -1,5 +1,7 @@
 //! Simplified Coulomb tangential force with viscous regularisation (2.2.12–2.2.15).
 
+use super::lanes::{dot, scale, select3, Real};
+
 /// Tangential force on grain i, opposing the slip velocity v_s of its contact point (N).
 ///
 /// Returns the force vector and the dissipated power −F_s·v_s ≥ 0 (W).
@@ -16,6 +18,8 @@
 /// # Parameters
 /// Scene B: γ_s = 10980 kg s⁻¹ m^-1/2, μ = 0.3.
 ///
+/// Branch-free ([`Real`]): the no-slip case is a lane selection.
+///
 /// # Pitfalls
 /// No tangential spring: a grain on an incline creeps at the speed where γ_s|v_s|√ζ balances
 /// the load, instead of sticking. It is history-free, so no per-contact state is needed.
@@ -23,21 +27,24 @@
 /// # References
 /// J. Schäfer, S. Dippel & D. E. Wolf, J. Phys. I France 6, 5 (1996); Sánchez (2012) §2.2.
 #[inline(always)]
-pub fn coulomb_viscous_force(
-    v_s: [f64; 3],
-    sqrt_overlap: f64,
-    f_n: f64,
-    gamma_s: f64,
-    friction: f64,
-) -> ([f64; 3], f64) {
-    let vs2 = v_s[0] * v_s[0] + v_s[1] * v_s[1] + v_s[2] * v_s[2];
-    if vs2 <= 0.0 {
-        return ([0.0; 3], 0.0);
-    }
+pub fn coulomb_viscous_force<R: Real>(
+    v_s: [R; 3],
+    sqrt_overlap: R,
+    f_n: R,
+    gamma_s: R,
+    friction: R,
+) -> ([R; 3], R) {
+    let vs2 = dot(v_s, v_s);
     let vs = vs2.sqrt();
     let mag = (gamma_s * vs * sqrt_overlap).min(friction * f_n.abs());
     let s = -mag / vs;
-    ([s * v_s[0], s * v_s[1], s * v_s[2]], mag * vs)
+    // no slip (|v_s| = 0): no force, and no 0/0
+    let slip = vs2.gt(R::splat(0.0));
+    let zero = R::splat(0.0);
+    (
+        select3(slip, scale(s, v_s), [zero; 3]),
+        R::select(slip, mag * vs, zero),
+    )
 }
 
 #[cfg(test)]

@@ -1,5 +1,7 @@
 //! Hertz normal force with the Kuwabara–Kono viscous term (2.2.8–2.2.9).
 
+use super::lanes::Real;
+
 /// Hertz stiffness k_n = (4/3) E* √R* (N m^-3/2).
 ///
 /// # Formula
@@ -41,7 +43,7 @@ pub fn hertz_stiffness(e_star: f64, r_star: f64) -> f64 {
 /// assert!((f - 1.0).abs() < 1e-9); // 1e9 · (1e-6)^{3/2} = 1 N
 /// ```
 #[inline(always)]
-pub fn hertz_normal_force(k_n: f64, overlap_m: f64, v_n_m_s: f64, gamma_n: f64) -> f64 {
+pub fn hertz_normal_force<R: Real>(k_n: R, overlap_m: R, v_n_m_s: R, gamma_n: R) -> R {
     let s = overlap_m.sqrt();
     k_n * overlap_m * s + gamma_n * v_n_m_s * s
 }
@@ -56,7 +58,7 @@ pub fn hertz_normal_force(k_n: f64, overlap_m: f64, v_n_m_s: f64, gamma_n: f64) 
 /// # Units
 /// `k_n` N m^-3/2, `overlap_m` ζ in m → N.
 #[inline(always)]
-pub fn hertz_elastic_force(k_n: f64, overlap_m: f64) -> f64 {
+pub fn hertz_elastic_force<R: Real>(k_n: R, overlap_m: R) -> R {
     k_n * overlap_m * overlap_m.sqrt()
 }
 

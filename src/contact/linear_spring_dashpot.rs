@@ -2,6 +2,7 @@
 //! (2014): stiffness from Hertz work equivalence up to the yield overlap, damping from the
 //! coefficient of restitution.
 
+use super::lanes::Real;
 use super::material::{Material, PairProperties};
 use super::restitution::linear_damping_ratio;
 use crate::error::{ModelError, Quantity};
@@ -14,7 +15,7 @@ use crate::error::{ModelError, Quantity};
 /// # Units
 /// `k_n` N/m, `overlap_m` m, `v_n_m_s` m/s (> 0 approaching), `c_n` kg/s.
 #[inline(always)]
-pub fn linear_normal_force(k_n: f64, overlap_m: f64, v_n_m_s: f64, c_n: f64) -> f64 {
+pub fn linear_normal_force<R: Real>(k_n: R, overlap_m: R, v_n_m_s: R, c_n: R) -> R {
     k_n * overlap_m + c_n * v_n_m_s
 }
 
@@ -27,7 +28,7 @@ pub fn linear_normal_force(k_n: f64, overlap_m: f64, v_n_m_s: f64, c_n: f64) -> 
 /// # Units
 /// `k_n` N/m, `overlap_m` m → N.
 #[inline(always)]
-pub fn linear_elastic_force(k_n: f64, overlap_m: f64) -> f64 {
+pub fn linear_elastic_force<R: Real>(k_n: R, overlap_m: R) -> R {
     k_n * overlap_m
 }
 

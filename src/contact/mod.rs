@@ -8,6 +8,7 @@
 
 pub mod coulomb_viscous;
 pub mod hertz_kuwabara_kono;
+pub mod lanes;
 pub mod linear_spring_dashpot;
 pub mod material;
 pub mod response;

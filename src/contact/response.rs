@@ -8,6 +8,7 @@
 
 use super::coulomb_viscous::coulomb_viscous_force;
 use super::hertz_kuwabara_kono::{hertz_elastic_force, hertz_normal_force};
+use super::lanes::{cross, dot, scale, select3, sub3, Real};
 use super::linear_spring_dashpot::{linear_elastic_force, linear_normal_force};
 
 /// Per-contact coefficients the engine precomputes once per pair at each neighbour rebuild
@@ -25,7 +26,7 @@ pub trait NormalKernel {
     /// Returns (raw total force F_n, elastic force F_el, √ζ for Hertz or 1 for linear) for
     /// stiffness `k`, damping `c`, overlap `overlap_m` ζ > 0 (m) and approach speed `v_n` ζ'
     /// (m/s, > 0 approaching).
-    fn eval(k: f64, c: f64, overlap_m: f64, v_n: f64) -> (f64, f64, f64);
+    fn eval<R: Real>(k: R, c: R, overlap_m: R, v_n: R) -> (R, R, R);
 }
 
 /// Hertz with the Kuwabara–Kono damping ([`hertz_normal_force`], (2.2.8)).
@@ -33,7 +34,7 @@ pub trait NormalKernel {
 pub struct HertzKernel;
 impl NormalKernel for HertzKernel {
     #[inline(always)]
-    fn eval(k: f64, c: f64, z: f64, v_n: f64) -> (f64, f64, f64) {
+    fn eval<R: Real>(k: R, c: R, z: R, v_n: R) -> (R, R, R) {
         (
             hertz_normal_force(k, z, v_n, c),
             hertz_elastic_force(k, z),
@@ -47,36 +48,36 @@ impl NormalKernel for HertzKernel {
 pub struct LinearKernel;
 impl NormalKernel for LinearKernel {
     #[inline(always)]
-    fn eval(k: f64, c: f64, z: f64, v_n: f64) -> (f64, f64, f64) {
+    fn eval<R: Real>(k: R, c: R, z: R, v_n: R) -> (R, R, R) {
         (
             linear_normal_force(k, z, v_n, c),
             linear_elastic_force(k, z),
-            1.0,
+            R::splat(1.0),
         )
     }
 }
 
-/// Inputs of a tangential law for one contact.
+/// Inputs of a tangential law for one contact (or one contact per lane).
 #[derive(Debug, Clone, Copy)]
-pub struct TangentialInput {
+pub struct TangentialInput<R = f64> {
     /// Slip velocity of the contact point, i relative to j (m/s).
-    pub v_s: [f64; 3],
+    pub v_s: [R; 3],
     /// Unit normal from j to i.
-    pub normal: [f64; 3],
+    pub normal: [R; 3],
     /// Overlap ζ (m).
-    pub overlap_m: f64,
+    pub overlap_m: R,
     /// Factor of the tangential terms from the normal law (√ζ Hertz, 1 linear).
-    pub factor: f64,
+    pub factor: R,
     /// Total normal force after the attraction policy (N).
-    pub f_n: f64,
+    pub f_n: R,
     /// Tangential damping coefficient `c_t` of [`ContactCoefficients`].
-    pub c_t: f64,
+    pub c_t: R,
     /// Tangential stiffness factor `k_t` of [`ContactCoefficients`].
-    pub k_t: f64,
+    pub k_t: R,
     /// Coulomb friction coefficient μ (–).
-    pub friction: f64,
+    pub friction: R,
     /// Time step (s): the spring's elongation grows by v_s dt per step.
-    pub dt: f64,
+    pub dt: R,
 }
 
 /// A tangential-force law; `history` is the contact's spring elongation ξ (m), unused by
@@ -87,7 +88,7 @@ pub trait TangentialKernel {
     /// Whether the law keeps a per-contact spring elongation.
     const HISTORY: bool;
     /// Tangential force on grain i (N) and the power −F_t·v_s booked as friction (W).
-    fn eval(c: &TangentialInput, history: &mut [f64; 3]) -> ([f64; 3], f64);
+    fn eval<R: Real>(c: &TangentialInput<R>, history: &mut [R; 3]) -> ([R; 3], R);
 }
 
 /// Frictionless contacts.
@@ -97,8 +98,9 @@ impl TangentialKernel for NoTangential {
     const ACTIVE: bool = false;
     const HISTORY: bool = false;
     #[inline(always)]
-    fn eval(_: &TangentialInput, _: &mut [f64; 3]) -> ([f64; 3], f64) {
-        ([0.0; 3], 0.0)
+    fn eval<R: Real>(_: &TangentialInput<R>, _: &mut [R; 3]) -> ([R; 3], R) {
+        let z = R::splat(0.0);
+        ([z; 3], z)
     }
 }
 
@@ -109,7 +111,7 @@ impl TangentialKernel for CoulombViscousKernel {
     const ACTIVE: bool = true;
     const HISTORY: bool = false;
     #[inline(always)]
-    fn eval(c: &TangentialInput, _: &mut [f64; 3]) -> ([f64; 3], f64) {
+    fn eval<R: Real>(c: &TangentialInput<R>, _: &mut [R; 3]) -> ([R; 3], R) {
         coulomb_viscous_force(c.v_s, c.factor, c.f_n, c.c_t, c.friction)
     }
 }
@@ -122,7 +124,7 @@ impl TangentialKernel for MindlinSpringKernel {
     const ACTIVE: bool = true;
     const HISTORY: bool = true;
     #[inline(always)]
-    fn eval(c: &TangentialInput, h: &mut [f64; 3]) -> ([f64; 3], f64) {
+    fn eval<R: Real>(c: &TangentialInput<R>, h: &mut [R; 3]) -> ([R; 3], R) {
         let k_t = c.k_t * c.overlap_m.sqrt();
         tangential_spring_force(
             c.v_s,
@@ -143,7 +145,7 @@ impl TangentialKernel for LinearSpringKernel {
     const ACTIVE: bool = true;
     const HISTORY: bool = true;
     #[inline(always)]
-    fn eval(c: &TangentialInput, h: &mut [f64; 3]) -> ([f64; 3], f64) {
+    fn eval<R: Real>(c: &TangentialInput<R>, h: &mut [R; 3]) -> ([R; 3], R) {
         tangential_spring_force(
             c.v_s,
             c.normal,
@@ -167,6 +169,8 @@ impl TangentialKernel for LinearSpringKernel {
 /// the tangential force, booked as friction; the spring's stored part ½ k_t |ξ|² is the
 /// elastic entry of the ledger).
 ///
+/// Branch-free ([`Real`]): the rotation, the cap and the reset are lane selections.
+///
 /// # Units
 /// `v_s` m/s, `normal` unit, `k_t` N/m, `c_t` kg/s, `cap` N, `dt` s, `history` m.
 ///
@@ -175,113 +179,105 @@ impl TangentialKernel for LinearSpringKernel {
 /// H. Deresiewicz, J. Appl. Mech. 20, 327 (1953); A. Di Renzo & F. P. Di Maio, Chem. Eng.
 /// Sci. 59, 525 (2004).
 #[inline(always)]
-pub fn tangential_spring_force(
-    v_s: [f64; 3],
-    normal: [f64; 3],
-    k_t: f64,
-    c_t: f64,
-    cap: f64,
-    dt: f64,
-    history: &mut [f64; 3],
-) -> ([f64; 3], f64) {
+pub fn tangential_spring_force<R: Real>(
+    v_s: [R; 3],
+    normal: [R; 3],
+    k_t: R,
+    c_t: R,
+    cap: R,
+    dt: R,
+    history: &mut [R; 3],
+) -> ([R; 3], R) {
+    let zero = R::splat(0.0);
     let h = *history;
-    let hn = h[0] * normal[0] + h[1] * normal[1] + h[2] * normal[2];
-    let mut x = [
-        h[0] - hn * normal[0],
-        h[1] - hn * normal[1],
-        h[2] - hn * normal[2],
-    ];
-    let l0 = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
-    let l1 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
-    if l1 > 0.0 && l1 != l0 {
-        let s = (l0 / l1).sqrt();
-        x = [x[0] * s, x[1] * s, x[2] * s];
-    }
+    let hn = dot(h, normal);
+    let mut x = sub3(h, scale(hn, normal));
+    // rotated: the length of h kept (where x has a length and it changed)
+    let l0 = dot(h, h);
+    let l1 = dot(x, x);
+    let rotate = R::and(l1.gt(zero), l1.ne(l0));
+    x = select3(rotate, scale((l0 / l1).sqrt(), x), x);
     for d in 0..3 {
-        x[d] += v_s[d] * dt;
+        x[d] = x[d] + v_s[d] * dt;
     }
-    let mut f = [
+    let f = [
         -(k_t * x[0] + c_t * v_s[0]),
         -(k_t * x[1] + c_t * v_s[1]),
         -(k_t * x[2] + c_t * v_s[2]),
     ];
-    let f2 = f[0] * f[0] + f[1] * f[1] + f[2] * f[2];
-    if f2 > cap * cap {
-        let s = cap / f2.sqrt();
-        f = [f[0] * s, f[1] * s, f[2] * s];
-        if k_t > 0.0 {
-            x = [
-                -(f[0] + c_t * v_s[0]) / k_t,
-                -(f[1] + c_t * v_s[1]) / k_t,
-                -(f[2] + c_t * v_s[2]) / k_t,
-            ];
-        }
-    }
-    *history = x;
-    (f, -(f[0] * v_s[0] + f[1] * v_s[1] + f[2] * v_s[2]))
+    // sliding: the force capped at μ|F_n|, the spring reset to give it
+    let f2 = dot(f, f);
+    let slide = f2.gt(cap * cap);
+    let capped = scale(cap / f2.sqrt(), f);
+    let reset = [
+        -(capped[0] + c_t * v_s[0]) / k_t,
+        -(capped[1] + c_t * v_s[1]) / k_t,
+        -(capped[2] + c_t * v_s[2]) / k_t,
+    ];
+    *history = select3(R::and(slide, k_t.gt(zero)), reset, x);
+    let f = select3(slide, capped, f);
+    (f, -dot(f, v_s))
 }
 
 /// What one contact does to grain i (grain j, if any, gets the opposite force).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct ContactResponse {
+pub struct ContactResponse<R = f64> {
     /// Total contact force on grain i (N).
-    pub force: [f64; 3],
+    pub force: [R; 3],
     /// n × F_t (N): the torque on grain i is −R_i (n × F_t), on grain j −R_j (n × F_t).
-    pub torque_arm: [f64; 3],
+    pub torque_arm: [R; 3],
     /// Power dissipated by the normal damping (F_n − F_el) ζ' (W).
-    pub p_collision: f64,
+    pub p_collision: R,
     /// Power of the tangential force −F_t·v_s (W).
-    pub p_friction: f64,
+    pub p_friction: R,
 }
 
-/// Kinematics of one contact as the engine sees it.
+/// Kinematics of one contact (or one contact per lane) as the engine sees it.
 #[derive(Debug, Clone, Copy, Default)]
-pub struct ContactKinematics {
+pub struct ContactKinematics<R = f64> {
     /// Overlap ζ > 0 (m).
-    pub overlap_m: f64,
+    pub overlap_m: R,
     /// Unit normal from j (or the wall) to i.
-    pub normal: [f64; 3],
+    pub normal: [R; 3],
     /// Relative velocity v_i − v_j (m/s) (for a wall, v_i − v_wall).
-    pub v_rel: [f64; 3],
+    pub v_rel: [R; 3],
     /// R_i ω_i + R_j ω_j (m/s) (for a wall, R_i ω_i).
-    pub spin: [f64; 3],
+    pub spin: [R; 3],
 }
 
 /// The contact response of one grain–grain or grain–wall contact (2.2.8–2.2.15): normal force
 /// of the law `N` with the attraction policy (`clamp`: total force ≥ 0), tangential force of
 /// the law `T` on the slip velocity v_s = v_t − (R_i ω_i + R_j ω_j) × n (`rotations`: with the
 /// spin term), the torque arm and the dissipated powers.
+///
+/// On `R = f64` one contact; on [`super::lanes::F64x8`] eight, each lane bitwise the `f64`
+/// result of its contact (the engine's loops run it so).
 #[inline(always)]
-pub fn contact_response<N: NormalKernel, T: TangentialKernel>(
-    k: &ContactKinematics,
-    coef: &ContactCoefficients,
+pub fn contact_response<N: NormalKernel, T: TangentialKernel, R: Real>(
+    k: &ContactKinematics<R>,
+    coef: &[R; 4],
     friction: f64,
     clamp: bool,
     rotations: bool,
     dt: f64,
-    history: &mut [f64; 3],
-) -> ContactResponse {
+    history: &mut [R; 3],
+) -> ContactResponse<R> {
     let (n, vr) = (k.normal, k.v_rel);
-    let vrn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2];
+    let vrn = dot(vr, n);
     let v_n = -vrn;
     let (raw, fel, ts) = N::eval(coef[0], coef[1], k.overlap_m, v_n);
-    let f = if clamp { raw.max(0.0) } else { raw };
+    let f = if clamp { raw.max(R::splat(0.0)) } else { raw };
+    let zero = R::splat(0.0);
     let mut out = ContactResponse {
-        force: [f * n[0], f * n[1], f * n[2]],
-        torque_arm: [0.0; 3],
+        force: scale(f, n),
+        torque_arm: [zero; 3],
         p_collision: (f - fel) * v_n,
-        p_friction: 0.0,
+        p_friction: zero,
     };
     if T::ACTIVE {
-        let mut vs = [vr[0] - vrn * n[0], vr[1] - vrn * n[1], vr[2] - vrn * n[2]];
+        let mut vs = sub3(vr, scale(vrn, n));
         if rotations {
-            let w = k.spin;
-            let wn = [
-                w[1] * n[2] - w[2] * n[1],
-                w[2] * n[0] - w[0] * n[2],
-                w[0] * n[1] - w[1] * n[0],
-            ];
-            vs = [vs[0] - wn[0], vs[1] - wn[1], vs[2] - wn[2]];
+            vs = sub3(vs, cross(k.spin, n));
         }
         let input = TangentialInput {
             v_s: vs,
@@ -291,8 +287,8 @@ pub fn contact_response<N: NormalKernel, T: TangentialKernel>(
             f_n: f,
             c_t: coef[2],
             k_t: coef[3],
-            friction,
-            dt,
+            friction: R::splat(friction),
+            dt: R::splat(dt),
         };
         let (fs, p) = T::eval(&input, history);
         out.p_friction = p;
@@ -301,11 +297,7 @@ pub fn contact_response<N: NormalKernel, T: TangentialKernel>(
             out.force[1] + fs[1],
             out.force[2] + fs[2],
         ];
-        out.torque_arm = [
-            n[1] * fs[2] - n[2] * fs[1],
-            n[2] * fs[0] - n[0] * fs[2],
-            n[0] * fs[1] - n[1] * fs[0],
-        ];
+        out.torque_arm = cross(n, fs);
     }
     out
 }

@@ -6,8 +6,9 @@ use rayon::prelude::*;
 use crate::contact::hertz_stiffness;
 use crate::contact::linear_spring_dashpot::LinearContactParams;
 use crate::contact::material::{Material, PairProperties};
+use crate::contact::lanes::{dot, F64x16, F64x8, Lanes};
 use crate::contact::response::{
-    contact_response, ContactCoefficients, ContactKinematics, ContactResponse,
+    contact_response, ContactCoefficients, ContactKinematics,
     CoulombViscousKernel, HertzKernel, LinearKernel, LinearSpringKernel, MindlinSpringKernel,
     NoTangential, NormalKernel, TangentialKernel,
 };
@@ -16,6 +17,7 @@ use crate::error::{ModelError, Quantity};
 use crate::integrate::{advance_orientation, half_kick, half_kick_predict, kick_drift};
 pub use crate::model::{BoxDrive, PrimarySystem};
 use crate::neighbor::{NeighborList, Pair, J_ROLE};
+use crate::simd::Simd;
 use crate::units::G;
 
 use super::energy::{EnergyLedger, EnergyState};
@@ -27,8 +29,6 @@ use super::model::DemModel;
 pub const PAIR_CHUNK: usize = 1024;
 /// Grains per work unit of the per-grain passes (force gathering, walls, integration).
 pub const GRAIN_CHUNK: usize = 512;
-/// Contacts whose geometry, then responses, are computed together in the pair pass.
-const STAGE: usize = 64;
 /// Default smallest grain count for which a step uses the rayon thread pool.
 pub const PARALLEL_MIN_GRAINS: usize = 2000;
 /// Default smallest grain count for which the grains are stored along the space-filling curve
@@ -230,6 +230,34 @@ pub struct DemWorld {
     by_id: Option<Box<ById>>,
     /// Time steps taken since construction (settling included).
     pub steps: u64,
+    /// Radius and coefficients shared by every grain, when all grains are alike (the loops
+    /// then read them once instead of per contact).
+    uniform: Option<Uniform>,
+    /// Instruction set of the contact loops (default: the widest this processor has; every
+    /// choice gives bitwise the same results).
+    pub simd: Simd,
+}
+
+/// What every grain shares when all grains are alike (one radius, one mass).
+#[derive(Debug, Clone, Copy)]
+struct Uniform {
+    radius: f64,
+    pair: ContactCoefficients,
+    wall: ContactCoefficients,
+}
+
+impl Uniform {
+    /// `Some` when every grain has the radius and mass of the first (a monodisperse bed):
+    /// then every pair's and every wall contact's coefficients are the same numbers.
+    fn of(laws: &Laws, radius: &[f64], mass: &[f64]) -> Option<Self> {
+        let (r, m) = (*radius.first()?, *mass.first()?);
+        let alike = radius.iter().all(|&x| x == r) && mass.iter().all(|&x| x == m);
+        alike.then(|| Uniform {
+            radius: r,
+            pair: laws.coefficients(r, m, r, m, false),
+            wall: laws.coefficients(r, m, f64::INFINITY, f64::INFINITY, true),
+        })
+    }
 }
 
 /// Sums returned by the contact loops: (F_gz, collision power, friction power).
@@ -336,6 +364,7 @@ impl DemWorld {
         let wall_coef = (0..n)
             .map(|i| laws.coefficients(radius[i], mass[i], f64::INFINITY, f64::INFINITY, true))
             .collect();
+        let uniform = Uniform::of(&laws, &radius, &mass);
         Ok(DemWorld {
             t: 0.0,
             dt,
@@ -381,6 +410,12 @@ impl DemWorld {
             sort: SortScratch::default(),
             by_id: None,
             steps: 0,
+            uniform,
+            simd: match std::env::var("PDAMP_SIMD_HACK").as_deref() {
+                Ok("0") => Simd::Baseline,
+                Ok("2") => Simd::Avx2,
+                _ => Simd::detect(),
+            },
         })
     }
 
@@ -831,6 +866,8 @@ impl DemWorld {
     ) -> LoopOut {
         let par = self.parallel();
         let ctx = PairCtx {
+            simd: self.simd,
+            uniform: self.uniform.map(|u| (u.radius, u.pair)),
             pos: &self.pos,
             vel: &self.vel_pred,
             omega: &self.omega_pred,
@@ -843,6 +880,8 @@ impl DemWorld {
         let b = self.box_size;
         let (grain_start, grain_items) = self.neighbors.grain_index();
         let gctx = GrainCtx {
+            simd: self.simd,
+            uniform_wall: self.uniform.map(|u| u.wall),
             pos: &self.pos,
             vel_pred: &self.vel_pred,
             omega_pred: &self.omega_pred,
@@ -1075,6 +1114,9 @@ fn norm(a: [f64; 3]) -> f64 {
 
 /// Shared inputs of the pair pass.
 struct PairCtx<'a> {
+    simd: Simd,
+    /// Every grain's radius and every pair's coefficients, when all grains are alike.
+    uniform: Option<(f64, ContactCoefficients)>,
     pos: &'a [[f64; 3]],
     vel: &'a [[f64; 3]],
     omega: &'a [[f64; 3]],
@@ -1086,14 +1128,20 @@ struct PairCtx<'a> {
 }
 
 /// One chunk of candidate pairs: a branch-free pass keeps the pairs in contact (and clears
-/// the others' outputs and springs), then [`contact_response`] runs on those only. Returns the
-/// chunk's (collision power, friction power, 0) (W).
+/// the others' outputs and springs), then [`contact_response`] runs on those only, `L::N`
+/// contacts at a time in lanes. Returns the chunk's (collision power, friction power, 0) (W).
 ///
 /// `SCATTER` (one thread): the forces and torques go straight into `force` and `torque` (which
 /// hold gravity and drag already), pair by pair in pair order — the same sums in the same order
 /// as the per-grain gathering of the parallel path, so both give bit-identical results.
-#[inline(never)]
-fn pair_chunk<N: NormalKernel, T: TangentialKernel, const SCATTER: bool, const LEDGER: bool>(
+#[inline(always)]
+fn pair_chunk_impl<
+    L: Lanes,
+    N: NormalKernel,
+    T: TangentialKernel,
+    const SCATTER: bool,
+    const LEDGER: bool,
+>(
     ctx: &PairCtx,
     pairs: &[Pair],
     coef: &[ContactCoefficients],
@@ -1108,7 +1156,10 @@ fn pair_chunk<N: NormalKernel, T: TangentialKernel, const SCATTER: bool, const L
         let (i, j) = (pair.i as usize, pair.j as usize);
         let d = sub(pos[i], pos[j]);
         let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-        let cut = radius[i] + radius[j];
+        let cut = match ctx.uniform {
+            Some((r, _)) => r + r,
+            None => radius[i] + radius[j],
+        };
         let on = r2 < cut * cut;
         active[m] = a as u32;
         m += on as usize;
@@ -1120,54 +1171,58 @@ fn pair_chunk<N: NormalKernel, T: TangentialKernel, const SCATTER: bool, const L
             st.history = [0.0; 3];
         }
     }
-    // staged: geometry of a block of contacts, then their responses, then the sums — short
-    // loops of independent iterations whose square roots and divisions overlap
+    // L::N contacts at a time: gathered into lanes, one lane-wise geometry and
+    // [`contact_response`] (vector instructions), then the sums contact by contact
     let (mut p_coll, mut p_fric) = (0.0, 0.0);
-    let mut kin = [ContactKinematics::default(); STAGE];
-    let mut resp = [ContactResponse::default(); STAGE];
-    for block in active[..m].chunks(STAGE) {
-        for (k, &a) in kin.iter_mut().zip(block) {
+    let mut g = PairLanes::<L>::default();
+    if let Some((r, c)) = ctx.uniform {
+        g.r_i = L::splat(r);
+        g.r_j = L::splat(r);
+        g.coef = c.map(L::splat);
+    }
+    for block in active[..m].chunks(L::N) {
+        for (l, &a) in block.iter().enumerate() {
             let pair = pairs[a as usize];
-            let (i, j) = (pair.i as usize, pair.j as usize);
-            let (ri, rj) = (radius[i], radius[j]);
-            let d = sub(pos[i], pos[j]);
-            let dist = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-            let inv = 1.0 / dist;
-            let spin = if ctx.rotations {
-                let (wi, wj) = (ctx.omega[i], ctx.omega[j]);
-                [
-                    ri * wi[0] + rj * wj[0],
-                    ri * wi[1] + rj * wj[1],
-                    ri * wi[2] + rj * wj[2],
-                ]
-            } else {
-                [0.0; 3]
-            };
-            *k = ContactKinematics {
-                overlap_m: ri + rj - dist,
-                normal: [d[0] * inv, d[1] * inv, d[2] * inv],
-                v_rel: sub(ctx.vel[i], ctx.vel[j]),
-                spin,
-            };
+            g.gather(ctx, pair.i as usize, pair.j as usize, l);
+            if ctx.uniform.is_none() {
+                for c in 0..4 {
+                    g.coef[c].set(l, coef[a as usize][c]);
+                }
+            }
+            if T::HISTORY {
+                let h = state[a as usize].history;
+                for c in 0..3 {
+                    g.history[c].set(l, h[c]);
+                }
+            }
         }
-        for ((r, k), &a) in resp.iter_mut().zip(&kin).zip(block) {
+        let r = contact_response::<N, T, L>(
+            &g.kinematics(ctx.rotations),
+            &g.coef,
+            ctx.friction,
+            ctx.clamp,
+            ctx.rotations,
+            ctx.dt,
+            &mut g.history,
+        );
+        for (l, &a) in block.iter().enumerate() {
             let a = a as usize;
-            *r = contact_response::<N, T>(
-                k,
-                &coef[a],
-                ctx.friction,
-                ctx.clamp,
-                ctx.rotations,
-                ctx.dt,
-                &mut state[a].history,
-            );
-        }
-        for (r, &a) in resp.iter().zip(block) {
-            let a = a as usize;
+            let f = [r.force[0].get(l), r.force[1].get(l), r.force[2].get(l)];
+            let t = [
+                r.torque_arm[0].get(l),
+                r.torque_arm[1].get(l),
+                r.torque_arm[2].get(l),
+            ];
+            if T::HISTORY {
+                state[a].history = [
+                    g.history[0].get(l),
+                    g.history[1].get(l),
+                    g.history[2].get(l),
+                ];
+            }
             if SCATTER {
                 let pair = pairs[a];
                 let (i, j) = (pair.i as usize, pair.j as usize);
-                let (f, t) = (r.force, r.torque_arm);
                 let fi = &mut force[i];
                 fi[0] += f[0];
                 fi[1] += f[1];
@@ -1177,7 +1232,10 @@ fn pair_chunk<N: NormalKernel, T: TangentialKernel, const SCATTER: bool, const L
                 fj[1] -= f[1];
                 fj[2] -= f[2];
                 if T::ACTIVE && ctx.rotations {
-                    let (ri, rj) = (radius[i], radius[j]);
+                    let (ri, rj) = match ctx.uniform {
+                        Some((r, _)) => (r, r),
+                        None => (radius[i], radius[j]),
+                    };
                     let ti = &mut torque[i];
                     ti[0] -= ri * t[0];
                     ti[1] -= ri * t[1];
@@ -1189,17 +1247,199 @@ fn pair_chunk<N: NormalKernel, T: TangentialKernel, const SCATTER: bool, const L
                 }
             } else {
                 let st = &mut state[a];
-                st.force = r.force;
-                st.torque_arm = r.torque_arm;
+                st.force = f;
+                st.torque_arm = t;
             }
             if LEDGER {
-                p_coll += r.p_collision;
-                p_fric += r.p_friction;
+                p_coll += r.p_collision.get(l);
+                p_fric += r.p_friction.get(l);
             }
         }
     }
     [p_coll, p_fric, 0.0]
 }
+
+/// The inputs of up to `L::N` grain–grain contacts, one contact per lane (lanes past the
+/// block's end keep an earlier contact's values: computed, never used).
+#[derive(Default)]
+struct PairLanes<L> {
+    /// r_i − r_j (m).
+    d: [L; 3],
+    /// v_i − v_j (m/s).
+    v_rel: [L; 3],
+    omega_i: [L; 3],
+    omega_j: [L; 3],
+    r_i: L,
+    r_j: L,
+    coef: [L; 4],
+    history: [L; 3],
+}
+
+impl<L: Lanes> PairLanes<L> {
+    /// Puts pair (i, j)'s positions, velocities, spins (and radii unless all grains are
+    /// alike) in lane `l`.
+    #[inline(always)]
+    fn gather(&mut self, ctx: &PairCtx, i: usize, j: usize, l: usize) {
+        let (pi, pj, vi, vj) = (ctx.pos[i], ctx.pos[j], ctx.vel[i], ctx.vel[j]);
+        for c in 0..3 {
+            self.d[c].set(l, pi[c] - pj[c]);
+            self.v_rel[c].set(l, vi[c] - vj[c]);
+        }
+        if ctx.rotations {
+            let (wi, wj) = (ctx.omega[i], ctx.omega[j]);
+            for c in 0..3 {
+                self.omega_i[c].set(l, wi[c]);
+                self.omega_j[c].set(l, wj[c]);
+            }
+        }
+        if ctx.uniform.is_none() {
+            self.r_i.set(l, ctx.radius[i]);
+            self.r_j.set(l, ctx.radius[j]);
+        }
+    }
+
+    /// Overlap R_i + R_j − |d|, normal d/|d|, relative velocity and R_i ω_i + R_j ω_j.
+    #[inline(always)]
+    fn kinematics(&self, rotations: bool) -> ContactKinematics<L> {
+        let d = self.d;
+        let dist = dot(d, d).sqrt();
+        let inv = L::splat(1.0) / dist;
+        let spin = if rotations {
+            let (wi, wj, ri, rj) = (self.omega_i, self.omega_j, self.r_i, self.r_j);
+            [
+                ri * wi[0] + rj * wj[0],
+                ri * wi[1] + rj * wj[1],
+                ri * wi[2] + rj * wj[2],
+            ]
+        } else {
+            [L::default(); 3]
+        };
+        ContactKinematics {
+            overlap_m: self.r_i + self.r_j - dist,
+            normal: [d[0] * inv, d[1] * inv, d[2] * inv],
+            v_rel: self.v_rel,
+            spin,
+        }
+    }
+}
+
+
+/// [`pair_chunk_impl`] compiled for the instruction set `ctx.simd`.
+#[inline(never)]
+fn pair_chunk<N: NormalKernel, T: TangentialKernel, const SCATTER: bool, const LEDGER: bool>(
+    ctx: &PairCtx,
+    pairs: &[Pair],
+    coef: &[ContactCoefficients],
+    state: &mut [PairState],
+    force: &mut [[f64; 3]],
+    torque: &mut [[f64; 3]],
+) -> [f64; 3] {
+    match ctx.simd {
+        // SAFETY: `Simd::Avx2`/`Avx512` come from `Simd::detect`/`available`, which checked
+        // that the processor has the feature.
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx512 => unsafe {
+            pair_chunk_avx512::<N, T, SCATTER, LEDGER>(ctx, pairs, coef, state, force, torque)
+        },
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx2 => unsafe {
+            pair_chunk_avx2::<N, T, SCATTER, LEDGER>(ctx, pairs, coef, state, force, torque)
+        },
+        Simd::Baseline => {
+            pair_chunk_impl::<F64x8, N, T, SCATTER, LEDGER>(ctx, pairs, coef, state, force, torque)
+        }
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn pair_chunk_avx2<N: NormalKernel, T: TangentialKernel, const SCATTER: bool, const LEDGER: bool>(
+    ctx: &PairCtx,
+    pairs: &[Pair],
+    coef: &[ContactCoefficients],
+    state: &mut [PairState],
+    force: &mut [[f64; 3]],
+    torque: &mut [[f64; 3]],
+) -> [f64; 3] {
+    pair_chunk_impl::<F64x8, N, T, SCATTER, LEDGER>(ctx, pairs, coef, state, force, torque)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,avx512f")]
+fn pair_chunk_avx512<
+    N: NormalKernel,
+    T: TangentialKernel,
+    const SCATTER: bool,
+    const LEDGER: bool,
+>(
+    ctx: &PairCtx,
+    pairs: &[Pair],
+    coef: &[ContactCoefficients],
+    state: &mut [PairState],
+    force: &mut [[f64; 3]],
+    torque: &mut [[f64; 3]],
+) -> [f64; 3] {
+    pair_chunk_impl::<F64x16, N, T, SCATTER, LEDGER>(ctx, pairs, coef, state, force, torque)
+}
+
+/// [`grain_chunk_impl`] compiled for the instruction set `ctx.simd`.
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool, const LEDGER: bool>(
+    ctx: &GrainCtx,
+    first: usize,
+    force: &mut [[f64; 3]],
+    torque: &mut [[f64; 3]],
+    wall_history: &mut [[[f64; 3]; 6]],
+    vel: &mut [[f64; 3]],
+    omega: &mut [[f64; 3]],
+) -> [f64; 3] {
+    let (f, t, h, v, w) = (force, torque, wall_history, vel, omega);
+    match ctx.simd {
+        // SAFETY: as in `pair_chunk`.
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx512 => unsafe { grain_chunk_avx512::<N, T, GATHER, LEDGER>(ctx, first, f, t, h, v, w) },
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx2 => unsafe { grain_chunk_avx2::<N, T, GATHER, LEDGER>(ctx, first, f, t, h, v, w) },
+        Simd::Baseline => grain_chunk_impl::<F64x8, N, T, GATHER, LEDGER>(ctx, first, f, t, h, v, w),
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[allow(clippy::too_many_arguments)]
+#[target_feature(enable = "avx2")]
+fn grain_chunk_avx2<N: NormalKernel, T: TangentialKernel, const GATHER: bool, const LEDGER: bool>(
+    ctx: &GrainCtx,
+    first: usize,
+    force: &mut [[f64; 3]],
+    torque: &mut [[f64; 3]],
+    wall_history: &mut [[[f64; 3]; 6]],
+    vel: &mut [[f64; 3]],
+    omega: &mut [[f64; 3]],
+) -> [f64; 3] {
+    grain_chunk_impl::<F64x8, N, T, GATHER, LEDGER>(ctx, first, force, torque, wall_history, vel, omega)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[allow(clippy::too_many_arguments)]
+#[target_feature(enable = "avx2,avx512f")]
+fn grain_chunk_avx512<
+    N: NormalKernel,
+    T: TangentialKernel,
+    const GATHER: bool,
+    const LEDGER: bool,
+>(
+    ctx: &GrainCtx,
+    first: usize,
+    force: &mut [[f64; 3]],
+    torque: &mut [[f64; 3]],
+    wall_history: &mut [[[f64; 3]; 6]],
+    vel: &mut [[f64; 3]],
+    omega: &mut [[f64; 3]],
+) -> [f64; 3] {
+    grain_chunk_impl::<F64x16, N, T, GATHER, LEDGER>(ctx, first, force, torque, wall_history, vel, omega)
+}
+
 
 /// Overlaps of grain i with the walls x−, x+, y−, y+, floor, ceiling (m); ≤ 0: no contact.
 /// Wall w has the normal ±e_{w/2}, + for even w (pointing into the box).
@@ -1243,6 +1483,9 @@ fn init_forces(ctx: &GrainCtx, vel: &[[f64; 3]], force: &mut [[f64; 3]], torque:
 
 /// Shared inputs of the per-grain pass.
 struct GrainCtx<'a> {
+    simd: Simd,
+    /// Every grain's wall coefficients, when all grains are alike.
+    uniform_wall: Option<ContactCoefficients>,
     pos: &'a [[f64; 3]],
     vel_pred: &'a [[f64; 3]],
     omega_pred: &'a [[f64; 3]],
@@ -1279,8 +1522,14 @@ struct GrainCtx<'a> {
 /// With `ctx.kick` the chunk's grains then get the step's second half kick (2.2.5),
 /// v ← v + (dt/2) F/m and ω ← ω + (dt/2) τ/I, their forces being complete.
 #[allow(clippy::too_many_arguments)]
-#[inline(never)]
-fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool, const LEDGER: bool>(
+#[inline(always)]
+fn grain_chunk_impl<
+    L: Lanes,
+    N: NormalKernel,
+    T: TangentialKernel,
+    const GATHER: bool,
+    const LEDGER: bool,
+>(
     ctx: &GrainCtx,
     first: usize,
     force: &mut [[f64; 3]],
@@ -1289,7 +1538,6 @@ fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool, const L
     vel: &mut [[f64; 3]],
     omega: &mut [[f64; 3]],
 ) -> [f64; 3] {
-    let vw = ctx.wall_v;
     let (mut fgz, mut p_coll, mut p_fric) = (0.0, 0.0, 0.0);
     let mut walls = [0u32; 6 * GRAIN_CHUNK];
     let mut m = 0usize;
@@ -1348,55 +1596,52 @@ fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool, const L
             }
         }
     }
-    // staged like the pair pass: geometry of a block of wall contacts, their responses, sums
-    let mut kin = [ContactKinematics::default(); STAGE];
-    let mut resp = [ContactResponse::default(); STAGE];
-    for block in walls[..m].chunks(STAGE) {
-        for (k, &e) in kin.iter_mut().zip(block) {
-            let (l, w) = (e as usize / 6, e as usize % 6);
-            let i = first + l;
-            let r = ctx.radius[i];
-            let (vp, om) = (ctx.vel_pred[i], ctx.omega_pred[i]);
-            let (axis, s) = (w / 2, 1.0 - 2.0 * (w % 2) as f64);
-            let mut n = [0.0; 3];
-            n[axis] = s;
-            *k = ContactKinematics {
-                overlap_m: wall_overlaps(ctx, i)[w],
-                normal: n,
-                v_rel: [vp[0], vp[1], vp[2] - vw],
-                spin: [r * om[0], r * om[1], r * om[2]],
-            };
+    // eight wall contacts at a time in lanes, like the pair pass
+    let mut g = WallLanes::<L>::default();
+    if let Some(c) = ctx.uniform_wall {
+        g.coef = c.map(L::splat);
+    }
+    for block in walls[..m].chunks(L::N) {
+        for (l, &e) in block.iter().enumerate() {
+            let (k, w) = (e as usize / 6, e as usize % 6);
+            g.gather(ctx, first + k, w, l);
+            if T::HISTORY {
+                for c in 0..3 {
+                    g.history[c].set(l, wall_history[k][w][c]);
+                }
+            }
         }
-        for ((rs, k), &e) in resp.iter_mut().zip(&kin).zip(block) {
-            let (l, w) = (e as usize / 6, e as usize % 6);
-            *rs = contact_response::<N, T>(
-                k,
-                &ctx.wall_coef[first + l],
-                ctx.friction,
-                ctx.clamp,
-                ctx.rotations,
-                ctx.dt,
-                &mut wall_history[l][w],
-            );
-        }
-        for (rs, &e) in resp.iter().zip(block) {
-            let l = e as usize / 6;
-            let r = ctx.radius[first + l];
+        let rs = contact_response::<N, T, L>(
+            &g.kin,
+            &g.coef,
+            ctx.friction,
+            ctx.clamp,
+            ctx.rotations,
+            ctx.dt,
+            &mut g.history,
+        );
+        for (l, &e) in block.iter().enumerate() {
+            let (k, w) = (e as usize / 6, e as usize % 6);
+            let r = ctx.radius[first + k];
+            if T::HISTORY {
+                wall_history[k][w] = [g.history[0].get(l), g.history[1].get(l), g.history[2].get(l)];
+            }
             if LEDGER {
-                p_coll += rs.p_collision;
-                p_fric += rs.p_friction;
+                p_coll += rs.p_collision.get(l);
+                p_fric += rs.p_friction.get(l);
             }
-            let fi = &mut force[l];
-            fi[0] += rs.force[0];
-            fi[1] += rs.force[1];
-            fi[2] += rs.force[2];
+            let f = [rs.force[0].get(l), rs.force[1].get(l), rs.force[2].get(l)];
+            let fi = &mut force[k];
+            fi[0] += f[0];
+            fi[1] += f[1];
+            fi[2] += f[2];
             if T::ACTIVE && ctx.rotations {
-                let ti = &mut torque[l];
-                ti[0] -= r * rs.torque_arm[0];
-                ti[1] -= r * rs.torque_arm[1];
-                ti[2] -= r * rs.torque_arm[2];
+                let ti = &mut torque[k];
+                ti[0] -= r * rs.torque_arm[0].get(l);
+                ti[1] -= r * rs.torque_arm[1].get(l);
+                ti[2] -= r * rs.torque_arm[2].get(l);
             }
-            fgz -= rs.force[2];
+            fgz -= f[2];
         }
     }
     if ctx.kick {
@@ -1408,4 +1653,37 @@ fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool, const L
         }
     }
     [fgz, p_coll, p_fric]
+}
+
+/// The kinematics and coefficients of up to [`LANES`] grain–wall contacts, one per lane.
+#[derive(Default)]
+struct WallLanes<L> {
+    kin: ContactKinematics<L>,
+    coef: [L; 4],
+    history: [L; 3],
+}
+
+impl<L: Lanes> WallLanes<L> {
+    /// Puts grain i's contact with wall `w` (normal ±e_{w/2}, + for even w) in lane `l`.
+    #[inline(always)]
+    fn gather(&mut self, ctx: &GrainCtx, i: usize, w: usize, l: usize) {
+        let r = ctx.radius[i];
+        let (vp, om) = (ctx.vel_pred[i], ctx.omega_pred[i]);
+        let (axis, s) = (w / 2, 1.0 - 2.0 * (w % 2) as f64);
+        let k = &mut self.kin;
+        k.overlap_m.set(l, wall_overlaps(ctx, i)[w]);
+        for c in 0..3 {
+            k.normal[c].set(l, if c == axis { s } else { 0.0 });
+            k.spin[c].set(l, r * om[c]);
+        }
+        k.v_rel[0].set(l, vp[0]);
+        k.v_rel[1].set(l, vp[1]);
+        k.v_rel[2].set(l, vp[2] - ctx.wall_v);
+        if ctx.uniform_wall.is_none() {
+            let cf = ctx.wall_coef[i];
+            for c in 0..4 {
+                self.coef[c].set(l, cf[c]);
+            }
+        }
+    }
 }
