@@ -4,7 +4,7 @@
 //! branch-free: where a law branches (Coulomb cap, no slip), both sides are computed and the
 //! result is chosen with [`Real::select`]. The tests check the kernels on `f64`; the engine
 //! runs the same functions on [`F64x8`], eight contacts per call, which the compiler turns into
-//! vector instructions (AVX2 or AVX-512 where the processor has them, see `dem::world`).
+//! vector instructions (AVX2 where the processor has it, see [`crate::simd`]).
 //!
 //! Every lane operation is the IEEE operation of `f64` (`+ − × ÷ √`, `f64::min`/`max`/`abs`;
 //! no fused multiply–add), so a contact computed in a lane of [`F64x8`] is bitwise the contact
@@ -243,10 +243,13 @@ macro_rules! lanes_type {
     };
 }
 
-lanes_type!(F64x2, 2, 16, "Two `f64` lanes (one SSE2 register).");
-lanes_type!(F64x4, 4, 32, "Four `f64` lanes (one AVX2 register).");
-lanes_type!(F64x8, 8, 64, "Eight `f64` lanes (one AVX-512 register).");
-lanes_type!(F64x16, 16, 64, "Sixteen `f64` lanes.");
+lanes_type!(
+    F64x8,
+    8,
+    64,
+    "Eight `f64` lanes: two AVX2 registers (two independent chains per operation: measured \
+     faster on the DEM loops than four lanes, and than eight or sixteen AVX-512 lanes)."
+);
 
 /// `a · b` of two 3-vectors.
 #[inline(always)]
@@ -300,7 +303,10 @@ mod tests {
     fn lanes_are_bitwise_scalar() {
         let a = [1.5, -0.0, 0.0, f64::INFINITY, 3e-300, -7.25, f64::NAN, 2.0];
         let b = [0.3, 0.0, -0.0, 1.0, 1e10, -7.25, 1.0, f64::NAN];
-        let (x, y) = (lanes(a), lanes(b));
+        let (x, y) = (
+            std::hint::black_box(lanes(a)),
+            std::hint::black_box(lanes(b)),
+        );
         let ops: [(F64x8, fn(f64, f64) -> f64); 8] = [
             (x + y, |p, q| p + q),
             (x - y, |p, q| p - q),
@@ -309,11 +315,19 @@ mod tests {
             (x.min(y), f64::min),
             (x.max(y), f64::max),
             (Real::sqrt(x.abs()), |p, _| p.abs().sqrt()),
-            (R8::select(x.gt(y), x, -y), |p, q| if p > q { p } else { -q }),
+            (
+                R8::select(x.gt(y), x, -y),
+                |p, q| if p > q { p } else { -q },
+            ),
         ];
         for (v, f) in ops {
             for k in 0..LANES {
-                assert_eq!(v.0[k].to_bits(), f(a[k], b[k]).to_bits(), "lane {k}");
+                // NaN: any NaN (its sign and payload depend on where the compiler folded it)
+                let (x, y) = (v.0[k], f(a[k], b[k]));
+                assert!(
+                    x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan()),
+                    "lane {k}"
+                );
             }
         }
     }

@@ -4,13 +4,13 @@ use nalgebra::UnitQuaternion;
 use rayon::prelude::*;
 
 use crate::contact::hertz_stiffness;
+use crate::contact::lanes::{dot, F64x8, Lanes};
 use crate::contact::linear_spring_dashpot::LinearContactParams;
 use crate::contact::material::{Material, PairProperties};
-use crate::contact::lanes::{dot, F64x16, F64x8, Lanes};
 use crate::contact::response::{
-    contact_response, ContactCoefficients, ContactKinematics,
-    CoulombViscousKernel, HertzKernel, LinearKernel, LinearSpringKernel, MindlinSpringKernel,
-    NoTangential, NormalKernel, TangentialKernel,
+    contact_response, ContactCoefficients, ContactKinematics, CoulombViscousKernel, HertzKernel,
+    LinearKernel, LinearSpringKernel, MindlinSpringKernel, NoTangential, NormalKernel,
+    TangentialKernel,
 };
 use crate::contact::{AttractionPolicy, NormalLaw, TangentialLaw};
 use crate::error::{ModelError, Quantity};
@@ -411,11 +411,7 @@ impl DemWorld {
             by_id: None,
             steps: 0,
             uniform,
-            simd: match std::env::var("PDAMP_SIMD_HACK").as_deref() {
-                Ok("0") => Simd::Baseline,
-                Ok("2") => Simd::Avx2,
-                _ => Simd::detect(),
-            },
+            simd: Simd::detect(),
         })
     }
 
@@ -1323,7 +1319,6 @@ impl<L: Lanes> PairLanes<L> {
     }
 }
 
-
 /// [`pair_chunk_impl`] compiled for the instruction set `ctx.simd`.
 #[inline(never)]
 fn pair_chunk<N: NormalKernel, T: TangentialKernel, const SCATTER: bool, const LEDGER: bool>(
@@ -1335,12 +1330,8 @@ fn pair_chunk<N: NormalKernel, T: TangentialKernel, const SCATTER: bool, const L
     torque: &mut [[f64; 3]],
 ) -> [f64; 3] {
     match ctx.simd {
-        // SAFETY: `Simd::Avx2`/`Avx512` come from `Simd::detect`/`available`, which checked
-        // that the processor has the feature.
-        #[cfg(target_arch = "x86_64")]
-        Simd::Avx512 => unsafe {
-            pair_chunk_avx512::<N, T, SCATTER, LEDGER>(ctx, pairs, coef, state, force, torque)
-        },
+        // SAFETY: `Simd::Avx2` comes from `Simd::detect`/`available`, which checked that the
+        // processor has AVX2.
         #[cfg(target_arch = "x86_64")]
         Simd::Avx2 => unsafe {
             pair_chunk_avx2::<N, T, SCATTER, LEDGER>(ctx, pairs, coef, state, force, torque)
@@ -1353,20 +1344,7 @@ fn pair_chunk<N: NormalKernel, T: TangentialKernel, const SCATTER: bool, const L
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn pair_chunk_avx2<N: NormalKernel, T: TangentialKernel, const SCATTER: bool, const LEDGER: bool>(
-    ctx: &PairCtx,
-    pairs: &[Pair],
-    coef: &[ContactCoefficients],
-    state: &mut [PairState],
-    force: &mut [[f64; 3]],
-    torque: &mut [[f64; 3]],
-) -> [f64; 3] {
-    pair_chunk_impl::<F64x8, N, T, SCATTER, LEDGER>(ctx, pairs, coef, state, force, torque)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,avx512f")]
-fn pair_chunk_avx512<
+fn pair_chunk_avx2<
     N: NormalKernel,
     T: TangentialKernel,
     const SCATTER: bool,
@@ -1379,7 +1357,7 @@ fn pair_chunk_avx512<
     force: &mut [[f64; 3]],
     torque: &mut [[f64; 3]],
 ) -> [f64; 3] {
-    pair_chunk_impl::<F64x16, N, T, SCATTER, LEDGER>(ctx, pairs, coef, state, force, torque)
+    pair_chunk_impl::<F64x8, N, T, SCATTER, LEDGER>(ctx, pairs, coef, state, force, torque)
 }
 
 /// [`grain_chunk_impl`] compiled for the instruction set `ctx.simd`.
@@ -1398,32 +1376,19 @@ fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool, const L
     match ctx.simd {
         // SAFETY: as in `pair_chunk`.
         #[cfg(target_arch = "x86_64")]
-        Simd::Avx512 => unsafe { grain_chunk_avx512::<N, T, GATHER, LEDGER>(ctx, first, f, t, h, v, w) },
-        #[cfg(target_arch = "x86_64")]
-        Simd::Avx2 => unsafe { grain_chunk_avx2::<N, T, GATHER, LEDGER>(ctx, first, f, t, h, v, w) },
-        Simd::Baseline => grain_chunk_impl::<F64x8, N, T, GATHER, LEDGER>(ctx, first, f, t, h, v, w),
+        Simd::Avx2 => unsafe {
+            grain_chunk_avx2::<N, T, GATHER, LEDGER>(ctx, first, f, t, h, v, w)
+        },
+        Simd::Baseline => {
+            grain_chunk_impl::<F64x8, N, T, GATHER, LEDGER>(ctx, first, f, t, h, v, w)
+        }
     }
 }
 
 #[cfg(target_arch = "x86_64")]
 #[allow(clippy::too_many_arguments)]
 #[target_feature(enable = "avx2")]
-fn grain_chunk_avx2<N: NormalKernel, T: TangentialKernel, const GATHER: bool, const LEDGER: bool>(
-    ctx: &GrainCtx,
-    first: usize,
-    force: &mut [[f64; 3]],
-    torque: &mut [[f64; 3]],
-    wall_history: &mut [[[f64; 3]; 6]],
-    vel: &mut [[f64; 3]],
-    omega: &mut [[f64; 3]],
-) -> [f64; 3] {
-    grain_chunk_impl::<F64x8, N, T, GATHER, LEDGER>(ctx, first, force, torque, wall_history, vel, omega)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[allow(clippy::too_many_arguments)]
-#[target_feature(enable = "avx2,avx512f")]
-fn grain_chunk_avx512<
+fn grain_chunk_avx2<
     N: NormalKernel,
     T: TangentialKernel,
     const GATHER: bool,
@@ -1437,9 +1402,16 @@ fn grain_chunk_avx512<
     vel: &mut [[f64; 3]],
     omega: &mut [[f64; 3]],
 ) -> [f64; 3] {
-    grain_chunk_impl::<F64x16, N, T, GATHER, LEDGER>(ctx, first, force, torque, wall_history, vel, omega)
+    grain_chunk_impl::<F64x8, N, T, GATHER, LEDGER>(
+        ctx,
+        first,
+        force,
+        torque,
+        wall_history,
+        vel,
+        omega,
+    )
 }
-
 
 /// Overlaps of grain i with the walls x−, x+, y−, y+, floor, ceiling (m); ≤ 0: no contact.
 /// Wall w has the normal ±e_{w/2}, + for even w (pointing into the box).
@@ -1624,7 +1596,11 @@ fn grain_chunk_impl<
             let (k, w) = (e as usize / 6, e as usize % 6);
             let r = ctx.radius[first + k];
             if T::HISTORY {
-                wall_history[k][w] = [g.history[0].get(l), g.history[1].get(l), g.history[2].get(l)];
+                wall_history[k][w] = [
+                    g.history[0].get(l),
+                    g.history[1].get(l),
+                    g.history[2].get(l),
+                ];
             }
             if LEDGER {
                 p_coll += rs.p_collision.get(l);

@@ -12,6 +12,7 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use pdamp::contact::hertz_normal_force;
+use pdamp::contact::lanes::{F64x8, Real};
 use pdamp::contact::response::{
     contact_response, ContactKinematics, CoulombViscousKernel, HertzKernel, MindlinSpringKernel,
 };
@@ -132,7 +133,7 @@ fn bench_response(c: &mut Criterion) {
     g.bench_function("hertz_coulomb_viscous", |b| {
         let mut h = [0.0; 3];
         b.iter(|| {
-            contact_response::<HertzKernel, CoulombViscousKernel>(
+            contact_response::<HertzKernel, CoulombViscousKernel, f64>(
                 black_box(&k),
                 &coef,
                 0.3,
@@ -146,9 +147,32 @@ fn bench_response(c: &mut Criterion) {
     g.bench_function("hertz_mindlin", |b| {
         let mut h = [0.0; 3];
         b.iter(|| {
-            contact_response::<HertzKernel, MindlinSpringKernel>(
+            contact_response::<HertzKernel, MindlinSpringKernel, f64>(
                 black_box(&k),
                 &coef,
+                0.3,
+                true,
+                true,
+                1e-7,
+                &mut h,
+            )
+        })
+    });
+    // the same contact in the eight lanes the engine's loops use (baseline instruction set
+    // here; the engine runs its AVX2 build where the processor has it): per call, 8 contacts
+    let k8 = ContactKinematics {
+        overlap_m: F64x8::splat(k.overlap_m),
+        normal: k.normal.map(F64x8::splat),
+        v_rel: k.v_rel.map(F64x8::splat),
+        spin: k.spin.map(F64x8::splat),
+    };
+    let coef8 = coef.map(F64x8::splat);
+    g.bench_function("hertz_coulomb_viscous_x8", |b| {
+        let mut h = [F64x8::splat(0.0); 3];
+        b.iter(|| {
+            contact_response::<HertzKernel, CoulombViscousKernel, F64x8>(
+                black_box(&k8),
+                &coef8,
                 0.3,
                 true,
                 true,
