@@ -251,6 +251,20 @@ lanes_type!(
      faster on the DEM loops than four lanes, and than eight or sixteen AVX-512 lanes)."
 );
 
+/// Sets lane `l` of each of `K` lane vectors to the components of `x`.
+#[inline(always)]
+pub fn set_lane<L: Lanes, const K: usize>(v: &mut [L; K], l: usize, x: [f64; K]) {
+    for (v, x) in v.iter_mut().zip(x) {
+        v.set(l, x);
+    }
+}
+
+/// Lane `l` of each of `K` lane vectors.
+#[inline(always)]
+pub fn get_lane<L: Lanes, const K: usize>(v: &[L; K], l: usize) -> [f64; K] {
+    std::array::from_fn(|c| v[c].get(l))
+}
+
 /// `a · b` of two 3-vectors.
 #[inline(always)]
 pub fn dot<R: Real>(a: [R; 3], b: [R; 3]) -> R {
@@ -307,7 +321,8 @@ mod tests {
             std::hint::black_box(lanes(a)),
             std::hint::black_box(lanes(b)),
         );
-        let ops: [(F64x8, fn(f64, f64) -> f64); 8] = [
+        type Op = fn(f64, f64) -> f64;
+        let ops: [(F64x8, Op); 8] = [
             (x + y, |p, q| p + q),
             (x - y, |p, q| p - q),
             (x * y, |p, q| p * q),

@@ -4,7 +4,7 @@ use nalgebra::UnitQuaternion;
 use rayon::prelude::*;
 
 use crate::contact::hertz_stiffness;
-use crate::contact::lanes::{dot, F64x8, Lanes};
+use crate::contact::lanes::{dot, get_lane, set_lane, F64x8, Lanes};
 use crate::contact::linear_spring_dashpot::LinearContactParams;
 use crate::contact::material::{Material, PairProperties};
 use crate::contact::response::{
@@ -1181,15 +1181,10 @@ fn pair_chunk_impl<
             let pair = pairs[a as usize];
             g.gather(ctx, pair.i as usize, pair.j as usize, l);
             if ctx.uniform.is_none() {
-                for c in 0..4 {
-                    g.coef[c].set(l, coef[a as usize][c]);
-                }
+                set_lane(&mut g.coef, l, coef[a as usize]);
             }
             if T::HISTORY {
-                let h = state[a as usize].history;
-                for c in 0..3 {
-                    g.history[c].set(l, h[c]);
-                }
+                set_lane(&mut g.history, l, state[a as usize].history);
             }
         }
         let r = contact_response::<N, T, L>(
@@ -1203,18 +1198,9 @@ fn pair_chunk_impl<
         );
         for (l, &a) in block.iter().enumerate() {
             let a = a as usize;
-            let f = [r.force[0].get(l), r.force[1].get(l), r.force[2].get(l)];
-            let t = [
-                r.torque_arm[0].get(l),
-                r.torque_arm[1].get(l),
-                r.torque_arm[2].get(l),
-            ];
+            let (f, t) = (get_lane(&r.force, l), get_lane(&r.torque_arm, l));
             if T::HISTORY {
-                state[a].history = [
-                    g.history[0].get(l),
-                    g.history[1].get(l),
-                    g.history[2].get(l),
-                ];
+                state[a].history = get_lane(&g.history, l);
             }
             if SCATTER {
                 let pair = pairs[a];
@@ -1578,9 +1564,7 @@ fn grain_chunk_impl<
             let (k, w) = (e as usize / 6, e as usize % 6);
             g.gather(ctx, first + k, w, l);
             if T::HISTORY {
-                for c in 0..3 {
-                    g.history[c].set(l, wall_history[k][w][c]);
-                }
+                set_lane(&mut g.history, l, wall_history[k][w]);
             }
         }
         let rs = contact_response::<N, T, L>(
@@ -1596,26 +1580,22 @@ fn grain_chunk_impl<
             let (k, w) = (e as usize / 6, e as usize % 6);
             let r = ctx.radius[first + k];
             if T::HISTORY {
-                wall_history[k][w] = [
-                    g.history[0].get(l),
-                    g.history[1].get(l),
-                    g.history[2].get(l),
-                ];
+                wall_history[k][w] = get_lane(&g.history, l);
             }
             if LEDGER {
                 p_coll += rs.p_collision.get(l);
                 p_fric += rs.p_friction.get(l);
             }
-            let f = [rs.force[0].get(l), rs.force[1].get(l), rs.force[2].get(l)];
+            let (f, t) = (get_lane(&rs.force, l), get_lane(&rs.torque_arm, l));
             let fi = &mut force[k];
             fi[0] += f[0];
             fi[1] += f[1];
             fi[2] += f[2];
             if T::ACTIVE && ctx.rotations {
                 let ti = &mut torque[k];
-                ti[0] -= r * rs.torque_arm[0].get(l);
-                ti[1] -= r * rs.torque_arm[1].get(l);
-                ti[2] -= r * rs.torque_arm[2].get(l);
+                ti[0] -= r * t[0];
+                ti[1] -= r * t[1];
+                ti[2] -= r * t[2];
             }
             fgz -= f[2];
         }
@@ -1648,18 +1628,13 @@ impl<L: Lanes> WallLanes<L> {
         let (axis, s) = (w / 2, 1.0 - 2.0 * (w % 2) as f64);
         let k = &mut self.kin;
         k.overlap_m.set(l, wall_overlaps(ctx, i)[w]);
-        for c in 0..3 {
-            k.normal[c].set(l, if c == axis { s } else { 0.0 });
-            k.spin[c].set(l, r * om[c]);
-        }
-        k.v_rel[0].set(l, vp[0]);
-        k.v_rel[1].set(l, vp[1]);
-        k.v_rel[2].set(l, vp[2] - ctx.wall_v);
+        let mut n = [0.0; 3];
+        n[axis] = s;
+        set_lane(&mut k.normal, l, n);
+        set_lane(&mut k.spin, l, [r * om[0], r * om[1], r * om[2]]);
+        set_lane(&mut k.v_rel, l, [vp[0], vp[1], vp[2] - ctx.wall_v]);
         if ctx.uniform_wall.is_none() {
-            let cf = ctx.wall_coef[i];
-            for c in 0..4 {
-                self.coef[c].set(l, cf[c]);
-            }
+            set_lane(&mut self.coef, l, ctx.wall_coef[i]);
         }
     }
 }
