@@ -15,7 +15,8 @@
 # most PDAMP_SETTLE s, stops at a mean speed < 1 mm/s) and drives NWARM + NRUN steps; its
 # figure: `particle_steps_per_s` of summary.json (grains x driven steps / wall time).
 # Both on one core (taskset -c $CPU, RAYON_NUM_THREADS=1), alternating, REPEAT rounds, medians.
-# With THREADS2=1 pdamp also runs on 2 threads (no taskset) for the thread speed-up column.
+# With THREADS2=1 pdamp also runs on 2 threads (no taskset) for the thread speed-up column
+# (since PARALLEL_MIN_THREADS = 3, a 2-thread pool runs the one-thread path: ~1.00x).
 #
 # usage: bench/dem_vs_liggghts.sh                       # N = 250 4000 16000 64000, 3 rounds
 #        NS="250 4000" REPEAT=3 THREADS2=1 bench/dem_vs_liggghts.sh

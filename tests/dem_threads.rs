@@ -60,6 +60,7 @@ fn run(
         let (dt, _) = choose_dt(&model, &drive(), None, DEFAULT_DT_FRACTION).unwrap();
         let mut w = initial_world(&model, drive(), dt, 0.0).unwrap();
         w.parallel_min_grains = if parallel { 0 } else { usize::MAX };
+        w.parallel_min_threads = 2;
         // the lattice falls onto the floor (settling drag on), then the floor shakes
         settle(&mut w, 0.03);
         w.start_drive();

@@ -30,7 +30,13 @@ pub const PAIR_CHUNK: usize = 1024;
 /// Grains per work unit of the per-grain passes (force gathering, walls, integration).
 pub const GRAIN_CHUNK: usize = 512;
 /// Default smallest grain count for which a step uses the rayon thread pool.
-pub const PARALLEL_MIN_GRAINS: usize = 2000;
+pub const PARALLEL_MIN_GRAINS: usize = 16_000;
+/// Default smallest pool size for which a step uses the rayon thread pool. The parallel path
+/// (pair responses stored per pair, then gathered per grain; three pool sections per step)
+/// costs about twice the one-thread path's work per thread: on 2 threads it measured 0.46–0.65×
+/// the one-thread speed at N = 4000 and 0.86–1.05× at 16 000–64 000 (bench/README.md), so
+/// two threads run the one-thread path.
+pub const PARALLEL_MIN_THREADS: usize = 3;
 /// Default smallest grain count for which the grains are stored along the space-filling curve
 /// (re-sorted at every neighbour rebuild); smaller beds fit the caches in any order.
 pub const SORT_MIN_GRAINS: usize = 1000;
@@ -219,6 +225,9 @@ pub struct DemWorld {
     /// Smallest grain count for which a step uses the rayon pool (default
     /// [`PARALLEL_MIN_GRAINS`]); results do not depend on it nor on the thread count.
     pub parallel_min_grains: usize,
+    /// Smallest pool size (≥ 2) for which a step uses the rayon pool (default
+    /// [`PARALLEL_MIN_THREADS`]).
+    pub parallel_min_threads: usize,
     /// Smallest grain count for which the grains are kept in space-filling-curve order
     /// (default [`SORT_MIN_GRAINS`]; `usize::MAX`: never sorted, slot = grain id).
     pub sort_min_grains: usize,
@@ -405,6 +414,7 @@ impl DemWorld {
             history_carry: Vec::new(),
             partials: Vec::new(),
             parallel_min_grains: PARALLEL_MIN_GRAINS,
+            parallel_min_threads: PARALLEL_MIN_THREADS,
             sort_min_grains: SORT_MIN_GRAINS,
             id: (0..n as u32).collect(),
             sort: SortScratch::default(),
@@ -743,7 +753,8 @@ impl DemWorld {
 
     /// Whether this step uses the rayon pool.
     fn parallel(&self) -> bool {
-        self.len() >= self.parallel_min_grains && rayon::current_num_threads() > 1
+        self.len() >= self.parallel_min_grains
+            && rayon::current_num_threads() >= self.parallel_min_threads.max(2)
     }
 
     /// Rebuilds the neighbour list, the per-pair coefficients (computed here only, never in
