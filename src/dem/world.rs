@@ -921,7 +921,14 @@ impl DemWorld {
                 .zip(pairs.par_chunks(PAIR_CHUNK))
                 .zip(coef.par_chunks(PAIR_CHUNK))
                 .map(|((s, p), c)| {
-                    pair_chunk::<N, T, false, LEDGER>(&ctx, p, c, s, &mut [], &mut [])
+                    let chunk = PairChunk {
+                        pairs: p,
+                        coef: c,
+                        state: s,
+                        force: &mut [],
+                        torque: &mut [],
+                    };
+                    pair_chunk::<N, T, false, LEDGER>(&ctx, chunk)
                 })
                 .collect_into_vec(&mut self.partials);
         } else {
@@ -932,14 +939,14 @@ impl DemWorld {
                 .zip(pairs.chunks(PAIR_CHUNK))
                 .zip(coef.chunks(PAIR_CHUNK))
             {
-                let part = pair_chunk::<N, T, true, LEDGER>(
-                    &ctx,
-                    p,
-                    c,
-                    s,
-                    &mut self.force,
-                    &mut self.torque,
-                );
+                let chunk = PairChunk {
+                    pairs: p,
+                    coef: c,
+                    state: s,
+                    force: &mut self.force,
+                    torque: &mut self.torque,
+                };
+                let part = pair_chunk::<N, T, true, LEDGER>(&ctx, chunk);
                 self.partials.push(part);
             }
         }
@@ -960,7 +967,7 @@ impl DemWorld {
                 .zip(self.omega.par_chunks_mut(GRAIN_CHUNK))
                 .enumerate()
                 .map(|(c, ((((f, t), h), v), w))| {
-                    grain_chunk::<N, T, true, LEDGER>(&gctx, c * GRAIN_CHUNK, f, t, h, v, w)
+                    grain_chunk::<N, T, true, LEDGER>(&gctx, GrainChunk::of(c, (f, t, h, v, w)))
                 })
                 .collect_into_vec(&mut self.partials);
         } else {
@@ -976,12 +983,7 @@ impl DemWorld {
             {
                 self.partials.push(grain_chunk::<N, T, false, LEDGER>(
                     &gctx,
-                    c * GRAIN_CHUNK,
-                    f,
-                    t,
-                    h,
-                    v,
-                    w,
+                    GrainChunk::of(c, (f, t, h, v, w)),
                 ));
             }
         }
@@ -1150,12 +1152,15 @@ fn pair_chunk_impl<
     const LEDGER: bool,
 >(
     ctx: &PairCtx,
-    pairs: &[Pair],
-    coef: &[ContactCoefficients],
-    state: &mut [PairState],
-    force: &mut [[f64; 3]],
-    torque: &mut [[f64; 3]],
+    chunk: PairChunk,
 ) -> [f64; 3] {
+    let PairChunk {
+        pairs,
+        coef,
+        state,
+        force,
+        torque,
+    } = chunk;
     let (pos, radius) = (ctx.pos, ctx.radius);
     let mut active = [0u32; PAIR_CHUNK];
     let mut m = 0usize;
@@ -1316,26 +1321,61 @@ impl<L: Lanes> PairLanes<L> {
     }
 }
 
+/// One chunk of the pair pass: its candidate pairs, their coefficients and states, and (one
+/// thread) the grains' forces and torques to add the responses to.
+struct PairChunk<'a> {
+    pairs: &'a [Pair],
+    coef: &'a [ContactCoefficients],
+    state: &'a mut [PairState],
+    force: &'a mut [[f64; 3]],
+    torque: &'a mut [[f64; 3]],
+}
+
+/// One chunk of the per-grain pass: grains `first..first + force.len()`.
+struct GrainChunk<'a> {
+    first: usize,
+    force: &'a mut [[f64; 3]],
+    torque: &'a mut [[f64; 3]],
+    wall_history: &'a mut [[[f64; 3]; 6]],
+    vel: &'a mut [[f64; 3]],
+    omega: &'a mut [[f64; 3]],
+}
+
+/// The per-grain slices of one chunk: force, torque, wall springs, velocity, spin.
+type GrainSlices<'a> = (
+    &'a mut [[f64; 3]],
+    &'a mut [[f64; 3]],
+    &'a mut [[[f64; 3]; 6]],
+    &'a mut [[f64; 3]],
+    &'a mut [[f64; 3]],
+);
+
+impl<'a> GrainChunk<'a> {
+    /// Chunk number `c` (of [`GRAIN_CHUNK`] grains) and its slices.
+    fn of(c: usize, (force, torque, wall_history, vel, omega): GrainSlices<'a>) -> Self {
+        GrainChunk {
+            first: c * GRAIN_CHUNK,
+            force,
+            torque,
+            wall_history,
+            vel,
+            omega,
+        }
+    }
+}
+
 /// [`pair_chunk_impl`] compiled for the instruction set `ctx.simd`.
 #[inline(never)]
 fn pair_chunk<N: NormalKernel, T: TangentialKernel, const SCATTER: bool, const LEDGER: bool>(
     ctx: &PairCtx,
-    pairs: &[Pair],
-    coef: &[ContactCoefficients],
-    state: &mut [PairState],
-    force: &mut [[f64; 3]],
-    torque: &mut [[f64; 3]],
+    c: PairChunk,
 ) -> [f64; 3] {
     match ctx.simd {
         // SAFETY: `Simd::Avx2` comes from `Simd::detect`/`available`, which checked that the
         // processor has AVX2.
         #[cfg(target_arch = "x86_64")]
-        Simd::Avx2 => unsafe {
-            pair_chunk_avx2::<N, T, SCATTER, LEDGER>(ctx, pairs, coef, state, force, torque)
-        },
-        Simd::Baseline => {
-            pair_chunk_impl::<F64x8, N, T, SCATTER, LEDGER>(ctx, pairs, coef, state, force, torque)
-        }
+        Simd::Avx2 => unsafe { pair_chunk_avx2::<N, T, SCATTER, LEDGER>(ctx, c) },
+        Simd::Baseline => pair_chunk_impl::<F64x8, N, T, SCATTER, LEDGER>(ctx, c),
     }
 }
 
@@ -1348,42 +1388,26 @@ fn pair_chunk_avx2<
     const LEDGER: bool,
 >(
     ctx: &PairCtx,
-    pairs: &[Pair],
-    coef: &[ContactCoefficients],
-    state: &mut [PairState],
-    force: &mut [[f64; 3]],
-    torque: &mut [[f64; 3]],
+    c: PairChunk,
 ) -> [f64; 3] {
-    pair_chunk_impl::<F64x8, N, T, SCATTER, LEDGER>(ctx, pairs, coef, state, force, torque)
+    pair_chunk_impl::<F64x8, N, T, SCATTER, LEDGER>(ctx, c)
 }
 
 /// [`grain_chunk_impl`] compiled for the instruction set `ctx.simd`.
-#[allow(clippy::too_many_arguments)]
 #[inline(never)]
 fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool, const LEDGER: bool>(
     ctx: &GrainCtx,
-    first: usize,
-    force: &mut [[f64; 3]],
-    torque: &mut [[f64; 3]],
-    wall_history: &mut [[[f64; 3]; 6]],
-    vel: &mut [[f64; 3]],
-    omega: &mut [[f64; 3]],
+    c: GrainChunk,
 ) -> [f64; 3] {
-    let (f, t, h, v, w) = (force, torque, wall_history, vel, omega);
     match ctx.simd {
         // SAFETY: as in `pair_chunk`.
         #[cfg(target_arch = "x86_64")]
-        Simd::Avx2 => unsafe {
-            grain_chunk_avx2::<N, T, GATHER, LEDGER>(ctx, first, f, t, h, v, w)
-        },
-        Simd::Baseline => {
-            grain_chunk_impl::<F64x8, N, T, GATHER, LEDGER>(ctx, first, f, t, h, v, w)
-        }
+        Simd::Avx2 => unsafe { grain_chunk_avx2::<N, T, GATHER, LEDGER>(ctx, c) },
+        Simd::Baseline => grain_chunk_impl::<F64x8, N, T, GATHER, LEDGER>(ctx, c),
     }
 }
 
 #[cfg(target_arch = "x86_64")]
-#[allow(clippy::too_many_arguments)]
 #[target_feature(enable = "avx2")]
 fn grain_chunk_avx2<
     N: NormalKernel,
@@ -1392,22 +1416,9 @@ fn grain_chunk_avx2<
     const LEDGER: bool,
 >(
     ctx: &GrainCtx,
-    first: usize,
-    force: &mut [[f64; 3]],
-    torque: &mut [[f64; 3]],
-    wall_history: &mut [[[f64; 3]; 6]],
-    vel: &mut [[f64; 3]],
-    omega: &mut [[f64; 3]],
+    c: GrainChunk,
 ) -> [f64; 3] {
-    grain_chunk_impl::<F64x8, N, T, GATHER, LEDGER>(
-        ctx,
-        first,
-        force,
-        torque,
-        wall_history,
-        vel,
-        omega,
-    )
+    grain_chunk_impl::<F64x8, N, T, GATHER, LEDGER>(ctx, c)
 }
 
 /// Overlaps of grain i with the walls x−, x+, y−, y+, floor, ceiling (m); ≤ 0: no contact.
@@ -1490,7 +1501,6 @@ struct GrainCtx<'a> {
 ///
 /// With `ctx.kick` the chunk's grains then get the step's second half kick (2.2.5),
 /// v ← v + (dt/2) F/m and ω ← ω + (dt/2) τ/I, their forces being complete.
-#[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn grain_chunk_impl<
     L: Lanes,
@@ -1500,13 +1510,16 @@ fn grain_chunk_impl<
     const LEDGER: bool,
 >(
     ctx: &GrainCtx,
-    first: usize,
-    force: &mut [[f64; 3]],
-    torque: &mut [[f64; 3]],
-    wall_history: &mut [[[f64; 3]; 6]],
-    vel: &mut [[f64; 3]],
-    omega: &mut [[f64; 3]],
+    chunk: GrainChunk,
 ) -> [f64; 3] {
+    let GrainChunk {
+        first,
+        force,
+        torque,
+        wall_history,
+        vel,
+        omega,
+    } = chunk;
     let (mut fgz, mut p_coll, mut p_fric) = (0.0, 0.0, 0.0);
     let mut walls = [0u32; 6 * GRAIN_CHUNK];
     let mut m = 0usize;
