@@ -28,11 +28,10 @@ impl Simd {
 
     /// Every set this processor can run, narrowest first (for tests that compare them).
     pub fn available() -> Vec<Simd> {
-        let mut v = vec![Simd::Baseline];
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            v.push(Simd::Avx2);
+        match Simd::detect() {
+            Simd::Baseline => vec![Simd::Baseline],
+            #[cfg(target_arch = "x86_64")]
+            Simd::Avx2 => vec![Simd::Baseline, Simd::Avx2],
         }
-        v
     }
 }

@@ -4,7 +4,7 @@ use nalgebra::UnitQuaternion;
 use rayon::prelude::*;
 
 use crate::contact::hertz_stiffness;
-use crate::contact::lanes::{dot, get_lane, set_lane, F64x8, Lanes};
+use crate::contact::lanes::{dot, get_lane, set_lane, sub3, F64x8, Lanes};
 use crate::contact::linear_spring_dashpot::LinearContactParams;
 use crate::contact::material::{Material, PairProperties};
 use crate::contact::response::{
@@ -874,7 +874,7 @@ impl DemWorld {
         let par = self.parallel();
         let ctx = PairCtx {
             simd: self.simd,
-            uniform: self.uniform.map(|u| (u.radius, u.pair)),
+            uniform: self.uniform,
             pos: &self.pos,
             vel: &self.vel_pred,
             omega: &self.omega_pred,
@@ -888,7 +888,7 @@ impl DemWorld {
         let (grain_start, grain_items) = self.neighbors.grain_index();
         let gctx = GrainCtx {
             simd: self.simd,
-            uniform_wall: self.uniform.map(|u| u.wall),
+            uniform: self.uniform,
             pos: &self.pos,
             vel_pred: &self.vel_pred,
             omega_pred: &self.omega_pred,
@@ -1025,8 +1025,8 @@ impl DemWorld {
             .zip(&self.pair_state)
         {
             let (i, j) = (p.i as usize, p.j as usize);
-            let d = sub(self.pos[i], self.pos[j]);
-            let z = self.radius[i] + self.radius[j] - norm(d);
+            let d = sub3(self.pos[i], self.pos[j]);
+            let z = self.radius[i] + self.radius[j] - dot(d, d).sqrt();
             if z > 0.0 {
                 s.elastic_j += elastic(c[0], z) + tangential(c, z, st.history);
             }
@@ -1112,20 +1112,11 @@ impl DemWorld {
     }
 }
 
-#[inline(always)]
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-#[inline(always)]
-fn norm(a: [f64; 3]) -> f64 {
-    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
-}
-
 /// Shared inputs of the pair pass.
 struct PairCtx<'a> {
     simd: Simd,
-    /// Every grain's radius and every pair's coefficients, when all grains are alike.
-    uniform: Option<(f64, ContactCoefficients)>,
+    /// Every grain's radius and coefficients, when all grains are alike.
+    uniform: Option<Uniform>,
     pos: &'a [[f64; 3]],
     vel: &'a [[f64; 3]],
     omega: &'a [[f64; 3]],
@@ -1166,10 +1157,10 @@ fn pair_chunk_impl<
     let mut m = 0usize;
     for (a, (pair, st)) in pairs.iter().zip(state.iter_mut()).enumerate() {
         let (i, j) = (pair.i as usize, pair.j as usize);
-        let d = sub(pos[i], pos[j]);
-        let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        let d = sub3(pos[i], pos[j]);
+        let r2 = dot(d, d);
         let cut = match ctx.uniform {
-            Some((r, _)) => r + r,
+            Some(u) => u.radius + u.radius,
             None => radius[i] + radius[j],
         };
         let on = r2 < cut * cut;
@@ -1187,10 +1178,10 @@ fn pair_chunk_impl<
     // [`contact_response`] (vector instructions), then the sums contact by contact
     let (mut p_coll, mut p_fric) = (0.0, 0.0);
     let mut g = PairLanes::<L>::default();
-    if let Some((r, c)) = ctx.uniform {
-        g.r_i = L::splat(r);
-        g.r_j = L::splat(r);
-        g.coef = c.map(L::splat);
+    if let Some(u) = ctx.uniform {
+        g.r_i = L::splat(u.radius);
+        g.r_j = L::splat(u.radius);
+        g.coef = u.pair.map(L::splat);
     }
     for block in active[..m].chunks(L::N) {
         for (l, &a) in block.iter().enumerate() {
@@ -1231,7 +1222,7 @@ fn pair_chunk_impl<
                 fj[2] -= f[2];
                 if T::ACTIVE && ctx.rotations {
                     let (ri, rj) = match ctx.uniform {
-                        Some((r, _)) => (r, r),
+                        Some(u) => (u.radius, u.radius),
                         None => (radius[i], radius[j]),
                     };
                     let ti = &mut torque[i];
@@ -1278,17 +1269,11 @@ impl<L: Lanes> PairLanes<L> {
     /// alike) in lane `l`.
     #[inline(always)]
     fn gather(&mut self, ctx: &PairCtx, i: usize, j: usize, l: usize) {
-        let (pi, pj, vi, vj) = (ctx.pos[i], ctx.pos[j], ctx.vel[i], ctx.vel[j]);
-        for c in 0..3 {
-            self.d[c].set(l, pi[c] - pj[c]);
-            self.v_rel[c].set(l, vi[c] - vj[c]);
-        }
+        set_lane(&mut self.d, l, sub3(ctx.pos[i], ctx.pos[j]));
+        set_lane(&mut self.v_rel, l, sub3(ctx.vel[i], ctx.vel[j]));
         if ctx.rotations {
-            let (wi, wj) = (ctx.omega[i], ctx.omega[j]);
-            for c in 0..3 {
-                self.omega_i[c].set(l, wi[c]);
-                self.omega_j[c].set(l, wj[c]);
-            }
+            set_lane(&mut self.omega_i, l, ctx.omega[i]);
+            set_lane(&mut self.omega_j, l, ctx.omega[j]);
         }
         if ctx.uniform.is_none() {
             self.r_i.set(l, ctx.radius[i]);
@@ -1464,8 +1449,8 @@ fn init_forces(ctx: &GrainCtx, vel: &[[f64; 3]], force: &mut [[f64; 3]], torque:
 /// Shared inputs of the per-grain pass.
 struct GrainCtx<'a> {
     simd: Simd,
-    /// Every grain's wall coefficients, when all grains are alike.
-    uniform_wall: Option<ContactCoefficients>,
+    /// Every grain's radius and coefficients, when all grains are alike.
+    uniform: Option<Uniform>,
     pos: &'a [[f64; 3]],
     vel_pred: &'a [[f64; 3]],
     omega_pred: &'a [[f64; 3]],
@@ -1580,8 +1565,8 @@ fn grain_chunk_impl<
     }
     // eight wall contacts at a time in lanes, like the pair pass
     let mut g = WallLanes::<L>::default();
-    if let Some(c) = ctx.uniform_wall {
-        g.coef = c.map(L::splat);
+    if let Some(u) = ctx.uniform {
+        g.coef = u.wall.map(L::splat);
     }
     for block in walls[..m].chunks(L::N) {
         for (l, &e) in block.iter().enumerate() {
@@ -1635,7 +1620,7 @@ fn grain_chunk_impl<
     [fgz, p_coll, p_fric]
 }
 
-/// The kinematics and coefficients of up to [`LANES`] grain–wall contacts, one per lane.
+/// The kinematics and coefficients of up to `L::N` grain–wall contacts, one per lane.
 #[derive(Default)]
 struct WallLanes<L> {
     kin: ContactKinematics<L>,
@@ -1657,7 +1642,7 @@ impl<L: Lanes> WallLanes<L> {
         set_lane(&mut k.normal, l, n);
         set_lane(&mut k.spin, l, [r * om[0], r * om[1], r * om[2]]);
         set_lane(&mut k.v_rel, l, [vp[0], vp[1], vp[2] - ctx.wall_v]);
-        if ctx.uniform_wall.is_none() {
+        if ctx.uniform.is_none() {
             set_lane(&mut self.coef, l, ctx.wall_coef[i]);
         }
     }
