@@ -6,6 +6,7 @@
 //! test of the collective motion's stability (issue 9).
 
 pub mod bed_impacts;
+pub mod blocks;
 pub mod energy;
 pub mod model;
 pub mod replica;

@@ -20,6 +20,7 @@ use crate::neighbor::{NeighborList, Pair, J_ROLE};
 use crate::simd::Simd;
 use crate::units::G;
 
+use super::blocks::BlockPairs;
 use super::energy::{EnergyLedger, EnergyState};
 use super::model::DemModel;
 
@@ -213,6 +214,8 @@ pub struct DemWorld {
     viscous_power_prev: f64,
     laws: Laws,
     neighbors: NeighborList,
+    /// The candidate pairs sorted by grain block (the order of `pair_coef` and `pair_state`).
+    blocks: BlockPairs,
     pair_coef: Vec<ContactCoefficients>,
     wall_coef: Vec<ContactCoefficients>,
     pair_state: Vec<PairState>,
@@ -407,6 +410,7 @@ impl DemWorld {
             viscous_power_prev: 0.0,
             laws,
             neighbors,
+            blocks: BlockPairs::default(),
             pair_coef: Vec::new(),
             wall_coef,
             pair_state: Vec::new(),
@@ -771,7 +775,7 @@ impl DemWorld {
             // the springs of the old list, keyed by the (new) slots of their grains
             self.history_carry.clear();
             let inv = &self.sort.inv;
-            for (p, st) in self.neighbors.pairs.iter().zip(&self.pair_state) {
+            for (p, st) in self.blocks.pairs.iter().zip(&self.pair_state) {
                 if st.history != [0.0; 3] {
                     let p = if sort {
                         Pair {
@@ -789,8 +793,9 @@ impl DemWorld {
             self.history_carry.sort_unstable_by_key(|e| e.0);
         }
         self.neighbors.rebuild(&self.pos, &self.radius, shift);
+        self.blocks.partition(&self.neighbors.pairs, self.pos.len());
         self.pair_coef.clear();
-        for &Pair { i, j } in &self.neighbors.pairs {
+        for &Pair { i, j } in &self.blocks.pairs {
             let (i, j) = (i as usize, j as usize);
             let c = self.laws.coefficients(
                 self.radius[i],
@@ -803,9 +808,9 @@ impl DemWorld {
         }
         self.pair_state.clear();
         self.pair_state
-            .resize(self.neighbors.pairs.len(), PairState::default());
+            .resize(self.blocks.pairs.len(), PairState::default());
         if carry && !self.history_carry.is_empty() {
-            for (p, st) in self.neighbors.pairs.iter().zip(self.pair_state.iter_mut()) {
+            for (p, st) in self.blocks.pairs.iter().zip(self.pair_state.iter_mut()) {
                 if let Ok(a) = self.history_carry.binary_search_by_key(&key(p), |e| e.0) {
                     let h = self.history_carry[a].1;
                     st.history = if p.i < p.j { h } else { [-h[0], -h[1], -h[2]] };
@@ -864,9 +869,12 @@ impl DemWorld {
         (out.1, out.2)
     }
 
-    /// Pair pass (every candidate pair's contact response into its [`PairState`]), then the
-    /// per-grain pass (gravity, drag, the grain's pair forces gathered in pair order, its
-    /// wall contacts). Both passes run in fixed chunks, on the rayon pool for large beds.
+    /// The force pass, in the order of [`super::blocks`]: the cross pairs' responses into
+    /// their [`PairState`] alongside, block by block, gravity and drag and the block's own
+    /// pairs scattered into its grains; then the per-grain pass (each grain's cross pairs
+    /// gathered in pair order, its wall contacts, its second half kick). Blocks, cross-pair
+    /// chunks and grain chunks are fixed by the grain count, and run on the rayon pool for
+    /// large beds, so the sums are the same on any number of threads.
     fn contacts<N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
         &mut self,
         kick: bool,
@@ -885,7 +893,7 @@ impl DemWorld {
             dt: self.dt,
         };
         let b = self.box_size;
-        let (grain_start, grain_items) = self.neighbors.grain_index();
+        let bp = &self.blocks;
         let gctx = GrainCtx {
             simd: self.simd,
             uniform: self.uniform,
@@ -898,9 +906,9 @@ impl DemWorld {
             inv_inertia: &self.inv_inertia,
             kick,
             wall_coef: &self.wall_coef,
-            grain_start,
-            grain_items,
-            pair_state: &[],
+            cross_start: &bp.cross_start,
+            cross_items: &bp.cross_items,
+            cross_state: &[],
             box_size: b,
             floor: self.box_z,
             ceil: self.box_z + b[2],
@@ -912,52 +920,72 @@ impl DemWorld {
             gravity: self.gravity,
             drag: self.settle_drag,
         };
-        let pairs = &self.neighbors.pairs;
-        let coef = &self.pair_coef;
-        let state = &mut self.pair_state;
-        if par {
-            state
-                .par_chunks_mut(PAIR_CHUNK)
-                .zip(pairs.par_chunks(PAIR_CHUNK))
-                .zip(coef.par_chunks(PAIR_CHUNK))
-                .map(|((s, p), c)| {
-                    let chunk = PairChunk {
-                        pairs: p,
-                        coef: c,
-                        state: s,
-                        force: &mut [],
-                        torque: &mut [],
-                    };
-                    pair_chunk::<N, T, false, LEDGER>(&ctx, chunk)
-                })
-                .collect_into_vec(&mut self.partials);
-        } else {
-            init_forces(&gctx, &self.vel, &mut self.force, &mut self.torque);
-            self.partials.clear();
-            for ((s, p), c) in state
-                .chunks_mut(PAIR_CHUNK)
-                .zip(pairs.chunks(PAIR_CHUNK))
-                .zip(coef.chunks(PAIR_CHUNK))
-            {
+        let cross0 = bp.seg[bp.blocks];
+        let (own_state, cross_state) = self.pair_state.split_at_mut(cross0);
+        let (own_pairs, cross_pairs) = bp.pairs.split_at(cross0);
+        let (own_coef, cross_coef) = self.pair_coef.split_at(cross0);
+        let partials = &mut self.partials;
+        let mut cross = |partials: &mut Vec<[f64; 3]>| {
+            let run = |((s, p), c): ((&mut [PairState], &[Pair]), &[ContactCoefficients])| {
                 let chunk = PairChunk {
                     pairs: p,
                     coef: c,
                     state: s,
-                    force: &mut self.force,
-                    torque: &mut self.torque,
+                    first: 0,
+                    force: &mut [],
+                    torque: &mut [],
                 };
-                let part = pair_chunk::<N, T, true, LEDGER>(&ctx, chunk);
-                self.partials.push(part);
+                pair_chunk::<N, T, false, LEDGER>(&ctx, chunk)
+            };
+            partials.clear();
+            if par {
+                cross_state
+                    .par_chunks_mut(PAIR_CHUNK)
+                    .zip(cross_pairs.par_chunks(PAIR_CHUNK))
+                    .zip(cross_coef.par_chunks(PAIR_CHUNK))
+                    .map(run)
+                    .collect_into_vec(partials);
+            } else {
+                let chunks = cross_state
+                    .chunks_mut(PAIR_CHUNK)
+                    .zip(cross_pairs.chunks(PAIR_CHUNK))
+                    .zip(cross_coef.chunks(PAIR_CHUNK));
+                partials.extend(chunks.map(run));
             }
-        }
-        let (pc, pf) = self
-            .partials
-            .iter()
-            .fold((0.0, 0.0), |a, p| (a.0 + p[0], a.1 + p[1]));
+            partials
+                .iter()
+                .fold((0.0, 0.0), |a, p| (a.0 + p[0], a.1 + p[1]))
+        };
+        let blocks = OwnBlocks {
+            ctx: &ctx,
+            gctx: &gctx,
+            bp,
+            pairs: own_pairs,
+            coef: own_coef,
+            vel: &self.vel,
+            par,
+        };
+        let mut own = || {
+            blocks.run::<N, T, LEDGER>(
+                0..bp.blocks,
+                &mut self.force,
+                &mut self.torque,
+                own_state,
+            )
+        };
+        let ((xc, xf), (oc, of)) = if par {
+            rayon::join(|| cross(partials), own)
+        } else {
+            (cross(partials), own())
+        };
         let gctx = GrainCtx {
-            pair_state: &self.pair_state,
+            cross_state: &self.pair_state[cross0..],
             ..gctx
         };
+        let run = |(c, ((((f, t), h), v), w))| {
+            grain_chunk::<N, T, LEDGER>(&gctx, GrainChunk::of(c, (f, t, h, v, w)))
+        };
+        self.partials.clear();
         if par {
             self.force
                 .par_chunks_mut(GRAIN_CHUNK)
@@ -966,32 +994,24 @@ impl DemWorld {
                 .zip(self.vel.par_chunks_mut(GRAIN_CHUNK))
                 .zip(self.omega.par_chunks_mut(GRAIN_CHUNK))
                 .enumerate()
-                .map(|(c, ((((f, t), h), v), w))| {
-                    grain_chunk::<N, T, true, LEDGER>(&gctx, GrainChunk::of(c, (f, t, h, v, w)))
-                })
+                .map(run)
                 .collect_into_vec(&mut self.partials);
         } else {
-            self.partials.clear();
-            for (c, ((((f, t), h), v), w)) in self
+            let chunks = self
                 .force
                 .chunks_mut(GRAIN_CHUNK)
                 .zip(self.torque.chunks_mut(GRAIN_CHUNK))
                 .zip(self.wall_history.chunks_mut(GRAIN_CHUNK))
                 .zip(self.vel.chunks_mut(GRAIN_CHUNK))
                 .zip(self.omega.chunks_mut(GRAIN_CHUNK))
-                .enumerate()
-            {
-                self.partials.push(grain_chunk::<N, T, false, LEDGER>(
-                    &gctx,
-                    GrainChunk::of(c, (f, t, h, v, w)),
-                ));
-            }
+                .enumerate();
+            self.partials.extend(chunks.map(run));
         }
         let (fgz, wc, wf) = self
             .partials
             .iter()
             .fold((0.0, 0.0, 0.0), |a, p| (a.0 + p[0], a.1 + p[1], a.2 + p[2]));
-        (fgz, pc + wc, pf + wf)
+        (fgz, (oc + xc) + wc, (of + xf) + wf)
     }
 
     /// Stored energies now (J).
@@ -1018,7 +1038,7 @@ impl DemWorld {
             0.5 * kt * (h[0] * h[0] + h[1] * h[1] + h[2] * h[2])
         };
         for ((p, c), st) in self
-            .neighbors
+            .blocks
             .pairs
             .iter()
             .zip(&self.pair_coef)
@@ -1131,9 +1151,9 @@ struct PairCtx<'a> {
 /// the others' outputs and springs), then [`contact_response`] runs on those only, `L::N`
 /// contacts at a time in lanes. Returns the chunk's (collision power, friction power, 0) (W).
 ///
-/// `SCATTER` (one thread): the forces and torques go straight into `force` and `torque` (which
-/// hold gravity and drag already), pair by pair in pair order — the same sums in the same order
-/// as the per-grain gathering of the parallel path, so both give bit-identical results.
+/// `SCATTER` (a block's own pairs): the forces and torques go straight into the block's `force`
+/// and `torque` (which hold gravity and drag already), pair by pair in pair order. Otherwise
+/// (cross pairs) each response is stored in the pair's [`PairState`] for the per-grain pass.
 #[inline(always)]
 fn pair_chunk_impl<
     L: Lanes,
@@ -1149,6 +1169,7 @@ fn pair_chunk_impl<
         pairs,
         coef,
         state,
+        first,
         force,
         torque,
     } = chunk;
@@ -1212,11 +1233,11 @@ fn pair_chunk_impl<
             if SCATTER {
                 let pair = pairs[a];
                 let (i, j) = (pair.i as usize, pair.j as usize);
-                let fi = &mut force[i];
+                let fi = &mut force[i - first];
                 fi[0] += f[0];
                 fi[1] += f[1];
                 fi[2] += f[2];
-                let fj = &mut force[j];
+                let fj = &mut force[j - first];
                 fj[0] -= f[0];
                 fj[1] -= f[1];
                 fj[2] -= f[2];
@@ -1225,11 +1246,11 @@ fn pair_chunk_impl<
                         Some(u) => (u.radius, u.radius),
                         None => (radius[i], radius[j]),
                     };
-                    let ti = &mut torque[i];
+                    let ti = &mut torque[i - first];
                     ti[0] -= ri * t[0];
                     ti[1] -= ri * t[1];
                     ti[2] -= ri * t[2];
-                    let tj = &mut torque[j];
+                    let tj = &mut torque[j - first];
                     tj[0] -= rj * t[0];
                     tj[1] -= rj * t[1];
                     tj[2] -= rj * t[2];
@@ -1246,6 +1267,75 @@ fn pair_chunk_impl<
         }
     }
     [p_coll, p_fric, 0.0]
+}
+
+/// The blocks' part of the force pass: gravity, drag and each block's own pairs.
+struct OwnBlocks<'a> {
+    ctx: &'a PairCtx<'a>,
+    gctx: &'a GrainCtx<'a>,
+    bp: &'a BlockPairs,
+    /// The own pairs of every block (`bp.pairs[..bp.seg[bp.blocks]]`) and their coefficients.
+    pairs: &'a [Pair],
+    coef: &'a [ContactCoefficients],
+    /// Velocities (m/s), for the settling drag.
+    vel: &'a [[f64; 3]],
+    par: bool,
+}
+
+impl OwnBlocks<'_> {
+    /// Blocks `range`, whose grains' forces and torques are `force` and `torque` and whose
+    /// own pairs' states are `state`: halved recursively (on two threads when `par`) down to
+    /// one block. Returns (collision power, friction power) (W), summed in a tree fixed by
+    /// the block count.
+    fn run<N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
+        &self,
+        range: std::ops::Range<usize>,
+        force: &mut [[f64; 3]],
+        torque: &mut [[f64; 3]],
+        state: &mut [PairState],
+    ) -> (f64, f64) {
+        let bp = self.bp;
+        let n = self.ctx.pos.len();
+        if range.len() > 1 {
+            let mid = range.start + range.len() / 2;
+            let first = bp.grains(range.start, n).start;
+            let at = bp.grains(mid, n).start - first;
+            let (f0, f1) = force.split_at_mut(at);
+            let (t0, t1) = torque.split_at_mut(at.min(torque.len()));
+            let (s0, s1) = state.split_at_mut(bp.seg[mid] - bp.seg[range.start]);
+            let mut lo = || self.run::<N, T, LEDGER>(range.start..mid, f0, t0, s0);
+            let mut hi = || self.run::<N, T, LEDGER>(mid..range.end, f1, t1, s1);
+            let (a, b) = if self.par {
+                rayon::join(lo, hi)
+            } else {
+                (lo(), hi())
+            };
+            return (a.0 + b.0, a.1 + b.1);
+        }
+        let b = range.start;
+        let first = bp.grains(b, n).start;
+        init_forces(self.gctx, self.vel, first, force, torque);
+        let (s0, s1) = (bp.seg[b], bp.seg[b + 1]);
+        let (mut pc, mut pf) = (0.0, 0.0);
+        for ((s, p), c) in state
+            .chunks_mut(PAIR_CHUNK)
+            .zip(self.pairs[s0..s1].chunks(PAIR_CHUNK))
+            .zip(self.coef[s0..s1].chunks(PAIR_CHUNK))
+        {
+            let chunk = PairChunk {
+                pairs: p,
+                coef: c,
+                state: s,
+                first,
+                force: &mut *force,
+                torque: &mut *torque,
+            };
+            let part = pair_chunk::<N, T, true, LEDGER>(self.ctx, chunk);
+            pc += part[0];
+            pf += part[1];
+        }
+        (pc, pf)
+    }
 }
 
 /// The inputs of up to `L::N` grain–grain contacts, one contact per lane (lanes past the
@@ -1312,6 +1402,8 @@ struct PairChunk<'a> {
     pairs: &'a [Pair],
     coef: &'a [ContactCoefficients],
     state: &'a mut [PairState],
+    /// Grain of `force[0]` and `torque[0]` (the first grain of the block).
+    first: usize,
     force: &'a mut [[f64; 3]],
     torque: &'a mut [[f64; 3]],
 }
@@ -1380,30 +1472,25 @@ fn pair_chunk_avx2<
 
 /// [`grain_chunk_impl`] compiled for the instruction set `ctx.simd`.
 #[inline(never)]
-fn grain_chunk<N: NormalKernel, T: TangentialKernel, const GATHER: bool, const LEDGER: bool>(
+fn grain_chunk<N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
     ctx: &GrainCtx,
     c: GrainChunk,
 ) -> [f64; 3] {
     match ctx.simd {
         // SAFETY: as in `pair_chunk`.
         #[cfg(target_arch = "x86_64")]
-        Simd::Avx2 => unsafe { grain_chunk_avx2::<N, T, GATHER, LEDGER>(ctx, c) },
-        Simd::Baseline => grain_chunk_impl::<F64x8, N, T, GATHER, LEDGER>(ctx, c),
+        Simd::Avx2 => unsafe { grain_chunk_avx2::<N, T, LEDGER>(ctx, c) },
+        Simd::Baseline => grain_chunk_impl::<F64x8, N, T, LEDGER>(ctx, c),
     }
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn grain_chunk_avx2<
-    N: NormalKernel,
-    T: TangentialKernel,
-    const GATHER: bool,
-    const LEDGER: bool,
->(
+fn grain_chunk_avx2<N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
     ctx: &GrainCtx,
     c: GrainChunk,
 ) -> [f64; 3] {
-    grain_chunk_impl::<F64x8, N, T, GATHER, LEDGER>(ctx, c)
+    grain_chunk_impl::<F64x8, N, T, LEDGER>(ctx, c)
 }
 
 /// Overlaps of grain i with the walls x−, x+, y−, y+, floor, ceiling (m); ≤ 0: no contact.
@@ -1435,9 +1522,16 @@ fn init_force(ctx: &GrainCtx, i: usize, v: [f64; 3]) -> ([f64; 3], [f64; 3]) {
     (f, [0.0; 3])
 }
 
-/// [`init_force`] for every grain (the one-thread path, before the scattering pair pass).
-fn init_forces(ctx: &GrainCtx, vel: &[[f64; 3]], force: &mut [[f64; 3]], torque: &mut [[f64; 3]]) {
-    for (i, (f, t)) in force.iter_mut().zip(torque.iter_mut()).enumerate() {
+/// [`init_force`] for grains `first..first + force.len()` (a block, before its own pairs).
+fn init_forces(
+    ctx: &GrainCtx,
+    vel: &[[f64; 3]],
+    first: usize,
+    force: &mut [[f64; 3]],
+    torque: &mut [[f64; 3]],
+) {
+    for (k, (f, t)) in force.iter_mut().zip(torque.iter_mut()).enumerate() {
+        let i = first + k;
         let (a, b) = init_force(ctx, i, vel[i]);
         *f = a;
         if ctx.rotations {
@@ -1461,9 +1555,12 @@ struct GrainCtx<'a> {
     /// Whether the chunk ends with the grains' second half kick (during a step).
     kick: bool,
     wall_coef: &'a [ContactCoefficients],
-    grain_start: &'a [u32],
-    grain_items: &'a [u32],
-    pair_state: &'a [PairState],
+    /// Per grain, where its cross pairs start in `cross_items` ([`BlockPairs::cross_start`]).
+    cross_start: &'a [u32],
+    /// Per grain, its cross pairs in pair order ([`BlockPairs::cross_items`]).
+    cross_items: &'a [u32],
+    /// States of the cross pairs (their responses, from the pair pass).
+    cross_state: &'a [PairState],
     box_size: [f64; 3],
     floor: f64,
     ceil: f64,
@@ -1476,13 +1573,10 @@ struct GrainCtx<'a> {
     drag: f64,
 }
 
-/// One chunk of grains from `first`: gravity and settling drag, the grain's pair forces and
-/// torques gathered in pair order (so the sums do not depend on the threads), then its
-/// contacts with the six walls through the same [`contact_response`]. Returns the chunk's
-/// (F_gz, collision power, friction power) (N, W, W).
-///
-/// Without `GATHER` (one thread) only the walls are added: gravity, drag and the pair forces
-/// are in `force` already ([`init_forces`], then the scattering [`pair_chunk`]).
+/// One chunk of grains from `first`, whose `force` and `torque` hold gravity, drag and the
+/// block's own pairs already: each grain's cross pairs gathered in pair order (so the sums do
+/// not depend on the threads), then its contacts with the six walls through the same
+/// [`contact_response`]. Returns the chunk's (F_gz, collision power, friction power) (N, W, W).
 ///
 /// With `ctx.kick` the chunk's grains then get the step's second half kick (2.2.5),
 /// v ← v + (dt/2) F/m and ω ← ω + (dt/2) τ/I, their forces being complete.
@@ -1491,7 +1585,6 @@ fn grain_chunk_impl<
     L: Lanes,
     N: NormalKernel,
     T: TangentialKernel,
-    const GATHER: bool,
     const LEDGER: bool,
 >(
     ctx: &GrainCtx,
@@ -1516,26 +1609,19 @@ fn grain_chunk_impl<
     {
         let i = first + l;
         let r = ctx.radius[i];
-        if GATHER {
-            let (mut f, mut t) = init_force(ctx, i, vel[l]);
-            let items =
-                &ctx.grain_items[ctx.grain_start[i] as usize..ctx.grain_start[i + 1] as usize];
-            for &e in items {
-                let st = &ctx.pair_state[(e & !J_ROLE) as usize];
-                // +1 where i is the pair's i, −1 where it is its j (exact: a + (−b) = a − b)
-                let sign = 1.0 - 2.0 * (e >> 31) as f64;
-                f[0] += sign * st.force[0];
-                f[1] += sign * st.force[1];
-                f[2] += sign * st.force[2];
-                if T::ACTIVE && ctx.rotations {
-                    t[0] -= r * st.torque_arm[0];
-                    t[1] -= r * st.torque_arm[1];
-                    t[2] -= r * st.torque_arm[2];
-                }
-            }
-            *fi = f;
-            if ctx.rotations {
-                *ti = t;
+        let items = &ctx.cross_items[ctx.cross_start[i] as usize..ctx.cross_start[i + 1] as usize];
+        for &e in items {
+            let st = &ctx.cross_state[(e & !J_ROLE) as usize];
+            // +1 where i is the pair's i, −1 where it is its j (exact: a + (−b) = a − b, the
+            // scatter's subtraction)
+            let sign = 1.0 - 2.0 * (e >> 31) as f64;
+            fi[0] += sign * st.force[0];
+            fi[1] += sign * st.force[1];
+            fi[2] += sign * st.force[2];
+            if T::ACTIVE && ctx.rotations {
+                ti[0] -= r * st.torque_arm[0];
+                ti[1] -= r * st.torque_arm[1];
+                ti[2] -= r * st.torque_arm[2];
             }
         }
         // far from every wall (most grains of a wide bed): nothing to do

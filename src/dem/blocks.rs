@@ -1,0 +1,219 @@
+//! Grain blocks of the force pass: the candidate pairs sorted by the block of their grains.
+//!
+//! The grains (stored along the space-filling curve) are cut into a fixed number of
+//! contiguous blocks that depends on the grain count only ([`block_count`]), never on the
+//! threads. A pair whose two grains are in the same block is that block's *own* pair; the
+//! others are *cross* pairs. The force on a grain is then always summed in one order:
+//!
+//! 1. gravity (and the settling drag),
+//! 2. its block's own pairs, in pair order (scattered straight into the block's forces),
+//! 3. its cross pairs, in pair order (their responses stored per pair, then gathered),
+//! 4. its six walls.
+//!
+//! Blocks are disjoint in memory, so they can run on different threads with no atomics, and
+//! the sums are the same on any number of threads. A bed of fewer than 2 × [`MIN_BLOCK`]
+//! grains is one block: no cross pairs at all.
+
+use crate::neighbor::{Pair, J_ROLE};
+
+/// Smallest number of grains in a block.
+pub const MIN_BLOCK: usize = 1500;
+
+/// Number of blocks for `n` grains: the largest power of two (so that the blocks divide
+/// evenly between 2 or 4 threads) with blocks of at least [`MIN_BLOCK`] grains, and 1 for
+/// small beds.
+pub fn block_count(n: usize) -> usize {
+    let mut b = 1;
+    while 2 * b * MIN_BLOCK <= n {
+        b *= 2;
+    }
+    b
+}
+
+/// Candidate pairs ordered block by block: `pairs[seg[b]..seg[b + 1]]` are block b's own
+/// pairs (in neighbour-list order), `pairs[seg[nb]..]` the cross pairs; and, per grain, the
+/// cross pairs it belongs to (index relative to `seg[nb]`, with [`J_ROLE`] where the grain is
+/// the pair's `j`).
+#[derive(Debug, Clone, Default)]
+pub struct BlockPairs {
+    /// Grains per block (the last block may hold fewer).
+    pub block_len: usize,
+    /// Number of blocks.
+    pub blocks: usize,
+    /// The pairs, own pairs of block 0, 1, …, then the cross pairs.
+    pub pairs: Vec<Pair>,
+    /// Start of each block's own pairs; `seg[blocks]` is the start of the cross pairs and
+    /// `seg[blocks + 1]` the number of pairs.
+    pub seg: Vec<usize>,
+    /// Per grain (N + 1 entries), where its cross items start in `cross_items`.
+    pub cross_start: Vec<u32>,
+    /// Per grain, its cross pairs in pair order (relative index, [`J_ROLE`] for the `j`).
+    pub cross_items: Vec<u32>,
+    /// Block of each candidate pair (scratch of [`BlockPairs::partition`]).
+    class: Vec<u32>,
+}
+
+impl BlockPairs {
+    /// Sorts `pairs` of `n` grains into blocks (stable: each segment keeps the list order)
+    /// and indexes the cross pairs per grain. Reuses its buffers.
+    pub fn partition(&mut self, pairs: &[Pair], n: usize) {
+        let nb = block_count(n);
+        let len = n.div_ceil(nb).max(1);
+        self.blocks = nb;
+        self.block_len = len;
+        self.class.clear();
+        self.seg.clear();
+        self.seg.resize(nb + 2, 0);
+        for p in pairs {
+            let (bi, bj) = (p.i as usize / len, p.j as usize / len);
+            let c = if bi == bj { bi } else { nb };
+            self.class.push(c as u32);
+            self.seg[c + 1] += 1;
+        }
+        for c in 0..=nb {
+            self.seg[c + 1] += self.seg[c];
+        }
+        self.pairs.clear();
+        self.pairs.resize(pairs.len(), Pair { i: 0, j: 0 });
+        // counting sort by block (cursor in `cross_start`, reused as scratch)
+        let cursor = &mut self.cross_start;
+        cursor.clear();
+        cursor.extend(self.seg[..=nb].iter().map(|&s| s as u32));
+        for (p, &c) in pairs.iter().zip(&self.class) {
+            let k = &mut cursor[c as usize];
+            self.pairs[*k as usize] = *p;
+            *k += 1;
+        }
+        self.index_cross(n);
+    }
+
+    /// Per-grain index of the cross pairs (counting sort, pair order kept).
+    fn index_cross(&mut self, n: usize) {
+        let nb = self.blocks;
+        let cross = &self.pairs[self.seg[nb]..];
+        let start = &mut self.cross_start;
+        start.clear();
+        start.resize(n + 1, 0);
+        for p in cross {
+            start[p.i as usize + 1] += 1;
+            start[p.j as usize + 1] += 1;
+        }
+        for g in 0..n {
+            start[g + 1] += start[g];
+        }
+        self.cross_items.clear();
+        self.cross_items.resize(2 * cross.len(), 0);
+        for (k, p) in cross.iter().enumerate() {
+            let (i, j) = (p.i as usize, p.j as usize);
+            self.cross_items[start[i] as usize] = k as u32;
+            start[i] += 1;
+            self.cross_items[start[j] as usize] = k as u32 | J_ROLE;
+            start[j] += 1;
+        }
+        for g in (1..=n).rev() {
+            start[g] = start[g - 1];
+        }
+        start[0] = 0;
+    }
+
+    /// Grains `first..end` of block `b` (of `n` grains).
+    pub fn grains(&self, b: usize, n: usize) -> std::ops::Range<usize> {
+        (b * self.block_len).min(n)..((b + 1) * self.block_len).min(n)
+    }
+
+    /// Number of cross pairs.
+    pub fn cross_len(&self) -> usize {
+        self.pairs.len() - self.seg[self.blocks]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn block_counts_are_powers_of_two_of_at_least_min_block_grains() {
+        assert_eq!(block_count(1), 1);
+        assert_eq!(block_count(2999), 1);
+        assert_eq!(block_count(3000), 2);
+        assert_eq!(block_count(4000), 2);
+        assert_eq!(block_count(16_000), 8);
+        assert_eq!(block_count(64_000), 32);
+        for n in [3000, 5999, 6000, 64_000, 1_000_000] {
+            assert!(n / block_count(n) >= MIN_BLOCK);
+        }
+    }
+
+    #[test]
+    fn partition_keeps_every_pair_once_in_list_order_per_segment() {
+        let n = 7000; // 4 blocks of 1750
+        let mut s = 99u64;
+        let mut rnd = |m: u64| {
+            s = s.wrapping_mul(6364136223846793005).wrapping_add(1);
+            (s >> 33) % m
+        };
+        let pairs: Vec<Pair> = (0..5000)
+            .map(|_| {
+                let i = rnd(n as u64) as u32;
+                // mostly near neighbours in index, some far
+                let j = if rnd(4) == 0 {
+                    rnd(n as u64) as u32
+                } else {
+                    (i + 1 + rnd(40) as u32) % n as u32
+                };
+                Pair { i, j }
+            })
+            .filter(|p| p.i != p.j)
+            .collect();
+        let mut bp = BlockPairs::default();
+        bp.partition(&pairs, n);
+        assert_eq!(bp.blocks, 4);
+        assert_eq!(bp.pairs.len(), pairs.len());
+        let block = |g: u32| g as usize / bp.block_len;
+        for b in 0..bp.blocks {
+            let want: Vec<Pair> = pairs
+                .iter()
+                .copied()
+                .filter(|p| block(p.i) == b && block(p.j) == b)
+                .collect();
+            assert_eq!(&bp.pairs[bp.seg[b]..bp.seg[b + 1]], &want[..]);
+        }
+        let cross: Vec<Pair> = pairs
+            .iter()
+            .copied()
+            .filter(|p| block(p.i) != block(p.j))
+            .collect();
+        assert!(!cross.is_empty());
+        assert_eq!(&bp.pairs[bp.seg[bp.blocks]..], &cross[..]);
+        assert_eq!(bp.cross_len(), cross.len());
+        for g in 0..n {
+            let got: Vec<u32> = bp.cross_items
+                [bp.cross_start[g] as usize..bp.cross_start[g + 1] as usize]
+                .to_vec();
+            let want: Vec<u32> = cross
+                .iter()
+                .enumerate()
+                .filter_map(|(k, p)| {
+                    if p.i as usize == g {
+                        Some(k as u32)
+                    } else if p.j as usize == g {
+                        Some(k as u32 | J_ROLE)
+                    } else {
+                        None
+                    }
+                })
+                .collect();
+            assert_eq!(got, want, "grain {g}");
+        }
+        // one block: no cross pairs, the list unchanged
+        let small: Vec<Pair> = pairs
+            .iter()
+            .copied()
+            .filter(|p| p.i < 2000 && p.j < 2000)
+            .collect();
+        bp.partition(&small, 2000);
+        assert_eq!(bp.blocks, 1);
+        assert_eq!(bp.pairs, small);
+        assert_eq!(bp.cross_len(), 0);
+    }
+}
