@@ -9,7 +9,11 @@ fn main() {
     let n: usize = args.get(1).map(|s| s.parse().unwrap()).unwrap_or(4000);
     let steps: usize = args.get(2).map(|s| s.parse().unwrap()).unwrap_or(2000);
     let mode = args.get(3).cloned().unwrap_or_else(|| "serial".into());
-    let drive = BoxDrive { primary: None, amplitude_m: 0.0, frequency_hz: 15.0 };
+    let drive = BoxDrive {
+        primary: None,
+        amplitude_m: 0.0,
+        frequency_hz: 15.0,
+    };
     let mut p = DemParams::thesis_b_softened(1000.0);
     let widen = ((n as f64) / 250.0).sqrt();
     p.r#box[0] *= widen;
@@ -17,8 +21,9 @@ fn main() {
     p.count = n;
     let model = pdamp::setup::dem_model(&p).unwrap();
     let mut w = initial_world(&model, drive, 2.8e-6, 0.0).unwrap();
-    w.parallel_min_grains = if mode == "serial" { usize::MAX } else { 0 };
-    w.parallel_min_threads = 2;
+    if mode == "serial" {
+        w.parallel_min_grains = usize::MAX;
+    }
     settle(&mut w, 0.03);
     w.start_drive();
     let go = |w: &mut pdamp::dem::DemWorld| {
@@ -28,6 +33,15 @@ fn main() {
         }
         t.elapsed().as_secs_f64()
     };
-    let s = if mode == "inpool" { rayon::scope(|_| go(&mut w)) } else { go(&mut w) };
-    println!("{mode} N={n} pairs={} {:.2} M particle-steps/s", w.pair_count(), (n * steps) as f64 / s / 1e6);
+    let s = if mode == "inpool" {
+        rayon::scope(|_| go(&mut w))
+    } else {
+        go(&mut w)
+    };
+    println!(
+        "{mode} N={n} blocks/cross={:?} pairs={} {:.2} M particle-steps/s",
+        w.block_stats(),
+        w.pair_count(),
+        (n * steps) as f64 / s / 1e6
+    );
 }

@@ -1,7 +1,7 @@
-//! Threads inside one DEM run (issue 12): the pair pass and the per-grain passes run on the
-//! rayon pool in fixed chunks, each grain's forces gathered in pair order, so positions,
-//! velocities, spins, the ledger and the box force are bit-identical on 1, 2 and 3 threads —
-//! and equal to the one-thread path that scatters the pair forces directly.
+//! Threads inside one DEM run (issue 12): the force pass runs in fixed grain blocks and
+//! chunks (`pdamp::dem::blocks`), on the rayon pool or on the world's own team of threads, so
+//! positions, velocities, spins, the ledger and the box force are bit-identical on 1, 2 and 3
+//! threads of either kind — and equal to the one-thread path.
 
 use pdamp::dem::run::{initial_world, settle};
 use pdamp::dem::stability::{choose_dt, DEFAULT_DT_FRACTION};
@@ -36,15 +36,23 @@ fn fingerprint(w: &DemWorld) -> Vec<u64> {
     v
 }
 
-/// `n` grains of scene B (softened) dropped on the shaking floor, `steps` steps on a pool of
-/// `threads` threads; `parallel`: the chunked parallel path even for small beds.
-fn run(
-    n: usize,
-    tangential: TangentialKind,
-    threads: usize,
-    parallel: bool,
-    steps: usize,
-) -> Vec<u64> {
+/// Who steps the world.
+#[derive(Debug, Clone, Copy)]
+enum Exec {
+    /// One thread (the parallel paths switched off).
+    Serial,
+    /// The phases on a rayon pool of this many threads.
+    Rayon(usize),
+    /// The phases on the world's own team of this many threads.
+    Team(usize),
+}
+
+/// `n` grains of scene B (softened) dropped on the shaking floor, `steps` steps run by `exec`.
+fn run(n: usize, tangential: TangentialKind, exec: Exec, steps: usize) -> Vec<u64> {
+    let threads = match exec {
+        Exec::Rayon(t) => t,
+        _ => 1,
+    };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
@@ -59,10 +67,16 @@ fn run(
         let model = pdamp::setup::dem_model(&p).unwrap();
         let (dt, _) = choose_dt(&model, &drive(), None, DEFAULT_DT_FRACTION).unwrap();
         let mut w = initial_world(&model, drive(), dt, 0.0).unwrap();
-        w.parallel_min_grains = if parallel { 0 } else { usize::MAX };
-        w.parallel_min_threads = 2;
+        match exec {
+            Exec::Serial => w.parallel_min_grains = usize::MAX,
+            Exec::Rayon(_) => w.parallel_min_grains = 0,
+            Exec::Team(t) => {
+                w.parallel_min_grains = 0;
+                w.team_threads = Some(t);
+            }
+        }
         // the lattice falls onto the floor (settling drag on), then the floor shakes
-        settle(&mut w, 0.03);
+        settle(&mut w, 0.02);
         w.start_drive();
         for _ in 0..steps {
             w.step();
@@ -72,18 +86,35 @@ fn run(
             "a bed in contact: {} pairs",
             w.pair_count()
         );
+        let (blocks, cross) = w.block_stats();
+        assert!(
+            blocks >= 2 && cross > 0,
+            "{blocks} blocks, {cross} cross pairs"
+        );
         fingerprint(&w)
     })
 }
 
 #[test]
 fn one_two_and_three_threads_give_bit_identical_runs() {
-    for tangential in [TangentialKind::CoulombViscous, TangentialKind::Mindlin] {
-        let serial = run(2500, tangential, 1, false, 1500);
-        for threads in [1, 2, 3] {
+    // 3500 grains: two blocks; 6000: four blocks (uneven shares on three threads)
+    for (n, tangential) in [
+        (3500, TangentialKind::CoulombViscous),
+        (3500, TangentialKind::Mindlin),
+        (6000, TangentialKind::Mindlin),
+    ] {
+        let serial = run(n, tangential, Exec::Serial, 1000);
+        for exec in [
+            Exec::Rayon(1),
+            Exec::Rayon(2),
+            Exec::Rayon(3),
+            Exec::Team(1),
+            Exec::Team(2),
+            Exec::Team(3),
+        ] {
             assert!(
-                run(2500, tangential, threads, true, 1500) == serial,
-                "{tangential:?}: {threads} threads differ from the one-thread path"
+                run(n, tangential, exec, 1000) == serial,
+                "{n} grains, {tangential:?}: {exec:?} differs from the one-thread path"
             );
         }
     }

@@ -187,9 +187,8 @@ mod tests {
         assert_eq!(&bp.pairs[bp.seg[bp.blocks]..], &cross[..]);
         assert_eq!(bp.cross_len(), cross.len());
         for g in 0..n {
-            let got: Vec<u32> = bp.cross_items
-                [bp.cross_start[g] as usize..bp.cross_start[g + 1] as usize]
-                .to_vec();
+            let got: Vec<u32> =
+                bp.cross_items[bp.cross_start[g] as usize..bp.cross_start[g + 1] as usize].to_vec();
             let want: Vec<u32> = cross
                 .iter()
                 .enumerate()

@@ -13,6 +13,7 @@ pub mod replica;
 pub mod run;
 pub mod stability;
 mod steady;
+pub mod team;
 pub mod world;
 
 pub use bed_impacts::BedImpacts;

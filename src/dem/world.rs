@@ -1,7 +1,6 @@
 //! [`DemWorld`]: grains (structure of arrays), the box and the primary mass, and the step.
 
 use nalgebra::UnitQuaternion;
-use rayon::prelude::*;
 
 use crate::contact::hertz_stiffness;
 use crate::contact::lanes::{dot, get_lane, set_lane, sub3, F64x8, Lanes};
@@ -23,21 +22,21 @@ use crate::units::G;
 use super::blocks::BlockPairs;
 use super::energy::{EnergyLedger, EnergyState};
 use super::model::DemModel;
+use super::team::{Exec, Parts, Team};
 
-/// Candidate pairs per work unit of the pair pass. The pass is split into these fixed chunks
-/// whatever the number of threads, and their partial sums are added in chunk order, so a run
-/// gives bit-identical results on any number of threads.
+/// Own pairs of a block per call of the pair kernel (a block's own pairs are run in these
+/// chunks, in order, by the block's thread).
 pub const PAIR_CHUNK: usize = 1024;
-/// Grains per work unit of the per-grain passes (force gathering, walls, integration).
+/// Cross pairs (pairs across grain blocks) per work unit: small, so that the few cross pairs
+/// of a two-block bed still divide between two threads.
+pub const CROSS_CHUNK: usize = 256;
+/// Grains per work unit of the per-grain phases (kick–drift; cross gathering, walls, kick).
 pub const GRAIN_CHUNK: usize = 512;
-/// Default smallest grain count for which a step uses the rayon thread pool.
-pub const PARALLEL_MIN_GRAINS: usize = 16_000;
-/// Default smallest pool size for which a step uses the rayon thread pool. The parallel path
-/// (pair responses stored per pair, then gathered per grain; three pool sections per step)
-/// costs about twice the one-thread path's work per thread: on 2 threads it measured 0.46–0.65×
-/// the one-thread speed at N = 4000 and 0.86–1.05× at 16 000–64 000 (bench/README.md), so
-/// two threads run the one-thread path.
-pub const PARALLEL_MIN_THREADS: usize = 3;
+/// Default smallest grain count for which a step runs on several threads: two blocks
+/// ([`super::blocks::MIN_BLOCK`]). Results do not depend on it.
+pub const PARALLEL_MIN_GRAINS: usize = 2 * super::blocks::MIN_BLOCK;
+/// Default smallest number of threads for which a step runs on several threads.
+pub const PARALLEL_MIN_THREADS: usize = 2;
 /// Default smallest grain count for which the grains are stored along the space-filling curve
 /// (re-sorted at every neighbour rebuild); smaller beds fit the caches in any order.
 pub const SORT_MIN_GRAINS: usize = 1000;
@@ -248,6 +247,29 @@ pub struct DemWorld {
     /// Instruction set of the contact loops (default: the widest this processor has; every
     /// choice gives bitwise the same results).
     pub simd: Simd,
+    /// Threads of a [`Team`] to step with (`None`: the rayon pool's size, and a team only when
+    /// stepped from outside a rayon pool). Results do not depend on it.
+    pub team_threads: Option<usize>,
+    team: TeamSlot,
+    mode: Mode,
+}
+
+/// Who runs the phases of the current step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Mode {
+    Serial,
+    Rayon,
+    Team,
+}
+
+/// The world's [`Team`], if it made one (a clone of the world makes its own).
+#[derive(Debug, Default)]
+struct TeamSlot(Option<Team>);
+
+impl Clone for TeamSlot {
+    fn clone(&self) -> Self {
+        TeamSlot(None)
+    }
 }
 
 /// What every grain shares when all grains are alike (one radius, one mass).
@@ -426,6 +448,9 @@ impl DemWorld {
             steps: 0,
             uniform,
             simd: Simd::detect(),
+            team_threads: None,
+            team: TeamSlot(None),
+            mode: Mode::Serial,
         })
     }
 
@@ -543,6 +568,11 @@ impl DemWorld {
         self.neighbors.pairs.len()
     }
 
+    /// (grain blocks, candidate pairs across blocks) of the force pass ([`super::blocks`]).
+    pub fn block_stats(&self) -> (usize, usize) {
+        (self.blocks.blocks, self.blocks.cross_len())
+    }
+
     /// Base displacement and velocity now (zero motion while the drive is off).
     pub fn base_now(&self) -> (f64, f64) {
         if self.drive_on {
@@ -626,59 +656,9 @@ impl DemWorld {
             }
         }
         // half kick + drift of the grains, fused with the Verlet-list displacement check
-        let (reference, ref_shift) = self.neighbors.reference();
-        let shift = [0.0, 0.0, self.box_z - ref_shift[2]];
-        let par = self.parallel();
-        let rot = self.laws.rotations;
-        let max_d2 = if par {
-            // one parallel section: translation (kick, drift, displacement check) and the
-            // spins' half kick, chunk by chunk
-            let tracked = reference.len() == self.pos.len();
-            self.pos
-                .par_chunks_mut(GRAIN_CHUNK)
-                .zip(self.vel.par_chunks_mut(GRAIN_CHUNK))
-                .zip(self.vel_pred.par_chunks_mut(GRAIN_CHUNK))
-                .zip(self.force.par_chunks(GRAIN_CHUNK))
-                .zip(self.inv_mass.par_chunks(GRAIN_CHUNK))
-                .zip(self.omega.par_chunks_mut(GRAIN_CHUNK))
-                .zip(self.omega_pred.par_chunks_mut(GRAIN_CHUNK))
-                .zip(self.torque.par_chunks(GRAIN_CHUNK))
-                .zip(self.inv_inertia.par_chunks(GRAIN_CHUNK))
-                .enumerate()
-                .map(|(c, ((((((((x, v), vp), f), im), w), wp), t), ii))| {
-                    let r = if tracked {
-                        &reference[c * GRAIN_CHUNK..c * GRAIN_CHUNK + x.len()]
-                    } else {
-                        &[]
-                    };
-                    if rot {
-                        half_kick_predict(w, wp, t, ii, h);
-                    }
-                    kick_drift(x, v, vp, f, im, h, dt, r, shift)
-                })
-                .reduce(|| 0.0, f64::max)
-        } else {
-            kick_drift(
-                &mut self.pos,
-                &mut self.vel,
-                &mut self.vel_pred,
-                &self.force,
-                &self.inv_mass,
-                h,
-                dt,
-                reference,
-                shift,
-            )
-        };
-        if rot && !par {
-            half_kick_predict(
-                &mut self.omega,
-                &mut self.omega_pred,
-                &self.torque,
-                &self.inv_inertia,
-                h,
-            );
-        }
+        let shift = self.box_z - self.neighbors.reference().1[2];
+        self.mode = self.choose_mode();
+        let max_d2 = self.kick_drift_phase(shift);
         self.box_v_pred = if primary_free {
             self.box_v + h * self.box_a
         } else {
@@ -755,10 +735,81 @@ impl DemWorld {
         self.forces(rebuild, false)
     }
 
-    /// Whether this step uses the rayon pool.
-    fn parallel(&self) -> bool {
-        self.len() >= self.parallel_min_grains
-            && rayon::current_num_threads() >= self.parallel_min_threads.max(2)
+    /// Who runs this step's phases: one thread for small beds or one-thread pools; a
+    /// [`Team`] (made here, kept for the next steps) when the world is stepped from outside
+    /// any rayon pool or [`DemWorld::team_threads`] asks for one; else the rayon pool the
+    /// caller is in.
+    fn choose_mode(&mut self) -> Mode {
+        let threads = self.team_threads.unwrap_or_else(rayon::current_num_threads);
+        if self.len() < self.parallel_min_grains || threads < self.parallel_min_threads.max(2) {
+            return Mode::Serial;
+        }
+        if self.team_threads.is_none() && rayon::current_thread_index().is_some() {
+            return Mode::Rayon;
+        }
+        if self.team.0.as_ref().map(Team::threads) != Some(threads) {
+            self.team.0 = Team::new(threads).ok();
+        }
+        if self.team.0.is_some() {
+            Mode::Team
+        } else {
+            Mode::Rayon
+        }
+    }
+
+    /// Steps 1–2 for the grains: half kick, drift, predicted velocities (and the spins' half
+    /// kick), chunk by chunk; returns the largest squared displacement since the last
+    /// neighbour build relative to the box's vertical displacement `shift_z` (m²).
+    fn kick_drift_phase(&mut self, shift_z: f64) -> f64 {
+        let n = self.pos.len();
+        let (h, dt, rot) = (0.5 * self.dt, self.dt, self.laws.rotations);
+        let units = n.div_ceil(GRAIN_CHUNK);
+        self.partials.clear();
+        self.partials.resize(units, [0.0; 3]);
+        let exec = match (self.mode, self.team.0.as_ref()) {
+            (Mode::Serial, _) => Exec::Serial,
+            (Mode::Team, Some(team)) => Exec::Team(team),
+            _ => Exec::Rayon,
+        };
+        let slots = Parts::new(&mut self.partials);
+        let pos = Parts::new(&mut self.pos);
+        let vel = Parts::new(&mut self.vel);
+        let vel_pred = Parts::new(&mut self.vel_pred);
+        let omega = Parts::new(&mut self.omega);
+        let omega_pred = Parts::new(&mut self.omega_pred);
+        let (force, torque) = (&self.force, &self.torque);
+        let (inv_mass, inv_inertia) = (&self.inv_mass, &self.inv_inertia);
+        let reference = self.neighbors.reference().0;
+        let tracked = reference.len() == n;
+        exec.units(units, &|c| {
+            let r = c * GRAIN_CHUNK..((c + 1) * GRAIN_CHUNK).min(n);
+            // SAFETY: grain chunk `c` alone touches its grains and its slot.
+            unsafe {
+                if rot {
+                    half_kick_predict(
+                        omega.get(r.clone()),
+                        omega_pred.get(r.clone()),
+                        &torque[r.clone()],
+                        &inv_inertia[r.clone()],
+                        h,
+                    );
+                }
+                let refs = if tracked { &reference[r.clone()] } else { &[] };
+                let m = kick_drift(
+                    pos.get(r.clone()),
+                    vel.get(r.clone()),
+                    vel_pred.get(r.clone()),
+                    &force[r.clone()],
+                    &inv_mass[r],
+                    h,
+                    dt,
+                    refs,
+                    [0.0, 0.0, shift_z],
+                );
+                slots.get(c..c + 1)[0][0] = m;
+            }
+        });
+        self.partials.iter().fold(0.0, |a, s| a.max(s[0]))
     }
 
     /// Rebuilds the neighbour list, the per-pair coefficients (computed here only, never in
@@ -869,17 +920,22 @@ impl DemWorld {
         (out.1, out.2)
     }
 
-    /// The force pass, in the order of [`super::blocks`]: the cross pairs' responses into
-    /// their [`PairState`] alongside, block by block, gravity and drag and the block's own
-    /// pairs scattered into its grains; then the per-grain pass (each grain's cross pairs
-    /// gathered in pair order, its wall contacts, its second half kick). Blocks, cross-pair
-    /// chunks and grain chunks are fixed by the grain count, and run on the rayon pool for
-    /// large beds, so the sums are the same on any number of threads.
+    /// The force pass, in the order of [`super::blocks`], as two phases of fixed units:
+    /// (1) block by block, gravity and drag and the block's own pairs scattered into its
+    /// grains, alongside the cross pairs' responses (chunk by chunk) into their
+    /// [`PairState`]; (2) grain chunk by grain chunk, each grain's cross pairs gathered in
+    /// pair order, its wall contacts and its second half kick. Each unit's sums go to its
+    /// slot and are added in unit order, so the result does not depend on who runs the units.
     fn contacts<N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
         &mut self,
         kick: bool,
     ) -> LoopOut {
-        let par = self.parallel();
+        let exec = match (self.mode, self.team.0.as_ref()) {
+            (Mode::Serial, _) => Exec::Serial,
+            (Mode::Team, Some(team)) => Exec::Team(team),
+            _ => Exec::Rayon,
+        };
+        let n = self.pos.len();
         let ctx = PairCtx {
             simd: self.simd,
             uniform: self.uniform,
@@ -920,92 +976,103 @@ impl DemWorld {
             gravity: self.gravity,
             drag: self.settle_drag,
         };
-        let cross0 = bp.seg[bp.blocks];
-        let (own_state, cross_state) = self.pair_state.split_at_mut(cross0);
-        let (own_pairs, cross_pairs) = bp.pairs.split_at(cross0);
-        let (own_coef, cross_coef) = self.pair_coef.split_at(cross0);
-        let partials = &mut self.partials;
-        let mut cross = |partials: &mut Vec<[f64; 3]>| {
-            let run = |((s, p), c): ((&mut [PairState], &[Pair]), &[ContactCoefficients])| {
+        // phase 1: blocks and cross-pair chunks
+        let nb = bp.blocks;
+        let cross0 = bp.seg[nb];
+        let nc = bp.cross_len().div_ceil(CROSS_CHUNK);
+        self.partials.clear();
+        self.partials.resize(nb + nc, [0.0; 3]);
+        {
+            let slots = Parts::new(&mut self.partials);
+            let force = Parts::new(&mut self.force);
+            let torque = Parts::new(&mut self.torque);
+            let state = Parts::new(&mut self.pair_state);
+            let vel = &self.vel;
+            let own = |blk: usize| {
+                let g = bp.grains(blk, n);
+                let (s0, s1) = (bp.seg[blk], bp.seg[blk + 1]);
+                // SAFETY: block `blk` alone touches its grains and its own pairs' states.
+                let (f, t, st) = unsafe {
+                    (
+                        force.get(g.clone()),
+                        torque.get(g.clone()),
+                        state.get(s0..s1),
+                    )
+                };
+                init_forces(&gctx, vel, g.start, f, t);
+                let (mut pc, mut pf) = (0.0, 0.0);
+                for ((s, p), c) in st
+                    .chunks_mut(PAIR_CHUNK)
+                    .zip(bp.pairs[s0..s1].chunks(PAIR_CHUNK))
+                    .zip(self.pair_coef[s0..s1].chunks(PAIR_CHUNK))
+                {
+                    let chunk = PairChunk {
+                        pairs: p,
+                        coef: c,
+                        state: s,
+                        first: g.start,
+                        force: &mut *f,
+                        torque: &mut *t,
+                    };
+                    let part = pair_chunk::<N, T, true, LEDGER>(&ctx, chunk);
+                    pc += part[0];
+                    pf += part[1];
+                }
+                // SAFETY: slot `blk` is this unit's.
+                unsafe { slots.get(blk..blk + 1)[0] = [pc, pf, 0.0] };
+            };
+            let cross = |c: usize| {
+                let r =
+                    cross0 + c * CROSS_CHUNK..(cross0 + (c + 1) * CROSS_CHUNK).min(bp.pairs.len());
                 let chunk = PairChunk {
-                    pairs: p,
-                    coef: c,
-                    state: s,
+                    pairs: &bp.pairs[r.clone()],
+                    coef: &self.pair_coef[r.clone()],
+                    // SAFETY: cross chunk `c` alone touches these states.
+                    state: unsafe { state.get(r) },
                     first: 0,
                     force: &mut [],
                     torque: &mut [],
                 };
-                pair_chunk::<N, T, false, LEDGER>(&ctx, chunk)
+                let part = pair_chunk::<N, T, false, LEDGER>(&ctx, chunk);
+                // SAFETY: slot `nb + c` is this unit's.
+                unsafe { slots.get(nb + c..nb + c + 1)[0] = part };
             };
-            partials.clear();
-            if par {
-                cross_state
-                    .par_chunks_mut(PAIR_CHUNK)
-                    .zip(cross_pairs.par_chunks(PAIR_CHUNK))
-                    .zip(cross_coef.par_chunks(PAIR_CHUNK))
-                    .map(run)
-                    .collect_into_vec(partials);
-            } else {
-                let chunks = cross_state
-                    .chunks_mut(PAIR_CHUNK)
-                    .zip(cross_pairs.chunks(PAIR_CHUNK))
-                    .zip(cross_coef.chunks(PAIR_CHUNK));
-                partials.extend(chunks.map(run));
-            }
-            partials
-                .iter()
-                .fold((0.0, 0.0), |a, p| (a.0 + p[0], a.1 + p[1]))
-        };
-        let blocks = OwnBlocks {
-            ctx: &ctx,
-            gctx: &gctx,
-            bp,
-            pairs: own_pairs,
-            coef: own_coef,
-            vel: &self.vel,
-            par,
-        };
-        let mut own = || {
-            blocks.run::<N, T, LEDGER>(
-                0..bp.blocks,
-                &mut self.force,
-                &mut self.torque,
-                own_state,
-            )
-        };
-        let ((xc, xf), (oc, of)) = if par {
-            rayon::join(|| cross(partials), own)
-        } else {
-            (cross(partials), own())
-        };
+            exec.units2((nb, &own), (nc, &cross));
+        }
+        let fold2 = |s: &[[f64; 3]]| s.iter().fold((0.0, 0.0), |a, p| (a.0 + p[0], a.1 + p[1]));
+        let (oc, of) = fold2(&self.partials[..nb]);
+        let (xc, xf) = fold2(&self.partials[nb..]);
+        // phase 2: grain chunks (cross pairs gathered, walls, second half kick)
         let gctx = GrainCtx {
             cross_state: &self.pair_state[cross0..],
             ..gctx
         };
-        let run = |(c, ((((f, t), h), v), w))| {
-            grain_chunk::<N, T, LEDGER>(&gctx, GrainChunk::of(c, (f, t, h, v, w)))
-        };
+        let units = n.div_ceil(GRAIN_CHUNK);
         self.partials.clear();
-        if par {
-            self.force
-                .par_chunks_mut(GRAIN_CHUNK)
-                .zip(self.torque.par_chunks_mut(GRAIN_CHUNK))
-                .zip(self.wall_history.par_chunks_mut(GRAIN_CHUNK))
-                .zip(self.vel.par_chunks_mut(GRAIN_CHUNK))
-                .zip(self.omega.par_chunks_mut(GRAIN_CHUNK))
-                .enumerate()
-                .map(run)
-                .collect_into_vec(&mut self.partials);
-        } else {
-            let chunks = self
-                .force
-                .chunks_mut(GRAIN_CHUNK)
-                .zip(self.torque.chunks_mut(GRAIN_CHUNK))
-                .zip(self.wall_history.chunks_mut(GRAIN_CHUNK))
-                .zip(self.vel.chunks_mut(GRAIN_CHUNK))
-                .zip(self.omega.chunks_mut(GRAIN_CHUNK))
-                .enumerate();
-            self.partials.extend(chunks.map(run));
+        self.partials.resize(units, [0.0; 3]);
+        {
+            let slots = Parts::new(&mut self.partials);
+            let force = Parts::new(&mut self.force);
+            let torque = Parts::new(&mut self.torque);
+            let hist = Parts::new(&mut self.wall_history);
+            let vel = Parts::new(&mut self.vel);
+            let omega = Parts::new(&mut self.omega);
+            exec.units(units, &|c| {
+                let r = c * GRAIN_CHUNK..(c + 1) * GRAIN_CHUNK;
+                // SAFETY: grain chunk `c` alone touches its grains and its slot.
+                let chunk = unsafe {
+                    GrainChunk {
+                        first: r.start,
+                        force: force.get(r.clone()),
+                        torque: torque.get(r.clone()),
+                        wall_history: hist.get(r.clone()),
+                        vel: vel.get(r.clone()),
+                        omega: omega.get(r),
+                    }
+                };
+                let out = grain_chunk::<N, T, LEDGER>(&gctx, chunk);
+                unsafe { slots.get(c..c + 1)[0] = out };
+            });
         }
         let (fgz, wc, wf) = self
             .partials
@@ -1269,75 +1336,6 @@ fn pair_chunk_impl<
     [p_coll, p_fric, 0.0]
 }
 
-/// The blocks' part of the force pass: gravity, drag and each block's own pairs.
-struct OwnBlocks<'a> {
-    ctx: &'a PairCtx<'a>,
-    gctx: &'a GrainCtx<'a>,
-    bp: &'a BlockPairs,
-    /// The own pairs of every block (`bp.pairs[..bp.seg[bp.blocks]]`) and their coefficients.
-    pairs: &'a [Pair],
-    coef: &'a [ContactCoefficients],
-    /// Velocities (m/s), for the settling drag.
-    vel: &'a [[f64; 3]],
-    par: bool,
-}
-
-impl OwnBlocks<'_> {
-    /// Blocks `range`, whose grains' forces and torques are `force` and `torque` and whose
-    /// own pairs' states are `state`: halved recursively (on two threads when `par`) down to
-    /// one block. Returns (collision power, friction power) (W), summed in a tree fixed by
-    /// the block count.
-    fn run<N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
-        &self,
-        range: std::ops::Range<usize>,
-        force: &mut [[f64; 3]],
-        torque: &mut [[f64; 3]],
-        state: &mut [PairState],
-    ) -> (f64, f64) {
-        let bp = self.bp;
-        let n = self.ctx.pos.len();
-        if range.len() > 1 {
-            let mid = range.start + range.len() / 2;
-            let first = bp.grains(range.start, n).start;
-            let at = bp.grains(mid, n).start - first;
-            let (f0, f1) = force.split_at_mut(at);
-            let (t0, t1) = torque.split_at_mut(at.min(torque.len()));
-            let (s0, s1) = state.split_at_mut(bp.seg[mid] - bp.seg[range.start]);
-            let mut lo = || self.run::<N, T, LEDGER>(range.start..mid, f0, t0, s0);
-            let mut hi = || self.run::<N, T, LEDGER>(mid..range.end, f1, t1, s1);
-            let (a, b) = if self.par {
-                rayon::join(lo, hi)
-            } else {
-                (lo(), hi())
-            };
-            return (a.0 + b.0, a.1 + b.1);
-        }
-        let b = range.start;
-        let first = bp.grains(b, n).start;
-        init_forces(self.gctx, self.vel, first, force, torque);
-        let (s0, s1) = (bp.seg[b], bp.seg[b + 1]);
-        let (mut pc, mut pf) = (0.0, 0.0);
-        for ((s, p), c) in state
-            .chunks_mut(PAIR_CHUNK)
-            .zip(self.pairs[s0..s1].chunks(PAIR_CHUNK))
-            .zip(self.coef[s0..s1].chunks(PAIR_CHUNK))
-        {
-            let chunk = PairChunk {
-                pairs: p,
-                coef: c,
-                state: s,
-                first,
-                force: &mut *force,
-                torque: &mut *torque,
-            };
-            let part = pair_chunk::<N, T, true, LEDGER>(self.ctx, chunk);
-            pc += part[0];
-            pf += part[1];
-        }
-        (pc, pf)
-    }
-}
-
 /// The inputs of up to `L::N` grain–grain contacts, one contact per lane (lanes past the
 /// block's end keep an earlier contact's values: computed, never used).
 #[derive(Default)]
@@ -1416,29 +1414,6 @@ struct GrainChunk<'a> {
     wall_history: &'a mut [[[f64; 3]; 6]],
     vel: &'a mut [[f64; 3]],
     omega: &'a mut [[f64; 3]],
-}
-
-/// The per-grain slices of one chunk: force, torque, wall springs, velocity, spin.
-type GrainSlices<'a> = (
-    &'a mut [[f64; 3]],
-    &'a mut [[f64; 3]],
-    &'a mut [[[f64; 3]; 6]],
-    &'a mut [[f64; 3]],
-    &'a mut [[f64; 3]],
-);
-
-impl<'a> GrainChunk<'a> {
-    /// Chunk number `c` (of [`GRAIN_CHUNK`] grains) and its slices.
-    fn of(c: usize, (force, torque, wall_history, vel, omega): GrainSlices<'a>) -> Self {
-        GrainChunk {
-            first: c * GRAIN_CHUNK,
-            force,
-            torque,
-            wall_history,
-            vel,
-            omega,
-        }
-    }
 }
 
 /// [`pair_chunk_impl`] compiled for the instruction set `ctx.simd`.
@@ -1581,12 +1556,7 @@ struct GrainCtx<'a> {
 /// With `ctx.kick` the chunk's grains then get the step's second half kick (2.2.5),
 /// v ← v + (dt/2) F/m and ω ← ω + (dt/2) τ/I, their forces being complete.
 #[inline(always)]
-fn grain_chunk_impl<
-    L: Lanes,
-    N: NormalKernel,
-    T: TangentialKernel,
-    const LEDGER: bool,
->(
+fn grain_chunk_impl<L: Lanes, N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
     ctx: &GrainCtx,
     chunk: GrainChunk,
 ) -> [f64; 3] {
