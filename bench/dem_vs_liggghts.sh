@@ -16,7 +16,10 @@
 # figure: `particle_steps_per_s` of summary.json (grains x driven steps / wall time).
 # Both on one core (taskset -c $CPU, RAYON_NUM_THREADS=1), alternating, REPEAT rounds, medians.
 # With THREADS2=1 pdamp also runs on 2 threads (no taskset) for the thread speed-up column
-# (since PARALLEL_MIN_THREADS = 3, a 2-thread pool runs the one-thread path: ~1.00x).
+# (from 3000 grains a run steps on its own team of 2 threads; below, the one-thread path).
+# TANGENTIAL selects pdamp's tangential law: "coulomb-viscous" (the thesis's history-free law,
+# default) or "mindlin" (tangential spring with per-contact history, what the LIGGGHTS deck's
+# "tangential history" computes).
 #
 # usage: bench/dem_vs_liggghts.sh                       # N = 250 4000 16000 64000, 3 rounds
 #        NS="250 4000" REPEAT=3 THREADS2=1 bench/dem_vs_liggghts.sh
@@ -26,7 +29,8 @@
 #        (binary; default target/release/pdamp, built if missing), THREADS2 (0),
 #        SKIP_LIGGGHTS_ABOVE (N above which LIGGGHTS is not run: its settling of 16 000 and
 #        64 000 grains takes hours on one core), PDAMP_PACKING (lattice; "advancing-front"
-#        packs pdamp's bed on the floor directly, so that it settles in ~0.05 s at large N).
+#        packs pdamp's bed on the floor directly, so that it settles in ~0.05 s at large N),
+#        TANGENTIAL (coulomb-viscous | mindlin).
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -42,6 +46,7 @@ CPU=${CPU:-0}
 THREADS2=${THREADS2:-0}
 SKIP_LIGGGHTS_ABOVE=${SKIP_LIGGGHTS_ABOVE:-1000000000}
 PDAMP_PACKING=${PDAMP_PACKING:-lattice}
+TANGENTIAL=${TANGENTIAL:-coulomb-viscous}
 WORK=${WORK:-${TMPDIR:-/tmp}/pdamp_vs_liggghts}
 PDAMP=${PDAMP:-$ROOT/target/release/pdamp}
 DT=2.8e-6
@@ -129,7 +134,7 @@ pdamp_run() {
     RAYON_NUM_THREADS=$threads "${pin[@]}" "$PDAMP" simulate "$ROOT/bench/dem_bed.toml" --out "$out" --no-analysis \
         --set damper.count="$n" --set "damper.box=[$L,$L,0.1225]" --set excitation.amplitude=$amp \
         --set run.duration="$dur" --set damper.settle_time="$PDAMP_SETTLE" \
-        --set damper.packing="\"$PDAMP_PACKING\"" >"$out.log" 2>&1
+        --set damper.packing="\"$PDAMP_PACKING\"" --set damper.tangential="\"$TANGENTIAL\"" >"$out.log" 2>&1
     local a b
     a=$(sed -n 's/.*"particle_steps_per_s": *\([0-9.eE+-]*\).*/\1/p' "$out/summary.json" | head -1)
     b=$(sed -n 's/.*"particle_steps_per_cpu_s": *\([0-9.eE+-]*\).*/\1/p' "$out/summary.json" | head -1)
@@ -137,7 +142,7 @@ pdamp_run() {
 }
 
 echo "# pdamp vs LIGGGHTS 3.8.0, $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg)"
-echo "# $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); REPEAT=$REPEAT, medians; M particle-steps/s"
+echo "# $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); REPEAT=$REPEAT, medians; M particle-steps/s; pdamp tangential law: $TANGENTIAL"
 echo "# CPU: per CPU-second of the timed run (LIGGGHTS: process CPU minus a NRUN = 0 run; pdamp: stepping thread)"
 echo "# wall: LIGGGHTS N x NRUN / Loop time; pdamp particle_steps_per_s (driven phase = NWARM + NRUN steps)"
 printf '| bed | N | box L (mm) | timed steps | LIGGGHTS CPU | pdamp CPU | ratio CPU | LIGGGHTS wall | pdamp wall 1 thr | ratio wall |'

@@ -57,7 +57,7 @@ impl SteadyWindow {
         }
         self.z_min_m = self.z_min_m.min(w.box_z);
         self.z_max_m = self.z_max_m.max(w.box_z);
-        let (_, v_cm) = w.z_cm_state();
+        let (_, v_cm) = w.step_cm();
         self.impacts.observe(v_cm - w.box_v, w.grain_force_n);
     }
 

@@ -224,6 +224,12 @@ pub struct DemWorld {
     history_carry: Vec<(u64, [f64; 3])>,
     /// Partial sums of the chunks (scratch, reused every step).
     partials: Vec<[f64; 3]>,
+    /// Partial sums of the grain chunks: F_gz, powers, Σ m z, Σ m ż (scratch).
+    grain_partials: Vec<[f64; 5]>,
+    /// Total grain mass (kg).
+    mass_total: f64,
+    /// Centre-of-mass height and vertical velocity at the end of the last step (m, m/s).
+    step_cm: (f64, f64),
     /// Smallest grain count for which a step uses the rayon pool (default
     /// [`PARALLEL_MIN_GRAINS`]); results do not depend on it nor on the thread count.
     pub parallel_min_grains: usize,
@@ -399,6 +405,7 @@ impl DemWorld {
             .map(|i| laws.coefficients(radius[i], mass[i], f64::INFINITY, f64::INFINITY, true))
             .collect();
         let uniform = Uniform::of(&laws, &radius, &mass);
+        let mass_total = mass.iter().sum();
         Ok(DemWorld {
             t: 0.0,
             dt,
@@ -439,6 +446,9 @@ impl DemWorld {
             wall_history: vec![[[0.0; 3]; 6]; n],
             history_carry: Vec::new(),
             partials: Vec::new(),
+            grain_partials: Vec::new(),
+            mass_total,
+            step_cm: (f64::NAN, f64::NAN),
             parallel_min_grains: PARALLEL_MIN_GRAINS,
             parallel_min_threads: PARALLEL_MIN_THREADS,
             sort_min_grains: SORT_MIN_GRAINS,
@@ -1048,10 +1058,10 @@ impl DemWorld {
             ..gctx
         };
         let units = n.div_ceil(GRAIN_CHUNK);
-        self.partials.clear();
-        self.partials.resize(units, [0.0; 3]);
+        self.grain_partials.clear();
+        self.grain_partials.resize(units, [0.0; 5]);
         {
-            let slots = Parts::new(&mut self.partials);
+            let slots = Parts::new(&mut self.grain_partials);
             let force = Parts::new(&mut self.force);
             let torque = Parts::new(&mut self.torque);
             let hist = Parts::new(&mut self.wall_history);
@@ -1071,14 +1081,20 @@ impl DemWorld {
                     }
                 };
                 let out = grain_chunk::<N, T, LEDGER>(&gctx, chunk);
+                // SAFETY: slot `c` is this unit's.
                 unsafe { slots.get(c..c + 1)[0] = out };
             });
         }
-        let (fgz, wc, wf) = self
-            .partials
-            .iter()
-            .fold((0.0, 0.0, 0.0), |a, p| (a.0 + p[0], a.1 + p[1], a.2 + p[2]));
-        (fgz, (oc + xc) + wc, (of + xf) + wf)
+        let mut t = [0.0; 5];
+        for p in &self.grain_partials {
+            for (a, b) in t.iter_mut().zip(p) {
+                *a += b;
+            }
+        }
+        if kick {
+            self.step_cm = (t[3] / self.mass_total, t[4] / self.mass_total);
+        }
+        (t[0], (oc + xc) + t[1], (of + xf) + t[2])
     }
 
     /// Stored energies now (J).
@@ -1157,6 +1173,14 @@ impl DemWorld {
             }
         }
         m
+    }
+
+    /// Centre of mass height z_cm and vertical velocity v_cm of the grains at the end of the
+    /// last [`DemWorld::step`] (m, m/s), as the step summed them (chunk by chunk, in its
+    /// last phase: no extra pass over the grains); NaN before the first step. Equal to
+    /// [`DemWorld::z_cm_state`] up to round-off right after a step.
+    pub fn step_cm(&self) -> (f64, f64) {
+        self.step_cm
     }
 
     /// Centre of mass height z_cm and vertical velocity v_cm of the grains (m, m/s).
@@ -1450,7 +1474,7 @@ fn pair_chunk_avx2<
 fn grain_chunk<N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
     ctx: &GrainCtx,
     c: GrainChunk,
-) -> [f64; 3] {
+) -> [f64; 5] {
     match ctx.simd {
         // SAFETY: as in `pair_chunk`.
         #[cfg(target_arch = "x86_64")]
@@ -1464,7 +1488,7 @@ fn grain_chunk<N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
 fn grain_chunk_avx2<N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
     ctx: &GrainCtx,
     c: GrainChunk,
-) -> [f64; 3] {
+) -> [f64; 5] {
     grain_chunk_impl::<F64x8, N, T, LEDGER>(ctx, c)
 }
 
@@ -1559,7 +1583,7 @@ struct GrainCtx<'a> {
 fn grain_chunk_impl<L: Lanes, N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
     ctx: &GrainCtx,
     chunk: GrainChunk,
-) -> [f64; 3] {
+) -> [f64; 5] {
     let GrainChunk {
         first,
         force,
@@ -1665,6 +1689,7 @@ fn grain_chunk_impl<L: Lanes, N: NormalKernel, T: TangentialKernel, const LEDGER
             fgz -= f[2];
         }
     }
+    let (mut mz, mut mv) = (0.0, 0.0);
     if ctx.kick {
         let h = 0.5 * ctx.dt;
         let n = force.len();
@@ -1672,8 +1697,14 @@ fn grain_chunk_impl<L: Lanes, N: NormalKernel, T: TangentialKernel, const LEDGER
         if ctx.rotations {
             half_kick(omega, torque, &ctx.inv_inertia[first..first + n], h);
         }
+        // the centre of mass at the end of the step (its height and vertical velocity)
+        for (k, v) in vel.iter().enumerate() {
+            let m = ctx.mass[first + k];
+            mz += m * ctx.pos[first + k][2];
+            mv += m * v[2];
+        }
     }
-    [fgz, p_coll, p_fric]
+    [fgz, p_coll, p_fric, mz, mv]
 }
 
 /// The kinematics and coefficients of up to `L::N` grain–wall contacts, one per lane.
