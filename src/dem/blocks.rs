@@ -2,7 +2,10 @@
 //!
 //! The grains (stored along the space-filling curve) are cut into a fixed number of
 //! contiguous blocks that depends on the grain count only ([`block_count`]), never on the
-//! threads. A pair whose two grains are in the same block is that block's *own* pair; the
+//! threads; the cuts are placed at each neighbour rebuild so that the blocks hold about as
+//! many candidate pairs each (a block of grains near the side walls has fewer neighbours per
+//! grain than one in the bulk: cut by grain count, two blocks of a 4000-grain bed at rest
+//! differed by 20–30 % in pair work, and the thread with the heavier block set the pace). A pair whose two grains are in the same block is that block's *own* pair; the
 //! others are *cross* pairs. The force on a grain is then always summed in one order:
 //!
 //! 1. gravity (and the settling drag),
@@ -30,16 +33,26 @@ pub fn block_count(n: usize) -> usize {
     b
 }
 
+/// Weight of a grain's own work (gravity, integration) against one candidate pair's, in the
+/// cost the block cuts balance.
+const GRAIN_WEIGHT: u64 = 1;
+/// Weight of one candidate pair not in contact (its distance test).
+const PAIR_WEIGHT: u64 = 1;
+/// Weight of one candidate pair in contact at the rebuild (the test and a contact response).
+const CONTACT_WEIGHT: u64 = 6;
+
 /// Candidate pairs ordered block by block: `pairs[seg[b]..seg[b + 1]]` are block b's own
 /// pairs (in neighbour-list order), `pairs[seg[nb]..]` the cross pairs; and, per grain, the
 /// cross pairs it belongs to (index relative to `seg[nb]`, with [`J_ROLE`] where the grain is
 /// the pair's `j`).
 #[derive(Debug, Clone, Default)]
 pub struct BlockPairs {
-    /// Grains per block (the last block may hold fewer).
-    pub block_len: usize,
     /// Number of blocks.
     pub blocks: usize,
+    /// First grain of each block (`blocks + 1` entries, the last one N).
+    pub starts: Vec<usize>,
+    /// Block of each grain (scratch of [`BlockPairs::partition`]).
+    block_of: Vec<u32>,
     /// The pairs, own pairs of block 0, 1, …, then the cross pairs.
     pub pairs: Vec<Pair>,
     /// Start of each block's own pairs; `seg[blocks]` is the start of the cross pairs and
@@ -55,18 +68,18 @@ pub struct BlockPairs {
 
 impl BlockPairs {
     /// Sorts `pairs` of `n` grains into blocks (stable: each segment keeps the list order)
-    /// and indexes the cross pairs per grain. Reuses its buffers.
-    pub fn partition(&mut self, pairs: &[Pair], n: usize) {
+    /// and indexes the cross pairs per grain; `in_contact` tells the pairs in contact now (they
+    /// weigh more in the block cuts). Reuses its buffers.
+    pub fn partition(&mut self, pairs: &[Pair], n: usize, in_contact: impl Fn(&Pair) -> bool) {
         let nb = block_count(n);
-        let len = n.div_ceil(nb).max(1);
         self.blocks = nb;
-        self.block_len = len;
+        self.cut(pairs, n, in_contact);
         self.class.clear();
         self.seg.clear();
         self.seg.resize(nb + 2, 0);
         for p in pairs {
-            let (bi, bj) = (p.i as usize / len, p.j as usize / len);
-            let c = if bi == bj { bi } else { nb };
+            let (bi, bj) = (self.block_of[p.i as usize], self.block_of[p.j as usize]);
+            let c = if bi == bj { bi as usize } else { nb };
             self.class.push(c as u32);
             self.seg[c + 1] += 1;
         }
@@ -85,6 +98,47 @@ impl BlockPairs {
             *k += 1;
         }
         self.index_cross(n);
+    }
+
+    /// Block cuts at equal shares of the cost Σ (GRAIN_WEIGHT + the weights of the pairs listed
+    /// with the grain as their `i`: CONTACT_WEIGHT if `in_contact`, else PAIR_WEIGHT), each
+    /// block at least one grain; `block_of` to match.
+    fn cut(&mut self, pairs: &[Pair], n: usize, in_contact: impl Fn(&Pair) -> bool) {
+        let nb = self.blocks;
+        // per-grain cost, in `block_of` (reused as scratch before it gets the blocks)
+        let cost = &mut self.block_of;
+        cost.clear();
+        cost.resize(n, GRAIN_WEIGHT as u32);
+        for p in pairs {
+            let w = if in_contact(p) {
+                CONTACT_WEIGHT
+            } else {
+                PAIR_WEIGHT
+            };
+            cost[p.i as usize] += w as u32;
+        }
+        let total: u64 = cost.iter().map(|&c| c as u64).sum();
+        self.starts.clear();
+        self.starts.push(0);
+        let mut acc = 0u64;
+        for (g, &c) in cost.iter().enumerate() {
+            let b = self.starts.len(); // the block whose start is searched next
+            if b < nb && acc * nb as u64 >= b as u64 * total && g > self.starts[b - 1] {
+                self.starts.push(g);
+            }
+            acc += c as u64;
+        }
+        // (a degenerate cost leaves blocks unplaced: spread them over the last grains)
+        while self.starts.len() < nb {
+            let last = *self.starts.last().unwrap_or(&0);
+            self.starts.push((last + 1).min(n));
+        }
+        self.starts.push(n);
+        for b in 0..nb {
+            for g in self.starts[b]..self.starts[b + 1] {
+                self.block_of[g] = b as u32;
+            }
+        }
     }
 
     /// Per-grain index of the cross pairs (counting sort, pair order kept).
@@ -116,9 +170,9 @@ impl BlockPairs {
         start[0] = 0;
     }
 
-    /// Grains `first..end` of block `b` (of `n` grains).
-    pub fn grains(&self, b: usize, n: usize) -> std::ops::Range<usize> {
-        (b * self.block_len).min(n)..((b + 1) * self.block_len).min(n)
+    /// Grains of block `b`.
+    pub fn grains(&self, b: usize) -> std::ops::Range<usize> {
+        self.starts[b]..self.starts[b + 1]
     }
 
     /// Number of cross pairs.
@@ -146,7 +200,7 @@ mod tests {
 
     #[test]
     fn partition_keeps_every_pair_once_in_list_order_per_segment() {
-        let n = 7000; // 4 blocks of 1750
+        let n = 7000; // 4 blocks
         let mut s = 99u64;
         let mut rnd = |m: u64| {
             s = s.wrapping_mul(6364136223846793005).wrapping_add(1);
@@ -166,10 +220,28 @@ mod tests {
             .filter(|p| p.i != p.j)
             .collect();
         let mut bp = BlockPairs::default();
-        bp.partition(&pairs, n);
+        bp.partition(&pairs, n, |_| false);
         assert_eq!(bp.blocks, 4);
         assert_eq!(bp.pairs.len(), pairs.len());
-        let block = |g: u32| g as usize / bp.block_len;
+        let block = |g: u32| {
+            (0..bp.blocks)
+                .find(|&b| bp.grains(b).contains(&(g as usize)))
+                .unwrap()
+        };
+        assert_eq!(bp.starts.len(), 5);
+        assert!(bp.starts.windows(2).all(|w| w[0] < w[1]) && bp.starts[4] == n);
+        // the cuts balance the listed pairs (each pair counted at its `i`)
+        let per_block: Vec<usize> = (0..4)
+            .map(|b| pairs.iter().filter(|p| block(p.i) == b).count())
+            .collect();
+        let (lo, hi) = (
+            per_block.iter().min().unwrap(),
+            per_block.iter().max().unwrap(),
+        );
+        assert!(
+            *hi as f64 <= 1.05 * *lo as f64 + 10.0,
+            "pairs per block {per_block:?}"
+        );
         for b in 0..bp.blocks {
             let want: Vec<Pair> = pairs
                 .iter()
@@ -210,7 +282,7 @@ mod tests {
             .copied()
             .filter(|p| p.i < 2000 && p.j < 2000)
             .collect();
-        bp.partition(&small, 2000);
+        bp.partition(&small, 2000, |_| false);
         assert_eq!(bp.blocks, 1);
         assert_eq!(bp.pairs, small);
         assert_eq!(bp.cross_len(), 0);

@@ -854,7 +854,14 @@ impl DemWorld {
             self.history_carry.sort_unstable_by_key(|e| e.0);
         }
         self.neighbors.rebuild(&self.pos, &self.radius, shift);
-        self.blocks.partition(&self.neighbors.pairs, self.pos.len());
+        let (pos, radius) = (&self.pos, &self.radius);
+        self.blocks
+            .partition(&self.neighbors.pairs, self.pos.len(), |p: &Pair| {
+                let (i, j) = (p.i as usize, p.j as usize);
+                let d = sub3(pos[i], pos[j]);
+                let cut = radius[i] + radius[j];
+                dot(d, d) < cut * cut
+            });
         self.pair_coef.clear();
         for &Pair { i, j } in &self.blocks.pairs {
             let (i, j) = (i as usize, j as usize);
@@ -999,7 +1006,7 @@ impl DemWorld {
             let state = Parts::new(&mut self.pair_state);
             let vel = &self.vel;
             let own = |blk: usize| {
-                let g = bp.grains(blk, n);
+                let g = bp.grains(blk);
                 let (s0, s1) = (bp.seg[blk], bp.seg[blk + 1]);
                 // SAFETY: block `blk` alone touches its grains and its own pairs' states.
                 let (f, t, st) = unsafe {
