@@ -44,7 +44,8 @@ pub const SORT_MIN_GRAINS: usize = 1000;
 /// Bytes a DEM run holds per grain, neighbour structure included: ~520 B of grain arrays
 /// (state, predictions, forces, per-grain coefficients and wall springs, cell list), ~230 B of
 /// curve-sort scratch and grain ids (~110 B more of grain-id copies with snapshots) plus up to
-/// ~8 candidate pairs of 120 B (pair, coefficients, state, per-grain index), rounded up.
+/// ~8 candidate pairs of 132 B (pair, its block-ordered copy and block class, coefficients,
+/// state, per-grain index), rounded up.
 pub const BYTES_PER_GRAIN: f64 = 2048.0;
 
 /// Memory a DEM run of `n` grains needs (bytes), independent of the box (the cell list is
@@ -62,13 +63,12 @@ pub fn available_memory_bytes() -> Option<f64> {
     Some(kb * 1024.0)
 }
 
-/// Per candidate pair: the contact's force on i and torque arm from the last force pass, and
-/// its tangential spring elongation (m) when the law has history.
+/// Per cross pair (across grain blocks): the contact's force on i (N) and torque arm from
+/// the force pass, gathered per grain afterwards.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-struct PairState {
+struct PairResponse {
     force: [f64; 3],
     torque_arm: [f64; 3],
-    history: [f64; 3],
 }
 
 /// Contact laws (grain–grain and grain–wall) of the [`DemModel`], flattened for the loops.
@@ -213,11 +213,15 @@ pub struct DemWorld {
     viscous_power_prev: f64,
     laws: Laws,
     neighbors: NeighborList,
-    /// The candidate pairs sorted by grain block (the order of `pair_coef` and `pair_state`).
+    /// The candidate pairs sorted by grain block (the order of `pair_coef` and
+    /// `pair_history`).
     blocks: BlockPairs,
     pair_coef: Vec<ContactCoefficients>,
     wall_coef: Vec<ContactCoefficients>,
-    pair_state: Vec<PairState>,
+    /// Tangential spring elongation of each candidate pair (m; zero without history).
+    pair_history: Vec<[f64; 3]>,
+    /// Responses of the cross pairs (threaded paths only).
+    cross_response: Vec<PairResponse>,
     /// Tangential spring elongation of each grain's contacts with the six walls (m).
     wall_history: Vec<[[f64; 3]; 6]>,
     /// Springs of the pairs before a rebuild, keyed by (min, max) grain (scratch).
@@ -442,7 +446,8 @@ impl DemWorld {
             blocks: BlockPairs::default(),
             pair_coef: Vec::new(),
             wall_coef,
-            pair_state: Vec::new(),
+            pair_history: Vec::new(),
+            cross_response: Vec::new(),
             wall_history: vec![[[0.0; 3]; 6]; n],
             history_carry: Vec::new(),
             partials: Vec::new(),
@@ -836,8 +841,8 @@ impl DemWorld {
             // the springs of the old list, keyed by the (new) slots of their grains
             self.history_carry.clear();
             let inv = &self.sort.inv;
-            for (p, st) in self.blocks.pairs.iter().zip(&self.pair_state) {
-                if st.history != [0.0; 3] {
+            for (p, st) in self.blocks.pairs.iter().zip(&self.pair_history) {
+                if *st != [0.0; 3] {
                     let p = if sort {
                         Pair {
                             i: inv[p.i as usize],
@@ -846,7 +851,7 @@ impl DemWorld {
                     } else {
                         *p
                     };
-                    let h = st.history;
+                    let h = *st;
                     let h = if p.i < p.j { h } else { [-h[0], -h[1], -h[2]] };
                     self.history_carry.push((key(&p), h));
                 }
@@ -874,14 +879,13 @@ impl DemWorld {
             );
             self.pair_coef.push(c);
         }
-        self.pair_state.clear();
-        self.pair_state
-            .resize(self.blocks.pairs.len(), PairState::default());
+        self.pair_history.clear();
+        self.pair_history.resize(self.blocks.pairs.len(), [0.0; 3]);
         if carry && !self.history_carry.is_empty() {
-            for (p, st) in self.blocks.pairs.iter().zip(self.pair_state.iter_mut()) {
+            for (p, st) in self.blocks.pairs.iter().zip(self.pair_history.iter_mut()) {
                 if let Ok(a) = self.history_carry.binary_search_by_key(&key(p), |e| e.0) {
                     let h = self.history_carry[a].1;
-                    st.history = if p.i < p.j { h } else { [-h[0], -h[1], -h[2]] };
+                    *st = if p.i < p.j { h } else { [-h[0], -h[1], -h[2]] };
                 }
             }
         }
@@ -940,9 +944,11 @@ impl DemWorld {
     /// The force pass, in the order of [`super::blocks`], as two phases of fixed units:
     /// (1) block by block, gravity and drag and the block's own pairs scattered into its
     /// grains, alongside the cross pairs' responses (chunk by chunk) into their
-    /// [`PairState`]; (2) grain chunk by grain chunk, each grain's cross pairs gathered in
+    /// [`PairResponse`]; (2) grain chunk by grain chunk, each grain's cross pairs gathered in
     /// pair order, its wall contacts and its second half kick. Each unit's sums go to its
     /// slot and are added in unit order, so the result does not depend on who runs the units.
+    /// On one thread the cross pairs are scattered straight into the forces after every
+    /// block's own pairs instead (no store, no gather): the same additions in the same order.
     fn contacts<N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
         &mut self,
         kick: bool,
@@ -997,28 +1003,32 @@ impl DemWorld {
         let nb = bp.blocks;
         let cross0 = bp.seg[nb];
         let nc = bp.cross_len().div_ceil(CROSS_CHUNK);
+        let serial = matches!(exec, Exec::Serial);
         self.partials.clear();
         self.partials.resize(nb + nc, [0.0; 3]);
         {
             let slots = Parts::new(&mut self.partials);
             let force = Parts::new(&mut self.force);
             let torque = Parts::new(&mut self.torque);
-            let state = Parts::new(&mut self.pair_state);
+            self.cross_response
+                .resize(bp.cross_len(), PairResponse::default());
+            let history = Parts::new(&mut self.pair_history);
+            let response = Parts::new(&mut self.cross_response);
             let vel = &self.vel;
             let own = |blk: usize| {
                 let g = bp.grains(blk);
                 let (s0, s1) = (bp.seg[blk], bp.seg[blk + 1]);
                 // SAFETY: block `blk` alone touches its grains and its own pairs' states.
-                let (f, t, st) = unsafe {
+                let (f, t, hs) = unsafe {
                     (
                         force.get(g.clone()),
                         torque.get(g.clone()),
-                        state.get(s0..s1),
+                        history.get(s0..s1),
                     )
                 };
                 init_forces(&gctx, vel, g.start, f, t);
                 let (mut pc, mut pf) = (0.0, 0.0);
-                for ((s, p), c) in st
+                for ((h, p), c) in hs
                     .chunks_mut(PAIR_CHUNK)
                     .zip(bp.pairs[s0..s1].chunks(PAIR_CHUNK))
                     .zip(self.pair_coef[s0..s1].chunks(PAIR_CHUNK))
@@ -1026,7 +1036,8 @@ impl DemWorld {
                     let chunk = PairChunk {
                         pairs: p,
                         coef: c,
-                        state: s,
+                        history: h,
+                        response: &mut [],
                         first: g.start,
                         force: &mut *f,
                         torque: &mut *t,
@@ -1041,16 +1052,38 @@ impl DemWorld {
             let cross = |c: usize| {
                 let r =
                     cross0 + c * CROSS_CHUNK..(cross0 + (c + 1) * CROSS_CHUNK).min(bp.pairs.len());
-                let chunk = PairChunk {
-                    pairs: &bp.pairs[r.clone()],
-                    coef: &self.pair_coef[r.clone()],
-                    // SAFETY: cross chunk `c` alone touches these states.
-                    state: unsafe { state.get(r) },
-                    first: 0,
-                    force: &mut [],
-                    torque: &mut [],
+                let (pairs, coef) = (&bp.pairs[r.clone()], &self.pair_coef[r.clone()]);
+                // SAFETY: cross chunk `c` alone touches these springs and responses.
+                let hist = unsafe { history.get(r.clone()) };
+                let resp = unsafe { response.get(r.start - cross0..r.end - cross0) };
+                let part = if serial {
+                    // one thread, after every block's own pairs: the responses straight into
+                    // the forces, pair by pair in pair order — the additions, in the order,
+                    // of the per-grain gathering of the threaded paths
+                    // SAFETY: one thread: no other piece is in use.
+                    let (force, torque) = unsafe { (force.get(0..n), torque.get(0..n)) };
+                    let chunk = PairChunk {
+                        pairs,
+                        coef,
+                        history: hist,
+                        response: &mut [],
+                        first: 0,
+                        force,
+                        torque,
+                    };
+                    pair_chunk::<N, T, true, LEDGER>(&ctx, chunk)
+                } else {
+                    let chunk = PairChunk {
+                        pairs,
+                        coef,
+                        history: hist,
+                        response: resp,
+                        first: 0,
+                        force: &mut [],
+                        torque: &mut [],
+                    };
+                    pair_chunk::<N, T, false, LEDGER>(&ctx, chunk)
                 };
-                let part = pair_chunk::<N, T, false, LEDGER>(&ctx, chunk);
                 // SAFETY: slot `nb + c` is this unit's.
                 unsafe { slots.get(nb + c..nb + c + 1)[0] = part };
             };
@@ -1060,9 +1093,17 @@ impl DemWorld {
         let (oc, of) = fold2(&self.partials[..nb]);
         let (xc, xf) = fold2(&self.partials[nb..]);
         // phase 2: grain chunks (cross pairs gathered, walls, second half kick)
-        let gctx = GrainCtx {
-            cross_state: &self.pair_state[cross0..],
-            ..gctx
+        let gctx = if serial {
+            // (the cross pairs are in the forces already)
+            GrainCtx {
+                cross_start: &[],
+                ..gctx
+            }
+        } else {
+            GrainCtx {
+                cross_state: &self.cross_response,
+                ..gctx
+            }
         };
         let units = n.div_ceil(GRAIN_CHUNK);
         self.grain_partials.clear();
@@ -1132,13 +1173,13 @@ impl DemWorld {
             .pairs
             .iter()
             .zip(&self.pair_coef)
-            .zip(&self.pair_state)
+            .zip(&self.pair_history)
         {
             let (i, j) = (p.i as usize, p.j as usize);
             let d = sub3(self.pos[i], self.pos[j]);
             let z = self.radius[i] + self.radius[j] - dot(d, d).sqrt();
             if z > 0.0 {
-                s.elastic_j += elastic(c[0], z) + tangential(c, z, st.history);
+                s.elastic_j += elastic(c[0], z) + tangential(c, z, *st);
             }
         }
         for i in 0..self.len() {
@@ -1251,7 +1292,7 @@ struct PairCtx<'a> {
 ///
 /// `SCATTER` (a block's own pairs): the forces and torques go straight into the block's `force`
 /// and `torque` (which hold gravity and drag already), pair by pair in pair order. Otherwise
-/// (cross pairs) each response is stored in the pair's [`PairState`] for the per-grain pass.
+/// (cross pairs) each response is stored in the pair's [`PairResponse`] for the per-grain pass.
 #[inline(always)]
 fn pair_chunk_impl<
     L: Lanes,
@@ -1266,7 +1307,8 @@ fn pair_chunk_impl<
     let PairChunk {
         pairs,
         coef,
-        state,
+        history,
+        response,
         first,
         force,
         torque,
@@ -1274,7 +1316,7 @@ fn pair_chunk_impl<
     let (pos, radius) = (ctx.pos, ctx.radius);
     let mut active = [0u32; PAIR_CHUNK];
     let mut m = 0usize;
-    for (a, (pair, st)) in pairs.iter().zip(state.iter_mut()).enumerate() {
+    for (a, pair) in pairs.iter().enumerate() {
         let (i, j) = (pair.i as usize, pair.j as usize);
         let d = sub3(pos[i], pos[j]);
         let r2 = dot(d, d);
@@ -1286,11 +1328,10 @@ fn pair_chunk_impl<
         active[m] = a as u32;
         m += on as usize;
         if !SCATTER {
-            st.force = [0.0; 3];
-            st.torque_arm = [0.0; 3];
+            response[a] = PairResponse::default();
         }
         if T::HISTORY && !on {
-            st.history = [0.0; 3];
+            history[a] = [0.0; 3];
         }
     }
     // L::N contacts at a time: gathered into lanes, one lane-wise geometry and
@@ -1310,7 +1351,7 @@ fn pair_chunk_impl<
                 set_lane(&mut g.coef, l, coef[a as usize]);
             }
             if T::HISTORY {
-                set_lane(&mut g.history, l, state[a as usize].history);
+                set_lane(&mut g.history, l, history[a as usize]);
             }
         }
         let r = contact_response::<N, T, L>(
@@ -1326,7 +1367,7 @@ fn pair_chunk_impl<
             let a = a as usize;
             let (f, t) = (get_lane(&r.force, l), get_lane(&r.torque_arm, l));
             if T::HISTORY {
-                state[a].history = get_lane(&g.history, l);
+                history[a] = get_lane(&g.history, l);
             }
             if SCATTER {
                 let pair = pairs[a];
@@ -1354,9 +1395,10 @@ fn pair_chunk_impl<
                     tj[2] -= rj * t[2];
                 }
             } else {
-                let st = &mut state[a];
-                st.force = f;
-                st.torque_arm = t;
+                response[a] = PairResponse {
+                    force: f,
+                    torque_arm: t,
+                };
             }
             if LEDGER {
                 p_coll += r.p_collision.get(l);
@@ -1430,7 +1472,10 @@ impl<L: Lanes> PairLanes<L> {
 struct PairChunk<'a> {
     pairs: &'a [Pair],
     coef: &'a [ContactCoefficients],
-    state: &'a mut [PairState],
+    /// Tangential springs of the chunk's pairs (m).
+    history: &'a mut [[f64; 3]],
+    /// The chunk's responses (cross pairs; empty when they are scattered).
+    response: &'a mut [PairResponse],
     /// Grain of `force[0]` and `torque[0]` (the first grain of the block).
     first: usize,
     force: &'a mut [[f64; 3]],
@@ -1561,12 +1606,13 @@ struct GrainCtx<'a> {
     /// Whether the chunk ends with the grains' second half kick (during a step).
     kick: bool,
     wall_coef: &'a [ContactCoefficients],
-    /// Per grain, where its cross pairs start in `cross_items` ([`BlockPairs::cross_start`]).
+    /// Per grain, where its cross pairs start in `cross_items` ([`BlockPairs::cross_start`]);
+    /// empty when the cross pairs were scattered into the forces (one thread).
     cross_start: &'a [u32],
     /// Per grain, its cross pairs in pair order ([`BlockPairs::cross_items`]).
     cross_items: &'a [u32],
     /// States of the cross pairs (their responses, from the pair pass).
-    cross_state: &'a [PairState],
+    cross_state: &'a [PairResponse],
     box_size: [f64; 3],
     floor: f64,
     ceil: f64,
@@ -1610,7 +1656,10 @@ fn grain_chunk_impl<L: Lanes, N: NormalKernel, T: TangentialKernel, const LEDGER
     {
         let i = first + l;
         let r = ctx.radius[i];
-        let items = &ctx.cross_items[ctx.cross_start[i] as usize..ctx.cross_start[i + 1] as usize];
+        let items = match ctx.cross_start {
+            [] => &[],
+            s => &ctx.cross_items[s[i] as usize..s[i + 1] as usize],
+        };
         for &e in items {
             let st = &ctx.cross_state[(e & !J_ROLE) as usize];
             // +1 where i is the pair's i, −1 where it is its j (exact: a + (−b) = a − b, the
