@@ -272,6 +272,17 @@ enum Mode {
     Team,
 }
 
+impl Mode {
+    /// The executor of this mode (the rayon pool when the team could not be made).
+    fn exec(self, team: &TeamSlot) -> Exec<'_> {
+        match (self, team.0.as_ref()) {
+            (Mode::Serial, _) => Exec::Serial,
+            (Mode::Team, Some(team)) => Exec::Team(team),
+            _ => Exec::Rayon,
+        }
+    }
+}
+
 /// The world's [`Team`], if it made one (a clone of the world makes its own).
 #[derive(Debug, Default)]
 struct TeamSlot(Option<Team>);
@@ -781,11 +792,7 @@ impl DemWorld {
         let units = n.div_ceil(GRAIN_CHUNK);
         self.partials.clear();
         self.partials.resize(units, [0.0; 3]);
-        let exec = match (self.mode, self.team.0.as_ref()) {
-            (Mode::Serial, _) => Exec::Serial,
-            (Mode::Team, Some(team)) => Exec::Team(team),
-            _ => Exec::Rayon,
-        };
+        let exec = self.mode.exec(&self.team);
         let slots = Parts::new(&mut self.partials);
         let pos = Parts::new(&mut self.pos);
         let vel = Parts::new(&mut self.vel);
@@ -953,11 +960,7 @@ impl DemWorld {
         &mut self,
         kick: bool,
     ) -> LoopOut {
-        let exec = match (self.mode, self.team.0.as_ref()) {
-            (Mode::Serial, _) => Exec::Serial,
-            (Mode::Team, Some(team)) => Exec::Team(team),
-            _ => Exec::Rayon,
-        };
+        let exec = self.mode.exec(&self.team);
         let n = self.pos.len();
         let ctx = PairCtx {
             simd: self.simd,
