@@ -3,10 +3,9 @@
 //! The grains (stored along the space-filling curve) are cut into a fixed number of
 //! contiguous blocks that depends on the grain count only ([`block_count`]), never on the
 //! threads; the cuts are placed at each neighbour rebuild so that the blocks hold about as
-//! many candidate pairs each (a block of grains near the side walls has fewer neighbours per
-//! grain than one in the bulk: cut by grain count, two blocks of a 4000-grain bed at rest
-//! differed by 20–30 % in pair work, and the thread with the heavier block set the pace). A pair whose two grains are in the same block is that block's *own* pair; the
-//! others are *cross* pairs. The force on a grain is then always summed in one order:
+//! much pair work each (cut by grain count, two blocks of a 4000-grain bed at rest differed
+//! by 20–30 % in pair work, and the thread with the heavier block set the pace). A pair whose
+//! two grains are in the same block is that block's *own* pair; the others are *cross* pairs. The force on a grain is then always summed in one order:
 //!
 //! 1. gravity (and the settling drag),
 //! 2. its block's own pairs, in pair order (scattered straight into the block's forces),
@@ -17,7 +16,9 @@
 //! the sums are the same on any number of threads. A bed of fewer than 2 × [`MIN_BLOCK`]
 //! grains is one block: no cross pairs at all.
 
-use crate::neighbor::{Pair, J_ROLE};
+#[cfg(test)]
+use crate::neighbor::J_ROLE;
+use crate::neighbor::{index_by_grain, Pair};
 
 /// Smallest number of grains in a block.
 pub const MIN_BLOCK: usize = 1500;
@@ -43,7 +44,7 @@ const CONTACT_WEIGHT: u64 = 6;
 
 /// Candidate pairs ordered block by block: `pairs[seg[b]..seg[b + 1]]` are block b's own
 /// pairs (in neighbour-list order), `pairs[seg[nb]..]` the cross pairs; and, per grain, the
-/// cross pairs it belongs to (index relative to `seg[nb]`, with [`J_ROLE`] where the grain is
+/// cross pairs it belongs to (index relative to `seg[nb]`, with [`J_ROLE`](crate::neighbor::J_ROLE) where the grain is
 /// the pair's `j`).
 #[derive(Debug, Clone, Default)]
 pub struct BlockPairs {
@@ -60,7 +61,7 @@ pub struct BlockPairs {
     pub seg: Vec<usize>,
     /// Per grain (N + 1 entries), where its cross items start in `cross_items`.
     pub cross_start: Vec<u32>,
-    /// Per grain, its cross pairs in pair order (relative index, [`J_ROLE`] for the `j`).
+    /// Per grain, its cross pairs in pair order (relative index, [`J_ROLE`](crate::neighbor::J_ROLE) for the `j`).
     pub cross_items: Vec<u32>,
     /// Block of each candidate pair (scratch of [`BlockPairs::partition`]).
     class: Vec<u32>,
@@ -141,33 +142,10 @@ impl BlockPairs {
         }
     }
 
-    /// Per-grain index of the cross pairs (counting sort, pair order kept).
+    /// Per-grain index of the cross pairs ([`index_by_grain`]).
     fn index_cross(&mut self, n: usize) {
-        let nb = self.blocks;
-        let cross = &self.pairs[self.seg[nb]..];
-        let start = &mut self.cross_start;
-        start.clear();
-        start.resize(n + 1, 0);
-        for p in cross {
-            start[p.i as usize + 1] += 1;
-            start[p.j as usize + 1] += 1;
-        }
-        for g in 0..n {
-            start[g + 1] += start[g];
-        }
-        self.cross_items.clear();
-        self.cross_items.resize(2 * cross.len(), 0);
-        for (k, p) in cross.iter().enumerate() {
-            let (i, j) = (p.i as usize, p.j as usize);
-            self.cross_items[start[i] as usize] = k as u32;
-            start[i] += 1;
-            self.cross_items[start[j] as usize] = k as u32 | J_ROLE;
-            start[j] += 1;
-        }
-        for g in (1..=n).rev() {
-            start[g] = start[g - 1];
-        }
-        start[0] = 0;
+        let cross = &self.pairs[self.seg[self.blocks]..];
+        index_by_grain(cross, n, &mut self.cross_start, &mut self.cross_items);
     }
 
     /// Grains of block `b`.

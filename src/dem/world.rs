@@ -888,6 +888,9 @@ impl DemWorld {
         }
         self.pair_history.clear();
         self.pair_history.resize(self.blocks.pairs.len(), [0.0; 3]);
+        self.cross_response.clear();
+        self.cross_response
+            .resize(self.blocks.cross_len(), PairResponse::default());
         if carry && !self.history_carry.is_empty() {
             for (p, st) in self.blocks.pairs.iter().zip(self.pair_history.iter_mut()) {
                 if let Ok(a) = self.history_carry.binary_search_by_key(&key(p), |e| e.0) {
@@ -1013,8 +1016,6 @@ impl DemWorld {
             let slots = Parts::new(&mut self.partials);
             let force = Parts::new(&mut self.force);
             let torque = Parts::new(&mut self.torque);
-            self.cross_response
-                .resize(bp.cross_len(), PairResponse::default());
             let history = Parts::new(&mut self.pair_history);
             let response = Parts::new(&mut self.cross_response);
             let vel = &self.vel;

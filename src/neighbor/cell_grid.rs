@@ -21,8 +21,38 @@ pub struct Pair {
     pub j: u32,
 }
 
-/// Bit set in [`NeighborList::grain_pairs`] entries where the grain is the pair's `j`.
+/// Bit set in the entries of [`index_by_grain`] where the grain is the pair's `j`.
 pub const J_ROLE: u32 = 1 << 31;
+
+/// Per-grain index of `pairs` of `n` grains (counting sort, pair order kept): grain g's
+/// entries are `items[start[g]..start[g + 1]]`, each a pair index with [`J_ROLE`] set where g
+/// is the pair's `j`. Reuses the buffers.
+pub fn index_by_grain(pairs: &[Pair], n: usize, start: &mut Vec<u32>, items: &mut Vec<u32>) {
+    start.clear();
+    start.resize(n + 1, 0);
+    for p in pairs {
+        start[p.i as usize + 1] += 1;
+        start[p.j as usize + 1] += 1;
+    }
+    for g in 0..n {
+        start[g + 1] += start[g];
+    }
+    items.clear();
+    items.resize(2 * pairs.len(), 0);
+    // fill, using start[g] as g's cursor, then shift the ends back into starts
+    for (k, p) in pairs.iter().enumerate() {
+        let (i, j) = (p.i as usize, p.j as usize);
+        items[start[i] as usize] = k as u32;
+        start[i] += 1;
+        items[start[j] as usize] = k as u32 | J_ROLE;
+        start[j] += 1;
+    }
+    // start[g] now holds the end of g = the start of g + 1: shift back
+    for g in (1..=n).rev() {
+        start[g] = start[g - 1];
+    }
+    start[0] = 0;
+}
 
 /// Verlet neighbour list built with a sorted (hashed) cell list: only occupied cells are
 /// stored, so its memory is O(N) whatever the box volume.
@@ -40,11 +70,6 @@ pub struct NeighborList {
     cell_keys: Vec<u64>,
     /// Start of each occupied cell's grains in `keyed` (one more entry than cells).
     cell_start: Vec<u32>,
-    /// Per grain, where its entries start in `grain_items` (N + 1 entries).
-    grain_start: Vec<u32>,
-    /// Per grain, the candidate pairs it belongs to in pair order: the pair index, with
-    /// [`J_ROLE`] set where the grain is the pair's `j`.
-    grain_items: Vec<u32>,
     ref_pos: Vec<[f64; 3]>,
     ref_shift: [f64; 3],
     /// Number of (re)builds so far.
@@ -71,8 +96,6 @@ impl NeighborList {
             keyed: Vec::new(),
             cell_keys: Vec::new(),
             cell_start: Vec::new(),
-            grain_start: Vec::new(),
-            grain_items: Vec::new(),
             ref_pos: Vec::new(),
             ref_shift: [0.0; 3],
             builds: 0,
@@ -94,28 +117,13 @@ impl NeighborList {
         self.cell_keys.len()
     }
 
-    /// Bytes held by the neighbour structure now (pairs, cell list, per-grain index).
+    /// Bytes held by the neighbour structure now (pairs, cell list, reference positions).
     pub fn memory_bytes(&self) -> usize {
         self.pairs.capacity() * std::mem::size_of::<Pair>()
             + self.keyed.capacity() * 16
             + self.cell_keys.capacity() * 8
-            + (self.cell_start.capacity()
-                + self.grain_start.capacity()
-                + self.grain_items.capacity())
-                * 4
+            + self.cell_start.capacity() * 4
             + self.ref_pos.capacity() * 24
-    }
-
-    /// The candidate pairs of grain `i`, in pair order: pair index, with [`J_ROLE`] set where
-    /// `i` is the pair's `j`.
-    #[inline]
-    pub fn grain_pairs(&self, i: usize) -> &[u32] {
-        &self.grain_items[self.grain_start[i] as usize..self.grain_start[i + 1] as usize]
-    }
-
-    /// (per-grain start, items) of [`NeighborList::grain_pairs`] for all grains.
-    pub fn grain_index(&self) -> (&[u32], &[u32]) {
-        (&self.grain_start, &self.grain_items)
     }
 
     #[inline]
@@ -193,8 +201,7 @@ impl NeighborList {
     }
 
     /// Rebuilds the pair list: all pairs with |r_i − r_j| < R_i + R_j + skin, in the order of
-    /// the cells' Morton codes, then the half stencil, then the grains' indices —
-    /// and the per-grain index of those pairs.
+    /// the cells' Morton codes, then the half stencil, then the grains' indices.
     ///
     /// `pos` are lab-frame centres (m), `shift` the box origin in the lab frame (m).
     pub fn rebuild(&mut self, pos: &[[f64; 3]], radius: &[f64], shift: [f64; 3]) {
@@ -263,31 +270,6 @@ impl NeighborList {
                 }
             }
         }
-        // per-grain index of the pairs (counting sort, pair order kept)
-        self.grain_start.clear();
-        self.grain_start.resize(n + 1, 0);
-        for p in &self.pairs {
-            self.grain_start[p.i as usize + 1] += 1;
-            self.grain_start[p.j as usize + 1] += 1;
-        }
-        for g in 0..n {
-            self.grain_start[g + 1] += self.grain_start[g];
-        }
-        self.grain_items.clear();
-        self.grain_items.resize(2 * self.pairs.len(), 0);
-        // fill, using grain_start[g] as g's cursor, then shift the ends back into starts
-        for (k, p) in self.pairs.iter().enumerate() {
-            let (i, j) = (p.i as usize, p.j as usize);
-            self.grain_items[self.grain_start[i] as usize] = k as u32;
-            self.grain_start[i] += 1;
-            self.grain_items[self.grain_start[j] as usize] = k as u32 | J_ROLE;
-            self.grain_start[j] += 1;
-        }
-        // grain_start[g] now holds the end of g = the start of g + 1: shift back
-        for g in (1..=n).rev() {
-            self.grain_start[g] = self.grain_start[g - 1];
-        }
-        self.grain_start[0] = 0;
     }
 
     /// Box size the grid was made for (m).
@@ -393,9 +375,10 @@ mod tests {
         assert_eq!(got, want);
         assert!(!want.is_empty());
         // the per-grain index lists every pair of each grain once, in pair order
+        let (mut start, mut items) = (Vec::new(), Vec::new());
+        index_by_grain(&nl.pairs, n, &mut start, &mut items);
         for g in 0..n {
-            let mine: Vec<usize> = nl
-                .grain_pairs(g)
+            let mine: Vec<usize> = items[start[g] as usize..start[g + 1] as usize]
                 .iter()
                 .map(|&e| {
                     let k = (e & !J_ROLE) as usize;
