@@ -3,12 +3,13 @@
 //!
 //! ```sh
 //! RAYON_NUM_THREADS=2 cargo run --release --example dem_threads -- 4000 3000 team
-//! #                                                             N     steps mode (serial | team | rayon)
+//! #                                                             N     steps mode (serial | team | rayon) [mindlin]
 //! ```
 //!
 //! The bed: scene B's grains softened 1000× (E = 2.03e8 Pa), dt = 2.8e-6 s, the box footprint
 //! widened with √(N/250), dropped from the lattice and settled for 0.03 s; then `steps` steps
-//! of the box at rest are timed. `team` and `rayon` use `RAYON_NUM_THREADS` threads.
+//! of the box at rest are timed. `team` and `rayon` use `RAYON_NUM_THREADS` threads; `mindlin`
+//! swaps the thesis's Coulomb law for the Mindlin spring.
 use pdamp::dem::run::{initial_world, settle};
 use pdamp::dem::BoxDrive;
 use pdamp::scene::dem::DemParams;
@@ -30,6 +31,9 @@ fn main() {
     p.r#box[0] *= widen;
     p.r#box[1] *= widen;
     p.count = n;
+    if args.get(4).map(String::as_str) == Some("mindlin") {
+        p.tangential = pdamp::scene::dem::TangentialKind::Mindlin;
+    }
     let model = pdamp::setup::dem_model(&p).expect("the softened scene B");
     let mut w = initial_world(&model, drive, 2.8e-6, 0.0).expect("a lattice bed");
     if mode == "serial" {

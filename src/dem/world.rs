@@ -218,8 +218,13 @@ pub struct DemWorld {
     blocks: BlockPairs,
     pair_coef: Vec<ContactCoefficients>,
     wall_coef: Vec<ContactCoefficients>,
-    /// Tangential spring elongation of each candidate pair (m; zero without history).
+    /// Tangential spring elongation of each candidate pair (m), valid where the pair touched at
+    /// the previous force evaluation ([`spring`]); stale elsewhere (never cleared in the step).
     pair_history: Vec<[f64; 3]>,
+    /// Per candidate pair, the force evaluation at which it last touched (0: never).
+    pair_touch: Vec<u64>,
+    /// Number of force evaluations so far (the clock of `pair_touch`).
+    force_evals: u64,
     /// Responses of the cross pairs (threaded paths only).
     cross_response: Vec<PairResponse>,
     /// Tangential spring elongation of each grain's contacts with the six walls (m).
@@ -458,6 +463,8 @@ impl DemWorld {
             pair_coef: Vec::new(),
             wall_coef,
             pair_history: Vec::new(),
+            pair_touch: Vec::new(),
+            force_evals: 0,
             cross_response: Vec::new(),
             wall_history: vec![[[0.0; 3]; 6]; n],
             history_carry: Vec::new(),
@@ -848,8 +855,15 @@ impl DemWorld {
             // the springs of the old list, keyed by the (new) slots of their grains
             self.history_carry.clear();
             let inv = &self.sort.inv;
-            for (p, st) in self.blocks.pairs.iter().zip(&self.pair_history) {
-                if *st != [0.0; 3] {
+            let last = self.force_evals;
+            for ((p, st), &t) in self
+                .blocks
+                .pairs
+                .iter()
+                .zip(&self.pair_history)
+                .zip(&self.pair_touch)
+            {
+                if t == last && *st != [0.0; 3] {
                     let p = if sort {
                         Pair {
                             i: inv[p.i as usize],
@@ -888,14 +902,24 @@ impl DemWorld {
         }
         self.pair_history.clear();
         self.pair_history.resize(self.blocks.pairs.len(), [0.0; 3]);
+        self.pair_touch.clear();
+        self.pair_touch.resize(self.blocks.pairs.len(), 0);
         self.cross_response.clear();
         self.cross_response
             .resize(self.blocks.cross_len(), PairResponse::default());
         if carry && !self.history_carry.is_empty() {
-            for (p, st) in self.blocks.pairs.iter().zip(self.pair_history.iter_mut()) {
+            let last = self.force_evals;
+            for ((p, st), t) in self
+                .blocks
+                .pairs
+                .iter()
+                .zip(self.pair_history.iter_mut())
+                .zip(self.pair_touch.iter_mut())
+            {
                 if let Ok(a) = self.history_carry.binary_search_by_key(&key(p), |e| e.0) {
                     let h = self.history_carry[a].1;
                     *st = if p.i < p.j { h } else { [-h[0], -h[1], -h[2]] };
+                    *t = last;
                 }
             }
         }
@@ -963,9 +987,11 @@ impl DemWorld {
         &mut self,
         kick: bool,
     ) -> LoopOut {
+        self.force_evals += 1;
         let exec = self.mode.exec(&self.team);
         let n = self.pos.len();
         let ctx = PairCtx {
+            eval: self.force_evals,
             simd: self.simd,
             uniform: self.uniform,
             pos: &self.pos,
@@ -1017,23 +1043,26 @@ impl DemWorld {
             let force = Parts::new(&mut self.force);
             let torque = Parts::new(&mut self.torque);
             let history = Parts::new(&mut self.pair_history);
+            let touch = Parts::new(&mut self.pair_touch);
             let response = Parts::new(&mut self.cross_response);
             let vel = &self.vel;
             let own = |blk: usize| {
                 let g = bp.grains(blk);
                 let (s0, s1) = (bp.seg[blk], bp.seg[blk + 1]);
                 // SAFETY: block `blk` alone touches its grains and its own pairs' states.
-                let (f, t, hs) = unsafe {
+                let (f, t, hs, ts) = unsafe {
                     (
                         force.get(g.clone()),
                         torque.get(g.clone()),
                         history.get(s0..s1),
+                        touch.get(s0..s1),
                     )
                 };
                 init_forces(&gctx, vel, g.start, f, t);
                 let (mut pc, mut pf) = (0.0, 0.0);
-                for ((h, p), c) in hs
+                for (((h, tc), p), c) in hs
                     .chunks_mut(PAIR_CHUNK)
+                    .zip(ts.chunks_mut(PAIR_CHUNK))
                     .zip(bp.pairs[s0..s1].chunks(PAIR_CHUNK))
                     .zip(self.pair_coef[s0..s1].chunks(PAIR_CHUNK))
                 {
@@ -1041,6 +1070,7 @@ impl DemWorld {
                         pairs: p,
                         coef: c,
                         history: h,
+                        touch: tc,
                         response: &mut [],
                         first: g.start,
                         force: &mut *f,
@@ -1058,7 +1088,7 @@ impl DemWorld {
                     cross0 + c * CROSS_CHUNK..(cross0 + (c + 1) * CROSS_CHUNK).min(bp.pairs.len());
                 let (pairs, coef) = (&bp.pairs[r.clone()], &self.pair_coef[r.clone()]);
                 // SAFETY: cross chunk `c` alone touches these springs and responses.
-                let hist = unsafe { history.get(r.clone()) };
+                let (hist, tc) = unsafe { (history.get(r.clone()), touch.get(r.clone())) };
                 let resp = unsafe { response.get(r.start - cross0..r.end - cross0) };
                 let part = if serial {
                     // one thread, after every block's own pairs: the responses straight into
@@ -1070,6 +1100,7 @@ impl DemWorld {
                         pairs,
                         coef,
                         history: hist,
+                        touch: tc,
                         response: &mut [],
                         first: 0,
                         force,
@@ -1081,6 +1112,7 @@ impl DemWorld {
                         pairs,
                         coef,
                         history: hist,
+                        touch: tc,
                         response: resp,
                         first: 0,
                         force: &mut [],
@@ -1172,18 +1204,19 @@ impl DemWorld {
             };
             0.5 * kt * (h[0] * h[0] + h[1] * h[1] + h[2] * h[2])
         };
-        for ((p, c), st) in self
-            .blocks
-            .pairs
-            .iter()
-            .zip(&self.pair_coef)
-            .zip(&self.pair_history)
-        {
+        for (a, (p, c)) in self.blocks.pairs.iter().zip(&self.pair_coef).enumerate() {
             let (i, j) = (p.i as usize, p.j as usize);
             let d = sub3(self.pos[i], self.pos[j]);
             let z = self.radius[i] + self.radius[j] - dot(d, d).sqrt();
             if z > 0.0 {
-                s.elastic_j += elastic(c[0], z) + tangential(c, z, *st);
+                // (the springs of the last evaluation)
+                let st = spring(
+                    &self.pair_history,
+                    &self.pair_touch,
+                    a,
+                    self.force_evals + 1,
+                );
+                s.elastic_j += elastic(c[0], z) + tangential(c, z, st);
             }
         }
         for i in 0..self.len() {
@@ -1277,6 +1310,8 @@ impl DemWorld {
 
 /// Shared inputs of the pair pass.
 struct PairCtx<'a> {
+    /// Number of this force evaluation (the clock of the pairs' `touch`).
+    eval: u64,
     simd: Simd,
     /// Every grain's radius and coefficients, when all grains are alike.
     uniform: Option<Uniform>,
@@ -1290,8 +1325,21 @@ struct PairCtx<'a> {
     dt: f64,
 }
 
+/// Pair `a`'s tangential spring at force evaluation `eval` (m): the stored elongation if the
+/// pair touched at the evaluation before, else zero (a new contact starts unstretched). The
+/// springs of pairs that stop touching are left stale rather than cleared: which candidates
+/// touch is unpredictable, and a conditional store per candidate cost a quarter of a step.
+#[inline(always)]
+fn spring(history: &[[f64; 3]], touch: &[u64], a: usize, eval: u64) -> [f64; 3] {
+    if touch[a] + 1 == eval {
+        history[a]
+    } else {
+        [0.0; 3]
+    }
+}
+
 /// One chunk of candidate pairs: a branch-free pass keeps the pairs in contact (and clears
-/// the others' outputs and springs), then [`contact_response`] runs on those only, `L::N`
+/// the others' outputs), then [`contact_response`] runs on those only, `L::N`
 /// contacts at a time in lanes. Returns the chunk's (collision power, friction power, 0) (W).
 ///
 /// `SCATTER` (a block's own pairs): the forces and torques go straight into the block's `force`
@@ -1312,6 +1360,7 @@ fn pair_chunk_impl<
         pairs,
         coef,
         history,
+        touch,
         response,
         first,
         force,
@@ -1334,9 +1383,6 @@ fn pair_chunk_impl<
         if !SCATTER {
             response[a] = PairResponse::default();
         }
-        if T::HISTORY && !on {
-            history[a] = [0.0; 3];
-        }
     }
     // L::N contacts at a time: gathered into lanes, one lane-wise geometry and
     // [`contact_response`] (vector instructions), then the sums contact by contact
@@ -1355,7 +1401,11 @@ fn pair_chunk_impl<
                 set_lane(&mut g.coef, l, coef[a as usize]);
             }
             if T::HISTORY {
-                set_lane(&mut g.history, l, history[a as usize]);
+                set_lane(
+                    &mut g.history,
+                    l,
+                    spring(history, touch, a as usize, ctx.eval),
+                );
             }
         }
         let r = contact_response::<N, T, L>(
@@ -1372,6 +1422,7 @@ fn pair_chunk_impl<
             let (f, t) = (get_lane(&r.force, l), get_lane(&r.torque_arm, l));
             if T::HISTORY {
                 history[a] = get_lane(&g.history, l);
+                touch[a] = ctx.eval;
             }
             if SCATTER {
                 let pair = pairs[a];
@@ -1478,6 +1529,8 @@ struct PairChunk<'a> {
     coef: &'a [ContactCoefficients],
     /// Tangential springs of the chunk's pairs (m).
     history: &'a mut [[f64; 3]],
+    /// Force evaluation at which each of the chunk's pairs last touched.
+    touch: &'a mut [u64],
     /// The chunk's responses (cross pairs; empty when they are scattered).
     response: &'a mut [PairResponse],
     /// Grain of `force[0]` and `torque[0]` (the first grain of the block).
