@@ -855,15 +855,9 @@ impl DemWorld {
             // the springs of the old list, keyed by the (new) slots of their grains
             self.history_carry.clear();
             let inv = &self.sort.inv;
-            let last = self.force_evals;
-            for ((p, st), &t) in self
-                .blocks
-                .pairs
-                .iter()
-                .zip(&self.pair_history)
-                .zip(&self.pair_touch)
-            {
-                if t == last && *st != [0.0; 3] {
+            for (a, p) in self.blocks.pairs.iter().enumerate() {
+                let st = self.last_spring(a);
+                if st != [0.0; 3] {
                     let p = if sort {
                         Pair {
                             i: inv[p.i as usize],
@@ -872,8 +866,11 @@ impl DemWorld {
                     } else {
                         *p
                     };
-                    let h = *st;
-                    let h = if p.i < p.j { h } else { [-h[0], -h[1], -h[2]] };
+                    let h = if p.i < p.j {
+                        st
+                    } else {
+                        [-st[0], -st[1], -st[2]]
+                    };
                     self.history_carry.push((key(&p), h));
                 }
             }
@@ -1181,6 +1178,16 @@ impl DemWorld {
         (t[0], (oc + xc) + t[1], (of + xf) + t[2])
     }
 
+    /// Pair `a`'s tangential spring as the last force evaluation left it (m).
+    fn last_spring(&self, a: usize) -> [f64; 3] {
+        spring(
+            &self.pair_history,
+            &self.pair_touch,
+            a,
+            self.force_evals + 1,
+        )
+    }
+
     /// Stored energies now (J).
     pub fn energy_state(&self) -> EnergyState {
         let mut s = EnergyState::default();
@@ -1209,14 +1216,7 @@ impl DemWorld {
             let d = sub3(self.pos[i], self.pos[j]);
             let z = self.radius[i] + self.radius[j] - dot(d, d).sqrt();
             if z > 0.0 {
-                // (the springs of the last evaluation)
-                let st = spring(
-                    &self.pair_history,
-                    &self.pair_touch,
-                    a,
-                    self.force_evals + 1,
-                );
-                s.elastic_j += elastic(c[0], z) + tangential(c, z, st);
+                s.elastic_j += elastic(c[0], z) + tangential(c, z, self.last_spring(a));
             }
         }
         for i in 0..self.len() {
