@@ -3,13 +3,15 @@
 //!
 //! ```sh
 //! RAYON_NUM_THREADS=2 cargo run --release --example dem_threads -- 4000 3000 team
-//! #                                                             N     steps mode (serial | team | rayon) [mindlin]
+//! #                                                             N     steps mode (serial | team | rayon) [mindlin] [settle s]
 //! ```
 //!
 //! The bed: scene B's grains softened 1000× (E = 2.03e8 Pa), dt = 2.8e-6 s, the box footprint
-//! widened with √(N/250), dropped from the lattice and settled for 0.03 s; then `steps` steps
+//! widened with √(N/250), dropped from the lattice and settled for 0.03 s (the fifth argument:
+//! another time; 0.2 s gives the dense bed of `bench/dem_vs_liggghts.sh`); then `steps` steps
 //! of the box at rest are timed. `team` and `rayon` use `RAYON_NUM_THREADS` threads; `mindlin`
-//! swaps the thesis's Coulomb law for the Mindlin spring.
+//! swaps the thesis's Coulomb law for the Mindlin spring (`coulomb` keeps the thesis's law).
+//! It prints the candidate pairs and the contacts per grain of the timed bed.
 use pdamp::dem::run::{initial_world, settle};
 use pdamp::dem::BoxDrive;
 use pdamp::scene::dem::DemParams;
@@ -39,8 +41,9 @@ fn main() {
     if mode == "serial" {
         w.parallel_min_grains = usize::MAX;
     }
+    let settle_s: f64 = args.get(5).and_then(|s| s.parse().ok()).unwrap_or(0.03);
     let timed = |w: &mut pdamp::dem::DemWorld| {
-        settle(w, 0.03);
+        settle(w, settle_s);
         w.start_drive();
         let t = Instant::now();
         for _ in 0..steps {
@@ -55,10 +58,33 @@ fn main() {
         timed(&mut w)
     };
     let (blocks, cross) = w.block_stats();
+    let contacts = contacts(&w.grain_state());
     println!(
-        "{mode}: N = {n}, {} threads, {blocks} blocks, {cross} of {} pairs across blocks: {:.2} M particle-steps/s",
+        "{mode}: N = {n}, {} threads, {blocks} blocks, {cross} of {} pairs across blocks, \
+         {:.2} candidates and {:.2} contacts per grain: {:.2} M particle-steps/s",
         rayon::current_num_threads(),
         w.pair_count(),
+        2.0 * w.pair_count() as f64 / n as f64,
+        2.0 * contacts as f64 / n as f64,
         (n * steps) as f64 / s / 1e6
     );
+}
+
+/// Grain–grain pairs that overlap (sorted along x, so that only close x are compared).
+fn contacts(g: &pdamp::observe::GrainState) -> usize {
+    let mut order: Vec<usize> = (0..g.pos.len()).collect();
+    order.sort_by(|&a, &b| g.pos[a][0].total_cmp(&g.pos[b][0]));
+    let r_max = g.radius.iter().cloned().fold(0.0, f64::max);
+    let mut count = 0;
+    for (k, &a) in order.iter().enumerate() {
+        for &b in &order[k + 1..] {
+            if g.pos[b][0] - g.pos[a][0] > 2.0 * r_max {
+                break;
+            }
+            let d: f64 = (0..3).map(|c| (g.pos[a][c] - g.pos[b][c]).powi(2)).sum();
+            let cut = g.radius[a] + g.radius[b];
+            count += (d < cut * cut) as usize;
+        }
+    }
+    count
 }

@@ -1472,8 +1472,8 @@ struct PairLanes<L> {
     d: [L; 3],
     /// v_i − v_j (m/s).
     v_rel: [L; 3],
-    omega_i: [L; 3],
-    omega_j: [L; 3],
+    /// R_i ω_i + R_j ω_j (m/s), summed per contact as it is gathered.
+    spin: [L; 3],
     r_i: L,
     r_j: L,
     coef: [L; 4],
@@ -1481,19 +1481,24 @@ struct PairLanes<L> {
 }
 
 impl<L: Lanes> PairLanes<L> {
-    /// Puts pair (i, j)'s positions, velocities, spins (and radii unless all grains are
-    /// alike) in lane `l`.
+    /// Puts pair (i, j)'s separation, relative velocity, spin term R_i ω_i + R_j ω_j (and
+    /// radii unless all grains are alike) in lane `l`.
     #[inline(always)]
     fn gather(&mut self, ctx: &PairCtx, i: usize, j: usize, l: usize) {
         set_lane(&mut self.d, l, sub3(ctx.pos[i], ctx.pos[j]));
         set_lane(&mut self.v_rel, l, sub3(ctx.vel[i], ctx.vel[j]));
+        let (ri, rj) = match ctx.uniform {
+            Some(u) => (u.radius, u.radius),
+            None => (ctx.radius[i], ctx.radius[j]),
+        };
         if ctx.rotations {
-            set_lane(&mut self.omega_i, l, ctx.omega[i]);
-            set_lane(&mut self.omega_j, l, ctx.omega[j]);
+            let (wi, wj) = (ctx.omega[i], ctx.omega[j]);
+            let spin = std::array::from_fn(|c| ri * wi[c] + rj * wj[c]);
+            set_lane(&mut self.spin, l, spin);
         }
         if ctx.uniform.is_none() {
-            self.r_i.set(l, ctx.radius[i]);
-            self.r_j.set(l, ctx.radius[j]);
+            self.r_i.set(l, ri);
+            self.r_j.set(l, rj);
         }
     }
 
@@ -1504,12 +1509,7 @@ impl<L: Lanes> PairLanes<L> {
         let dist = dot(d, d).sqrt();
         let inv = L::splat(1.0) / dist;
         let spin = if rotations {
-            let (wi, wj, ri, rj) = (self.omega_i, self.omega_j, self.r_i, self.r_j);
-            [
-                ri * wi[0] + rj * wj[0],
-                ri * wi[1] + rj * wj[1],
-                ri * wi[2] + rj * wj[2],
-            ]
+            self.spin
         } else {
             [L::default(); 3]
         };
