@@ -847,6 +847,15 @@ impl DemWorld {
         let shift = [0.0, 0.0, self.box_z];
         let carry = self.laws.tangential_kind().has_history();
         let key = |p: &Pair| ((p.i.min(p.j) as u64) << 32) | p.i.max(p.j) as u64;
+        // a spring as seen from the lower grain of its pair, and back (the flip is its own
+        // inverse)
+        let orient = |p: &Pair, h: [f64; 3]| {
+            if p.i < p.j {
+                h
+            } else {
+                [-h[0], -h[1], -h[2]]
+            }
+        };
         let sort = self.len() >= self.sort_min_grains;
         if sort {
             self.sort_along_curve();
@@ -866,12 +875,7 @@ impl DemWorld {
                     } else {
                         *p
                     };
-                    let h = if p.i < p.j {
-                        st
-                    } else {
-                        [-st[0], -st[1], -st[2]]
-                    };
-                    self.history_carry.push((key(&p), h));
+                    self.history_carry.push((key(&p), orient(&p, st)));
                 }
             }
             self.history_carry.sort_unstable_by_key(|e| e.0);
@@ -914,8 +918,7 @@ impl DemWorld {
                 .zip(self.pair_touch.iter_mut())
             {
                 if let Ok(a) = self.history_carry.binary_search_by_key(&key(p), |e| e.0) {
-                    let h = self.history_carry[a].1;
-                    *st = if p.i < p.j { h } else { [-h[0], -h[1], -h[2]] };
+                    *st = orient(p, self.history_carry[a].1);
                     *t = last;
                 }
             }
@@ -1325,6 +1328,17 @@ struct PairCtx<'a> {
     dt: f64,
 }
 
+impl PairCtx<'_> {
+    /// (R_i, R_j) of pair (i, j) (m).
+    #[inline(always)]
+    fn radii(&self, i: usize, j: usize) -> (f64, f64) {
+        match self.uniform {
+            Some(u) => (u.radius, u.radius),
+            None => (self.radius[i], self.radius[j]),
+        }
+    }
+}
+
 /// Pair `a`'s tangential spring at force evaluation `eval` (m): the stored elongation if the
 /// pair touched at the evaluation before, else zero (a new contact starts unstretched). The
 /// springs of pairs that stop touching are left stale rather than cleared: which candidates
@@ -1366,17 +1380,15 @@ fn pair_chunk_impl<
         force,
         torque,
     } = chunk;
-    let (pos, radius) = (ctx.pos, ctx.radius);
+    let pos = ctx.pos;
     let mut active = [0u32; PAIR_CHUNK];
     let mut m = 0usize;
     for (a, pair) in pairs.iter().enumerate() {
         let (i, j) = (pair.i as usize, pair.j as usize);
         let d = sub3(pos[i], pos[j]);
         let r2 = dot(d, d);
-        let cut = match ctx.uniform {
-            Some(u) => u.radius + u.radius,
-            None => radius[i] + radius[j],
-        };
+        let (ri, rj) = ctx.radii(i, j);
+        let cut = ri + rj;
         let on = r2 < cut * cut;
         active[m] = a as u32;
         m += on as usize;
@@ -1436,10 +1448,7 @@ fn pair_chunk_impl<
                 fj[1] -= f[1];
                 fj[2] -= f[2];
                 if T::ACTIVE && ctx.rotations {
-                    let (ri, rj) = match ctx.uniform {
-                        Some(u) => (u.radius, u.radius),
-                        None => (radius[i], radius[j]),
-                    };
+                    let (ri, rj) = ctx.radii(i, j);
                     let ti = &mut torque[i - first];
                     ti[0] -= ri * t[0];
                     ti[1] -= ri * t[1];
@@ -1487,10 +1496,7 @@ impl<L: Lanes> PairLanes<L> {
     fn gather(&mut self, ctx: &PairCtx, i: usize, j: usize, l: usize) {
         set_lane(&mut self.d, l, sub3(ctx.pos[i], ctx.pos[j]));
         set_lane(&mut self.v_rel, l, sub3(ctx.vel[i], ctx.vel[j]));
-        let (ri, rj) = match ctx.uniform {
-            Some(u) => (u.radius, u.radius),
-            None => (ctx.radius[i], ctx.radius[j]),
-        };
+        let (ri, rj) = ctx.radii(i, j);
         if ctx.rotations {
             let (wi, wj) = (ctx.omega[i], ctx.omega[j]);
             let spin = std::array::from_fn(|c| ri * wi[c] + rj * wj[c]);
