@@ -38,7 +38,15 @@ struct Shared {
     /// The job of the current generation: written by the leader before it publishes the
     /// generation (Release), read by the workers after they see it (Acquire).
     job: UnsafeCell<Option<*const Job<'static>>>,
+    /// Per thread and per list of units ([`Team::claimed`]), the next unit of its share not
+    /// yet claimed: set by the leader before it publishes a generation, then advanced by
+    /// `fetch_add` by whichever thread claims a unit.
+    cursors: Box<[Cursor]>,
 }
+
+/// One claim cursor on its own cache line (two threads claim from it).
+#[repr(align(128))]
+struct Cursor(AtomicUsize);
 
 // SAFETY: `job` is written only by the leader while no worker reads it (between
 // generations, all workers having decremented `pending`), and read by workers only after the
@@ -71,6 +79,9 @@ impl Team {
             panicked: AtomicBool::new(false),
             stop: AtomicBool::new(false),
             job: UnsafeCell::new(None),
+            cursors: (0..2 * threads.max(1))
+                .map(|_| Cursor(AtomicUsize::new(0)))
+                .collect(),
         });
         let mut workers = Vec::new();
         for index in 1..threads.max(1) {
@@ -86,6 +97,50 @@ impl Team {
     /// Number of threads, the caller included.
     pub fn threads(&self) -> usize {
         self.workers.len() + 1
+    }
+
+    /// Runs every unit of one or two lists of units (`(count, job)`, at most two), each
+    /// exactly once, and returns when all have run.
+    ///
+    /// Each thread first runs its own share of each list (thread t of n: units
+    /// `t·count/n .. (t+1)·count/n`, the same grains every step, so they stay in its cache),
+    /// then claims the units still unclaimed in the other threads' shares, list by list.
+    /// A unit is claimed by a `fetch_add` on its share's cursor, so a thread that finishes
+    /// early (a lighter block, a worker woken late) takes over work instead of waiting.
+    /// Which thread runs a unit changes no result: every unit writes only its own slot.
+    pub fn claimed(&self, lists: &[(usize, &Job<'_>)]) {
+        let n = self.threads();
+        assert!(lists.len() <= 2, "at most two lists of units");
+        let s = &*self.shared;
+        for (l, &(count, _)) in lists.iter().enumerate() {
+            for t in 0..n {
+                s.cursors[l * n + t]
+                    .0
+                    .store(share(t, n, count).start, Ordering::Relaxed);
+            }
+        }
+        // the cursors' stores are published by the Release of the generation in `run`
+        let claim = |l: usize, owner: usize| {
+            let (count, job) = lists[l];
+            let end = share(owner, n, count).end;
+            loop {
+                let u = s.cursors[l * n + owner].0.fetch_add(1, Ordering::Relaxed);
+                if u >= end {
+                    break;
+                }
+                job(u);
+            }
+        };
+        self.run(&|t| {
+            for l in 0..lists.len() {
+                claim(l, t);
+            }
+            for l in 0..lists.len() {
+                for k in 1..n {
+                    claim(l, (t + k) % n);
+                }
+            }
+        });
     }
 
     /// Runs `job(t)` on every thread t of the team (t = 0 on the caller) and returns when all
@@ -179,7 +234,8 @@ pub enum Exec<'a> {
     Serial,
     /// The rayon pool the caller is in.
     Rayon,
-    /// A [`Team`]: thread t runs a contiguous share of the units.
+    /// A [`Team`]: thread t runs a contiguous share of the units, then claims the units the
+    /// others have not reached ([`Team::claimed`]).
     Team(&'a Team),
 }
 
@@ -189,15 +245,12 @@ impl Exec<'_> {
         match self {
             Exec::Serial => (0..units).for_each(f),
             Exec::Rayon => (0..units).into_par_iter().for_each(f),
-            Exec::Team(team) => {
-                let n = team.threads();
-                team.run(&|t| share(t, n, units).for_each(f));
-            }
+            Exec::Team(team) => team.claimed(&[(units, f)]),
         }
     }
 
     /// Runs `f(u)` for every unit of `0..a` and `g(u)` for every unit of `0..b`, as one phase
-    /// (each thread of a team takes its share of both).
+    /// (each thread of a team takes its share of both, then claims what is left of either).
     pub fn units2(self, (a, f): (usize, &Job<'_>), (b, g): (usize, &Job<'_>)) {
         match self {
             Exec::Serial => {
@@ -210,13 +263,7 @@ impl Exec<'_> {
                     || (0..b).into_par_iter().for_each(g),
                 );
             }
-            Exec::Team(team) => {
-                let n = team.threads();
-                team.run(&|t| {
-                    share(t, n, a).for_each(f);
-                    share(t, n, b).for_each(g);
-                });
-            }
+            Exec::Team(team) => team.claimed(&[(a, f), (b, g)]),
         }
     }
 }
