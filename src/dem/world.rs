@@ -1353,6 +1353,17 @@ fn spring(history: &[[f64; 3]], touch: &[u64], a: usize, eval: u64) -> [f64; 3] 
     }
 }
 
+/// The first `m` entries of a scratch array filled front to back, as a slice.
+///
+/// # Safety
+/// Entries `0..m` must have been written, and `m ≤ a.len()`.
+#[inline(always)]
+unsafe fn written<T>(a: &[MaybeUninit<T>], m: usize) -> &[T] {
+    debug_assert!(m <= a.len());
+    // SAFETY: the caller's promise; `MaybeUninit<T>` has the layout of `T`.
+    unsafe { std::slice::from_raw_parts(a.as_ptr().cast::<T>(), m) }
+}
+
 /// One chunk of candidate pairs: a branch-free pass keeps the pairs in contact (and clears
 /// the others' outputs), then [`contact_response`] runs on those only, `L::N`
 /// contacts at a time in lanes. Returns the chunk's (collision power, friction power, 0) (W).
@@ -1413,12 +1424,7 @@ fn pair_chunk_impl<
     }
     // SAFETY: entries 0..m were written by the loop above (entry m is written before m
     // grows past it).
-    let (active, sep) = unsafe {
-        (
-            std::slice::from_raw_parts(active.as_ptr().cast::<u32>(), m),
-            std::slice::from_raw_parts(sep.as_ptr().cast::<[f64; 3]>(), m),
-        )
-    };
+    let (active, sep) = unsafe { (written(&active, m), written(&sep, m)) };
     for (block, seps) in active.chunks(L::N).zip(sep.chunks(L::N)) {
         for (l, (&a, &d)) in block.iter().zip(seps).enumerate() {
             let pair = pairs[a as usize];
@@ -1785,7 +1791,7 @@ fn grain_chunk_impl<L: Lanes, N: NormalKernel, T: TangentialKernel, const LEDGER
         g.coef = u.wall.map(L::splat);
     }
     // SAFETY: entries 0..m were written by the loop above (entry m before m grows past it).
-    let walls = unsafe { std::slice::from_raw_parts(walls.as_ptr().cast::<u32>(), m) };
+    let walls = unsafe { written(&walls, m) };
     for block in walls.chunks(L::N) {
         for (l, &e) in block.iter().enumerate() {
             let (k, w) = (e as usize / 6, e as usize % 6);
