@@ -23,8 +23,12 @@ for r in $(seq "$ROUNDS"); do
     rm -rf "${WORK:?}"/*
     RAYON_NUM_THREADS=1 taskset -c 0 "$PDAMP" simulate "${ARGS[@]}" --out "$WORK/alone" >/dev/null 2>&1
     RAYON_NUM_THREADS=1 taskset -c 0 "$PDAMP" simulate "${ARGS[@]}" --out "$WORK/co0" >/dev/null 2>&1 &
+    p0=$!
     RAYON_NUM_THREADS=1 taskset -c 1 "$PDAMP" simulate "${ARGS[@]}" --out "$WORK/co1" >/dev/null 2>&1 &
-    wait
+    p1=$!
+    # each copy's own status, so that a failed run stops the script (a bare `wait` returns 0)
+    wait "$p0"
+    wait "$p1"
     RAYON_NUM_THREADS=2 "$PDAMP" simulate "${ARGS[@]}" --out "$WORK/two" >/dev/null 2>&1
     echo "round $r $(date -u +%H:%M) load $(cut -d' ' -f1 /proc/loadavg): alone $(rate "$WORK/alone")" \
         " co-run CPU0 $(rate "$WORK/co0") CPU1 $(rate "$WORK/co1")  2 threads $(rate "$WORK/two")"
