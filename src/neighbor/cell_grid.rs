@@ -3,7 +3,7 @@
 //! Grains are keyed by their cell (cubic-ish cells of side ≥ 2 R_max + skin in the box frame)
 //! and sorted by key; only occupied cells are kept, and a neighbour cell is found in an
 //! open-addressing hash table of them (O(1) expected, against the O(log cells) of a binary
-//! search: the 14 lookups per occupied cell were a third of a rebuild), so the memory does not
+//! search: the 13 lookups per occupied cell were a third of a rebuild), so the memory does not
 //! grow with the box volume. The key is the cell's
 //! Morton (Z-order) code, so cells — and the pairs, which are listed cell by cell — follow a
 //! space-filling curve; [`NeighborList::curve_order`] gives the same order for the grains, so
