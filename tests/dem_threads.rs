@@ -47,8 +47,15 @@ enum Exec {
     Team(usize),
 }
 
-/// `n` grains of scene B (softened) dropped on the shaking floor, `steps` steps run by `exec`.
-fn run(n: usize, tangential: TangentialKind, exec: Exec, steps: usize) -> Vec<u64> {
+/// `n` grains of scene B (softened) dropped on the shaking floor, `steps` steps run by `exec`
+/// (the drift inside the force pass if `fuse`); the fingerprint and the driven run's rebuilds.
+fn run_with(
+    n: usize,
+    tangential: TangentialKind,
+    exec: Exec,
+    steps: usize,
+    fuse: bool,
+) -> (Vec<u64>, u64) {
     let threads = match exec {
         Exec::Rayon(t) => t,
         _ => 1,
@@ -67,6 +74,7 @@ fn run(n: usize, tangential: TangentialKind, exec: Exec, steps: usize) -> Vec<u6
         let model = pdamp::setup::dem_model(&p).unwrap();
         let (dt, _) = choose_dt(&model, &drive(), None, DEFAULT_DT_FRACTION).unwrap();
         let mut w = initial_world(&model, drive(), dt, 0.0).unwrap();
+        w.fuse_drift = fuse;
         match exec {
             Exec::Serial => w.parallel_min_grains = usize::MAX,
             Exec::Rayon(_) => w.parallel_min_grains = 0,
@@ -78,6 +86,7 @@ fn run(n: usize, tangential: TangentialKind, exec: Exec, steps: usize) -> Vec<u6
         // the lattice falls onto the floor (settling drag on), then the floor shakes
         settle(&mut w, 0.02);
         w.start_drive();
+        let builds = w.neighbor_builds();
         for _ in 0..steps {
             w.step();
         }
@@ -91,8 +100,31 @@ fn run(n: usize, tangential: TangentialKind, exec: Exec, steps: usize) -> Vec<u6
             blocks >= 2 && cross > 0,
             "{blocks} blocks, {cross} cross pairs"
         );
-        fingerprint(&w)
+        (fingerprint(&w), w.neighbor_builds() - builds)
     })
+}
+
+/// [`run_with`] with the default drift (inside the force pass where the law allows it).
+fn run(n: usize, tangential: TangentialKind, exec: Exec, steps: usize) -> Vec<u64> {
+    run_with(n, tangential, exec, steps, true).0
+}
+
+/// The drift done block by block inside the force pass (laws without springs), with its pass
+/// thrown away and redone when a rebuild turns out due, gives the bits of drifting every grain
+/// first, on one thread and on a team of two.
+#[test]
+fn drift_inside_the_force_pass_gives_the_bits_of_drifting_first() {
+    for exec in [Exec::Serial, Exec::Team(2)] {
+        let (fused, builds) = run_with(3500, TangentialKind::CoulombViscous, exec, 1500, true);
+        let (first, builds_first) =
+            run_with(3500, TangentialKind::CoulombViscous, exec, 1500, false);
+        assert!(
+            builds >= 2,
+            "{exec:?}: {builds} rebuilds (the redo path must run)"
+        );
+        assert_eq!(builds, builds_first);
+        assert!(fused == first, "{exec:?}: the fused drift changes the run");
+    }
 }
 
 #[test]

@@ -273,6 +273,51 @@ fn share(t: usize, n: usize, units: usize) -> Range<usize> {
     t * units / n..(t + 1) * units / n
 }
 
+/// Element-by-element read access to a slice whose pieces the units of a phase may be
+/// writing through [`Parts`] (a unit reads an element only when no other unit writes it, as
+/// the callers of [`Parts::get`] promise). No reference to the whole slice is held, so a unit
+/// may write its own piece and read other elements in the same phase.
+pub struct View<'a, T> {
+    ptr: *const T,
+    len: usize,
+    _life: std::marker::PhantomData<&'a [T]>,
+}
+
+impl<T> Clone for View<'_, T> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<T> Copy for View<'_, T> {}
+
+// SAFETY: a `View` only reads, and its users guarantee that no element is written while it
+// is read; T itself is Sync.
+unsafe impl<T: Sync> Sync for View<'_, T> {}
+// SAFETY: as above.
+unsafe impl<T: Sync> Send for View<'_, T> {}
+
+impl<'a, T: Copy> View<'a, T> {
+    /// A view of a slice nobody writes.
+    pub fn of(s: &'a [T]) -> View<'a, T> {
+        View {
+            ptr: s.as_ptr(),
+            len: s.len(),
+            _life: std::marker::PhantomData,
+        }
+    }
+
+    /// Element `i`.
+    ///
+    /// # Panics
+    /// When `i` is out of bounds.
+    #[inline(always)]
+    pub fn at(&self, i: usize) -> T {
+        assert!(i < self.len, "index {i} out of {} elements", self.len);
+        // SAFETY: in bounds; no unit writes element i while it is read (the users' promise).
+        unsafe { *self.ptr.add(i) }
+    }
+}
+
 /// A mutable slice handed out in disjoint pieces to the units of a phase.
 pub struct Parts<T> {
     ptr: *mut T,
@@ -291,6 +336,15 @@ impl<T> Parts<T> {
         Parts {
             ptr: s.as_mut_ptr(),
             len: s.len(),
+        }
+    }
+
+    /// A [`View`] of the whole slice, for reading elements no unit is writing.
+    pub fn view(&self) -> View<'_, T> {
+        View {
+            ptr: self.ptr,
+            len: self.len,
+            _life: std::marker::PhantomData,
         }
     }
 

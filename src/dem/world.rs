@@ -23,7 +23,7 @@ use crate::units::G;
 use super::blocks::BlockPairs;
 use super::energy::{EnergyLedger, EnergyState};
 use super::model::DemModel;
-use super::team::{Exec, Parts, Team};
+use super::team::{Exec, Parts, Team, View};
 
 /// Own pairs of a block per call of the pair kernel (a block's own pairs are run in these
 /// chunks, in order, by the block's thread).
@@ -249,6 +249,9 @@ pub struct DemWorld {
     /// Smallest grain count for which the grains are kept in space-filling-curve order
     /// (default [`SORT_MIN_GRAINS`]; `usize::MAX`: never sorted, slot = grain id).
     pub sort_min_grains: usize,
+    /// Whether laws without contact history drift the grains inside the force pass, block by
+    /// block ([`DemWorld::step`]; default true). Results do not depend on it.
+    pub fuse_drift: bool,
     /// Grain id of each storage slot.
     id: Vec<u32>,
     /// Scratch of the curve sort (reused: no allocation in the step).
@@ -476,6 +479,7 @@ impl DemWorld {
             parallel_min_grains: PARALLEL_MIN_GRAINS,
             parallel_min_threads: PARALLEL_MIN_THREADS,
             sort_min_grains: SORT_MIN_GRAINS,
+            fuse_drift: true,
             id: (0..n as u32).collect(),
             sort: SortScratch::default(),
             by_id: None,
@@ -692,21 +696,19 @@ impl DemWorld {
         // half kick + drift of the grains, fused with the Verlet-list displacement check
         let shift = self.box_z - self.neighbors.reference().1[2];
         self.mode = self.choose_mode();
-        let max_d2 = self.kick_drift_phase(shift);
         self.box_v_pred = if primary_free {
             self.box_v + h * self.box_a
         } else {
             self.box_v
         };
+        // 2.–4. drift, neighbours and forces; 6. the grains' second half kick rides on the
+        // per-grain pass of the forces (a grain's force is complete there)
+        let (p_coll, p_fric) = self.drift_and_forces(shift);
         if let Some(q) = self.orientation.as_mut() {
             for (q, w) in q.iter_mut().zip(&self.omega) {
                 advance_orientation(q, *w, dt);
             }
         }
-        // 3.–4. neighbours and forces; 6. the grains' second half kick rides on the per-grain
-        // pass of the forces (a grain's force is complete there)
-        let rebuild = self.neighbors.exceeded(max_d2);
-        let (p_coll, p_fric) = self.forces(rebuild, true);
         // 5. box equation
         if primary_free {
             self.box_a = self.box_acceleration();
@@ -842,6 +844,35 @@ impl DemWorld {
         self.partials.iter().fold(0.0, |a, s| a.max(s[0]))
     }
 
+    /// Steps 1–2 for the grains (half kick, drift) with the box displaced by `shift_z` (m)
+    /// since the last neighbour build, then the neighbour check and the force pass (with the
+    /// second half kick). Returns the dissipated powers (collision, friction) (W).
+    ///
+    /// Laws without contact history drift each block's grains in the force pass itself, just
+    /// before the block's own pairs (its grains are then still in cache): a speculation that
+    /// no rebuild is due. When the drift shows one is, the pass is thrown away (its forces are
+    /// recomputed from gravity up, nothing else was written) and done again after the
+    /// rebuild, so the result is the same bits as drifting first. Laws with springs drift
+    /// first: their pass writes the springs, which a rebuild carries over.
+    fn drift_and_forces(&mut self, shift_z: f64) -> (f64, f64) {
+        let fuse = self.fuse_drift
+            && !self.laws.tangential_kind().has_history()
+            && self.neighbors.reference().0.len() == self.len();
+        if fuse {
+            if let Some(out) = self.forces_of(true, Some(shift_z)) {
+                return out;
+            }
+            self.rebuild_neighbors();
+        } else {
+            let max_d2 = self.kick_drift_phase(shift_z);
+            if self.neighbors.exceeded(max_d2) {
+                self.rebuild_neighbors();
+            }
+        }
+        self.forces_of(true, None)
+            .expect("a force pass without drift always completes")
+    }
+
     /// Rebuilds the neighbour list, the per-pair coefficients (computed here only, never in
     /// the step) and carries the tangential springs of the contacts over to the new list.
     fn rebuild_neighbors(&mut self) {
@@ -932,48 +963,63 @@ impl DemWorld {
         if rebuild {
             self.rebuild_neighbors();
         }
+        self.forces_of(kick, None)
+            .expect("a force pass without drift always completes")
+    }
+
+    /// The force pass (with the drift of the blocks if `drift`, see [`Self::contacts`]),
+    /// booking the dissipated powers if the ledger is on.
+    fn forces_of(&mut self, kick: bool, drift: Option<f64>) -> Option<(f64, f64)> {
         if self.energy_ledger {
-            self.forces_of::<true>(kick)
+            self.forces_ledger::<true>(kick, drift)
         } else {
-            self.forces_of::<false>(kick)
+            self.forces_ledger::<false>(kick, drift)
         }
     }
 
     /// The force pass of the contact laws, booking the dissipated powers if `LEDGER`
-    /// (otherwise they are not computed and (0, 0) is returned).
-    fn forces_of<const LEDGER: bool>(&mut self, kick: bool) -> (f64, f64) {
+    /// (otherwise they are not computed and (0, 0) is returned); `None` when the drift found
+    /// a neighbour rebuild due.
+    fn forces_ledger<const LEDGER: bool>(
+        &mut self,
+        kick: bool,
+        drift: Option<f64>,
+    ) -> Option<(f64, f64)> {
         // the laws are matched once per step; each arm runs loops monomorphised on the normal
         // and tangential kernels (rotations and the attraction policy are loop-invariant flags)
         let l = &self.laws;
         let hertz = matches!(l.normal, NormalLaw::HertzKuwabaraKono { .. });
         let out = match (hertz, l.tangential_kind()) {
-            (true, TangentialLaw::None) => self.contacts::<HertzKernel, NoTangential, LEDGER>(kick),
+            (true, TangentialLaw::None) => {
+                self.contacts::<HertzKernel, NoTangential, LEDGER>(kick, drift)
+            }
             (true, TangentialLaw::CoulombViscous { .. })
             | (true, TangentialLaw::LinearDashpotCoulomb { .. }) => {
-                self.contacts::<HertzKernel, CoulombViscousKernel, LEDGER>(kick)
+                self.contacts::<HertzKernel, CoulombViscousKernel, LEDGER>(kick, drift)
             }
             (true, TangentialLaw::MindlinSpring { .. }) => {
-                self.contacts::<HertzKernel, MindlinSpringKernel, LEDGER>(kick)
+                self.contacts::<HertzKernel, MindlinSpringKernel, LEDGER>(kick, drift)
             }
             (true, TangentialLaw::LinearSpring { .. }) => {
-                self.contacts::<HertzKernel, LinearSpringKernel, LEDGER>(kick)
+                self.contacts::<HertzKernel, LinearSpringKernel, LEDGER>(kick, drift)
             }
             (false, TangentialLaw::None) => {
-                self.contacts::<LinearKernel, NoTangential, LEDGER>(kick)
+                self.contacts::<LinearKernel, NoTangential, LEDGER>(kick, drift)
             }
             (false, TangentialLaw::CoulombViscous { .. })
             | (false, TangentialLaw::LinearDashpotCoulomb { .. }) => {
-                self.contacts::<LinearKernel, CoulombViscousKernel, LEDGER>(kick)
+                self.contacts::<LinearKernel, CoulombViscousKernel, LEDGER>(kick, drift)
             }
             (false, TangentialLaw::MindlinSpring { .. }) => {
-                self.contacts::<LinearKernel, MindlinSpringKernel, LEDGER>(kick)
+                self.contacts::<LinearKernel, MindlinSpringKernel, LEDGER>(kick, drift)
             }
             (false, TangentialLaw::LinearSpring { .. }) => {
-                self.contacts::<LinearKernel, LinearSpringKernel, LEDGER>(kick)
+                self.contacts::<LinearKernel, LinearSpringKernel, LEDGER>(kick, drift)
             }
         };
+        let out = out?;
         self.grain_force_n = out.0;
-        (out.1, out.2)
+        Some((out.1, out.2))
     }
 
     /// The force pass, in the order of [`super::blocks`], as two phases of fixed units:
@@ -984,54 +1030,27 @@ impl DemWorld {
     /// slot and are added in unit order, so the result does not depend on who runs the units.
     /// On one thread the cross pairs are scattered straight into the forces after every
     /// block's own pairs instead (no store, no gather): the same additions in the same order.
+    ///
+    /// With `drift` (the box's displacement since the last neighbour build, m; laws without
+    /// contact history only), each block first gives its grains the step's first half kick
+    /// and drift, then its own pairs; the cross pairs follow in a phase of their own once
+    /// every block has drifted. `None` when the drift moved a grain past the neighbour skin:
+    /// the pass is then incomplete (forces partial, nothing else written) and the caller
+    /// rebuilds and calls again without drift.
     fn contacts<N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
         &mut self,
         kick: bool,
-    ) -> LoopOut {
+        drift: Option<f64>,
+    ) -> Option<LoopOut> {
+        debug_assert!(
+            drift.is_none() || !T::HISTORY,
+            "drift in the pass: no springs"
+        );
         self.force_evals += 1;
         let exec = self.mode.exec(&self.team);
         let n = self.pos.len();
-        let ctx = PairCtx {
-            eval: self.force_evals,
-            simd: self.simd,
-            uniform: self.uniform,
-            pos: &self.pos,
-            vel: &self.vel_pred,
-            omega: &self.omega_pred,
-            radius: &self.radius,
-            friction: self.laws.friction(false),
-            clamp: self.laws.attraction == AttractionPolicy::Clamp,
-            rotations: self.laws.rotations,
-            dt: self.dt,
-        };
-        let b = self.box_size;
+        let (h, dt, rot) = (0.5 * self.dt, self.dt, self.laws.rotations);
         let bp = &self.blocks;
-        let gctx = GrainCtx {
-            simd: self.simd,
-            uniform: self.uniform,
-            pos: &self.pos,
-            vel_pred: &self.vel_pred,
-            omega_pred: &self.omega_pred,
-            radius: &self.radius,
-            mass: &self.mass,
-            inv_mass: &self.inv_mass,
-            inv_inertia: &self.inv_inertia,
-            kick,
-            wall_coef: &self.wall_coef,
-            cross_start: &bp.cross_start,
-            cross_items: &bp.cross_items,
-            cross_state: &[],
-            box_size: b,
-            floor: self.box_z,
-            ceil: self.box_z + b[2],
-            wall_v: self.box_v_pred,
-            friction: self.laws.friction(true),
-            clamp: self.laws.attraction == AttractionPolicy::Clamp,
-            rotations: self.laws.rotations,
-            dt: self.dt,
-            gravity: self.gravity,
-            drag: self.settle_drag,
-        };
         // phase 1: blocks and cross-pair chunks
         let nb = bp.blocks;
         let cross0 = bp.seg[nb];
@@ -1039,14 +1058,40 @@ impl DemWorld {
         let serial = matches!(exec, Exec::Serial);
         self.partials.clear();
         self.partials.resize(nb + nc, [0.0; 3]);
-        {
+        let rebuild_due = {
             let slots = Parts::new(&mut self.partials);
+            let pos = Parts::new(&mut self.pos);
+            let vel = Parts::new(&mut self.vel);
+            let vel_pred = Parts::new(&mut self.vel_pred);
+            let omega = Parts::new(&mut self.omega);
+            let omega_pred = Parts::new(&mut self.omega_pred);
             let force = Parts::new(&mut self.force);
             let torque = Parts::new(&mut self.torque);
             let history = Parts::new(&mut self.pair_history);
             let touch = Parts::new(&mut self.pair_touch);
             let response = Parts::new(&mut self.cross_response);
-            let vel = &self.vel;
+            let ctx = PairCtx {
+                eval: self.force_evals,
+                simd: self.simd,
+                uniform: self.uniform,
+                pos: pos.view(),
+                vel: vel_pred.view(),
+                omega: omega_pred.view(),
+                radius: &self.radius,
+                friction: self.laws.friction(false),
+                clamp: self.laws.attraction == AttractionPolicy::Clamp,
+                rotations: rot,
+                dt,
+            };
+            let weight = Weight {
+                mass: &self.mass,
+                vel: vel.view(),
+                gravity: self.gravity,
+                drag: self.settle_drag,
+                rotations: rot,
+            };
+            let (inv_mass, inv_inertia) = (&self.inv_mass, &self.inv_inertia);
+            let reference = self.neighbors.reference().0;
             let own = |blk: usize| {
                 let g = bp.grains(blk);
                 let (s0, s1) = (bp.seg[blk], bp.seg[blk + 1]);
@@ -1059,7 +1104,33 @@ impl DemWorld {
                         touch.get(s0..s1),
                     )
                 };
-                init_forces(&gctx, vel, g.start, f, t);
+                let max_d2 = match drift {
+                    // SAFETY: as above (the block's grains, written by this unit only).
+                    Some(shift_z) => unsafe {
+                        if rot {
+                            half_kick_predict(
+                                omega.get(g.clone()),
+                                omega_pred.get(g.clone()),
+                                t,
+                                &inv_inertia[g.clone()],
+                                h,
+                            );
+                        }
+                        kick_drift(
+                            pos.get(g.clone()),
+                            vel.get(g.clone()),
+                            vel_pred.get(g.clone()),
+                            f,
+                            &inv_mass[g.clone()],
+                            h,
+                            dt,
+                            &reference[g.clone()],
+                            [0.0, 0.0, shift_z],
+                        )
+                    },
+                    None => 0.0,
+                };
+                init_forces(&weight, g.start, f, t);
                 let (mut pc, mut pf) = (0.0, 0.0);
                 for (((h, tc), p), c) in hs
                     .chunks_mut(PAIR_CHUNK)
@@ -1082,7 +1153,7 @@ impl DemWorld {
                     pf += part[1];
                 }
                 // SAFETY: slot `blk` is this unit's.
-                unsafe { slots.get(blk..blk + 1)[0] = [pc, pf, 0.0] };
+                unsafe { slots.get(blk..blk + 1)[0] = [pc, pf, max_d2] };
             };
             let cross = |c: usize| {
                 let r =
@@ -1124,23 +1195,53 @@ impl DemWorld {
                 // SAFETY: slot `nb + c` is this unit's.
                 unsafe { slots.get(nb + c..nb + c + 1)[0] = part };
             };
-            exec.units2((nb, &own), (nc, &cross));
+            if drift.is_some() {
+                exec.units(nb, &own);
+                // SAFETY: the phase is over: no unit holds a piece.
+                let blocks = unsafe { slots.get(0..nb) };
+                let max_d2 = blocks.iter().fold(0.0, |a: f64, s| a.max(s[2]));
+                let due = self.neighbors.exceeded(max_d2);
+                if !due {
+                    exec.units(nc, &cross);
+                }
+                due
+            } else {
+                exec.units2((nb, &own), (nc, &cross));
+                false
+            }
+        };
+        if rebuild_due {
+            return None;
         }
         let fold2 = |s: &[[f64; 3]]| s.iter().fold((0.0, 0.0), |a, p| (a.0 + p[0], a.1 + p[1]));
         let (oc, of) = fold2(&self.partials[..nb]);
         let (xc, xf) = fold2(&self.partials[nb..]);
         // phase 2: grain chunks (cross pairs gathered, walls, second half kick)
-        let gctx = if serial {
-            // (the cross pairs are in the forces already)
-            GrainCtx {
-                cross_start: &[],
-                ..gctx
-            }
-        } else {
-            GrainCtx {
-                cross_state: &self.cross_response,
-                ..gctx
-            }
+        let b = self.box_size;
+        let gctx = GrainCtx {
+            simd: self.simd,
+            uniform: self.uniform,
+            pos: &self.pos,
+            vel_pred: &self.vel_pred,
+            omega_pred: &self.omega_pred,
+            radius: &self.radius,
+            mass: &self.mass,
+            inv_mass: &self.inv_mass,
+            inv_inertia: &self.inv_inertia,
+            kick,
+            wall_coef: &self.wall_coef,
+            // (on one thread the cross pairs are in the forces already)
+            cross_start: if serial { &[] } else { &bp.cross_start },
+            cross_items: &bp.cross_items,
+            cross_state: if serial { &[] } else { &self.cross_response },
+            box_size: b,
+            floor: self.box_z,
+            ceil: self.box_z + b[2],
+            wall_v: self.box_v_pred,
+            friction: self.laws.friction(true),
+            clamp: self.laws.attraction == AttractionPolicy::Clamp,
+            rotations: rot,
+            dt,
         };
         let units = n.div_ceil(GRAIN_CHUNK);
         self.grain_partials.clear();
@@ -1179,7 +1280,7 @@ impl DemWorld {
         if kick {
             self.step_cm = (t[3] / self.mass_total, t[4] / self.mass_total);
         }
-        (t[0], (oc + xc) + t[1], (of + xf) + t[2])
+        Some((t[0], (oc + xc) + t[1], (of + xf) + t[2]))
     }
 
     /// Pair `a`'s tangential spring as the last force evaluation left it (m).
@@ -1319,9 +1420,11 @@ struct PairCtx<'a> {
     simd: Simd,
     /// Every grain's radius and coefficients, when all grains are alike.
     uniform: Option<Uniform>,
-    pos: &'a [[f64; 3]],
-    vel: &'a [[f64; 3]],
-    omega: &'a [[f64; 3]],
+    /// Centres (m), predicted velocities (m/s) and spins (rad/s): views, since a block may
+    /// be drifting its own grains in the same phase (it reads them only after).
+    pos: View<'a, [f64; 3]>,
+    vel: View<'a, [f64; 3]>,
+    omega: View<'a, [f64; 3]>,
     radius: &'a [f64],
     friction: f64,
     clamp: bool,
@@ -1401,7 +1504,7 @@ fn pair_chunk_impl<
     let mut m = 0usize;
     for (a, pair) in pairs.iter().enumerate() {
         let (i, j) = (pair.i as usize, pair.j as usize);
-        let d = sub3(pos[i], pos[j]);
+        let d = sub3(pos.at(i), pos.at(j));
         let r2 = dot(d, d);
         let (ri, rj) = ctx.radii(i, j);
         let cut = ri + rj;
@@ -1515,10 +1618,10 @@ impl<L: Lanes> PairLanes<L> {
     #[inline(always)]
     fn gather(&mut self, ctx: &PairCtx, i: usize, j: usize, l: usize, d: [f64; 3]) {
         set_lane(&mut self.d, l, d);
-        set_lane(&mut self.v_rel, l, sub3(ctx.vel[i], ctx.vel[j]));
+        set_lane(&mut self.v_rel, l, sub3(ctx.vel.at(i), ctx.vel.at(j)));
         let (ri, rj) = ctx.radii(i, j);
         if ctx.rotations {
-            let (wi, wj) = (ctx.omega[i], ctx.omega[j]);
+            let (wi, wj) = (ctx.omega.at(i), ctx.omega.at(j));
             let spin = std::array::from_fn(|c| ri * wi[c] + rj * wj[c]);
             set_lane(&mut self.spin, l, spin);
         }
@@ -1642,34 +1745,35 @@ fn wall_overlaps(ctx: &GrainCtx, i: usize) -> [f64; 6] {
     ]
 }
 
-/// Gravity and settling drag on grain i of velocity `v` (m/s), and a zero torque (N, N m).
-#[inline(always)]
-fn init_force(ctx: &GrainCtx, i: usize, v: [f64; 3]) -> ([f64; 3], [f64; 3]) {
-    let m = ctx.mass[i];
-    let mut f = [0.0, 0.0, -m * ctx.gravity];
-    if ctx.drag > 0.0 {
-        let s = -m * ctx.drag;
-        f[0] += s * v[0];
-        f[1] += s * v[1];
-        f[2] += s * v[2];
-    }
-    (f, [0.0; 3])
+/// What the force on a grain starts from: its weight and the settling drag.
+struct Weight<'a> {
+    /// Grain masses (kg).
+    mass: &'a [f64],
+    /// Grain velocities (m/s), read for the drag.
+    vel: View<'a, [f64; 3]>,
+    /// Gravity (m/s²).
+    gravity: f64,
+    /// Settling drag rate (1/s; 0 in a run).
+    drag: f64,
+    /// Whether torques are computed (then zeroed here).
+    rotations: bool,
 }
 
-/// [`init_force`] for grains `first..first + force.len()` (a block, before its own pairs).
-fn init_forces(
-    ctx: &GrainCtx,
-    vel: &[[f64; 3]],
-    first: usize,
-    force: &mut [[f64; 3]],
-    torque: &mut [[f64; 3]],
-) {
+/// Gravity and settling drag on grains `first..first + force.len()` (a block, before its own
+/// pairs): F = −m g e_z − m β v, and a zero torque (N, N m).
+fn init_forces(w: &Weight, first: usize, force: &mut [[f64; 3]], torque: &mut [[f64; 3]]) {
     for (k, (f, t)) in force.iter_mut().zip(torque.iter_mut()).enumerate() {
         let i = first + k;
-        let (a, b) = init_force(ctx, i, vel[i]);
-        *f = a;
-        if ctx.rotations {
-            *t = b;
+        let m = w.mass[i];
+        *f = [0.0, 0.0, -m * w.gravity];
+        if w.drag > 0.0 {
+            let (s, v) = (-m * w.drag, w.vel.at(i));
+            f[0] += s * v[0];
+            f[1] += s * v[1];
+            f[2] += s * v[2];
+        }
+        if w.rotations {
+            *t = [0.0; 3];
         }
     }
 }
@@ -1704,8 +1808,6 @@ struct GrainCtx<'a> {
     clamp: bool,
     rotations: bool,
     dt: f64,
-    gravity: f64,
-    drag: f64,
 }
 
 /// One chunk of grains from `first`, whose `force` and `torque` hold gravity, drag and the
