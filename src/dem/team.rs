@@ -296,16 +296,7 @@ unsafe impl<T: Sync> Sync for View<'_, T> {}
 // SAFETY: as above.
 unsafe impl<T: Sync> Send for View<'_, T> {}
 
-impl<'a, T: Copy> View<'a, T> {
-    /// A view of a slice nobody writes.
-    pub fn of(s: &'a [T]) -> View<'a, T> {
-        View {
-            ptr: s.as_ptr(),
-            len: s.len(),
-            _life: std::marker::PhantomData,
-        }
-    }
-
+impl<T: Copy> View<'_, T> {
     /// Element `i`.
     ///
     /// # Panics

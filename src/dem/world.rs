@@ -2,6 +2,7 @@
 
 use nalgebra::UnitQuaternion;
 use std::mem::MaybeUninit;
+use std::ops::Range;
 
 use crate::contact::hertz_stiffness;
 use crate::contact::lanes::{dot, get_lane, set_lane, sub3, F64x8, Lanes};
@@ -798,46 +799,31 @@ impl DemWorld {
     /// neighbour build relative to the box's vertical displacement `shift_z` (m²).
     fn kick_drift_phase(&mut self, shift_z: f64) -> f64 {
         let n = self.pos.len();
-        let (h, dt, rot) = (0.5 * self.dt, self.dt, self.laws.rotations);
+        let rot = self.laws.rotations;
         let units = n.div_ceil(GRAIN_CHUNK);
         self.partials.clear();
         self.partials.resize(units, [0.0; 3]);
         let exec = self.mode.exec(&self.team);
         let slots = Parts::new(&mut self.partials);
-        let pos = Parts::new(&mut self.pos);
-        let vel = Parts::new(&mut self.vel);
-        let vel_pred = Parts::new(&mut self.vel_pred);
-        let omega = Parts::new(&mut self.omega);
-        let omega_pred = Parts::new(&mut self.omega_pred);
         let (force, torque) = (&self.force, &self.torque);
-        let (inv_mass, inv_inertia) = (&self.inv_mass, &self.inv_inertia);
-        let reference = self.neighbors.reference().0;
-        let tracked = reference.len() == n;
+        let drift = Drift::new(
+            [
+                &mut self.pos,
+                &mut self.vel,
+                &mut self.vel_pred,
+                &mut self.omega,
+                &mut self.omega_pred,
+            ],
+            (&self.inv_mass, &self.inv_inertia),
+            self.neighbors.reference().0,
+            (self.dt, rot),
+            shift_z,
+        );
         exec.units(units, &|c| {
             let r = c * GRAIN_CHUNK..((c + 1) * GRAIN_CHUNK).min(n);
             // SAFETY: grain chunk `c` alone touches its grains and its slot.
             unsafe {
-                if rot {
-                    half_kick_predict(
-                        omega.get(r.clone()),
-                        omega_pred.get(r.clone()),
-                        &torque[r.clone()],
-                        &inv_inertia[r.clone()],
-                        h,
-                    );
-                }
-                let refs = if tracked { &reference[r.clone()] } else { &[] };
-                let m = kick_drift(
-                    pos.get(r.clone()),
-                    vel.get(r.clone()),
-                    vel_pred.get(r.clone()),
-                    &force[r.clone()],
-                    &inv_mass[r],
-                    h,
-                    dt,
-                    refs,
-                    [0.0, 0.0, shift_z],
-                );
+                let m = drift.grains(r.clone(), &force[r.clone()], &torque[r]);
                 slots.get(c..c + 1)[0][0] = m;
             }
         });
@@ -1049,7 +1035,7 @@ impl DemWorld {
         self.force_evals += 1;
         let exec = self.mode.exec(&self.team);
         let n = self.pos.len();
-        let (h, dt, rot) = (0.5 * self.dt, self.dt, self.laws.rotations);
+        let (dt, rot) = (self.dt, self.laws.rotations);
         let bp = &self.blocks;
         // phase 1: blocks and cross-pair chunks
         let nb = bp.blocks;
@@ -1060,11 +1046,20 @@ impl DemWorld {
         self.partials.resize(nb + nc, [0.0; 3]);
         let rebuild_due = {
             let slots = Parts::new(&mut self.partials);
-            let pos = Parts::new(&mut self.pos);
-            let vel = Parts::new(&mut self.vel);
-            let vel_pred = Parts::new(&mut self.vel_pred);
-            let omega = Parts::new(&mut self.omega);
-            let omega_pred = Parts::new(&mut self.omega_pred);
+            // the drift's arrays (drifted block by block with `drift`, else only read)
+            let kin = Drift::new(
+                [
+                    &mut self.pos,
+                    &mut self.vel,
+                    &mut self.vel_pred,
+                    &mut self.omega,
+                    &mut self.omega_pred,
+                ],
+                (&self.inv_mass, &self.inv_inertia),
+                self.neighbors.reference().0,
+                (dt, rot),
+                drift.unwrap_or(0.0),
+            );
             let force = Parts::new(&mut self.force);
             let torque = Parts::new(&mut self.torque);
             let history = Parts::new(&mut self.pair_history);
@@ -1074,9 +1069,9 @@ impl DemWorld {
                 eval: self.force_evals,
                 simd: self.simd,
                 uniform: self.uniform,
-                pos: pos.view(),
-                vel: vel_pred.view(),
-                omega: omega_pred.view(),
+                pos: kin.pos.view(),
+                vel: kin.vel_pred.view(),
+                omega: kin.omega_pred.view(),
                 radius: &self.radius,
                 friction: self.laws.friction(false),
                 clamp: self.laws.attraction == AttractionPolicy::Clamp,
@@ -1085,13 +1080,11 @@ impl DemWorld {
             };
             let weight = Weight {
                 mass: &self.mass,
-                vel: vel.view(),
+                vel: kin.vel.view(),
                 gravity: self.gravity,
                 drag: self.settle_drag,
                 rotations: rot,
             };
-            let (inv_mass, inv_inertia) = (&self.inv_mass, &self.inv_inertia);
-            let reference = self.neighbors.reference().0;
             let own = |blk: usize| {
                 let g = bp.grains(blk);
                 let (s0, s1) = (bp.seg[blk], bp.seg[blk + 1]);
@@ -1104,31 +1097,11 @@ impl DemWorld {
                         touch.get(s0..s1),
                     )
                 };
-                let max_d2 = match drift {
+                let max_d2 = if drift.is_some() {
                     // SAFETY: as above (the block's grains, written by this unit only).
-                    Some(shift_z) => unsafe {
-                        if rot {
-                            half_kick_predict(
-                                omega.get(g.clone()),
-                                omega_pred.get(g.clone()),
-                                t,
-                                &inv_inertia[g.clone()],
-                                h,
-                            );
-                        }
-                        kick_drift(
-                            pos.get(g.clone()),
-                            vel.get(g.clone()),
-                            vel_pred.get(g.clone()),
-                            f,
-                            &inv_mass[g.clone()],
-                            h,
-                            dt,
-                            &reference[g.clone()],
-                            [0.0, 0.0, shift_z],
-                        )
-                    },
-                    None => 0.0,
+                    unsafe { kin.grains(g.clone(), f, t) }
+                } else {
+                    0.0
                 };
                 init_forces(&weight, g.start, f, t);
                 let (mut pc, mut pf) = (0.0, 0.0);
@@ -1743,6 +1716,93 @@ fn wall_overlaps(ctx: &GrainCtx, i: usize) -> [f64; 6] {
         r - (p[2] - ctx.floor),
         r - (ctx.ceil - p[2]),
     ]
+}
+
+/// The grain arrays and constants of the step's first half kick and drift (2.2.4–2.2.5),
+/// applied grain range by grain range.
+struct Drift<'a> {
+    pos: Parts<[f64; 3]>,
+    vel: Parts<[f64; 3]>,
+    vel_pred: Parts<[f64; 3]>,
+    omega: Parts<[f64; 3]>,
+    omega_pred: Parts<[f64; 3]>,
+    inv_mass: &'a [f64],
+    inv_inertia: &'a [f64],
+    /// Centres at the last neighbour build (m); empty when not tracked.
+    reference: &'a [[f64; 3]],
+    /// Half step and step (s).
+    h: f64,
+    dt: f64,
+    rotations: bool,
+    /// The box's vertical displacement since the last neighbour build (m).
+    shift_z: f64,
+}
+
+impl<'a> Drift<'a> {
+    /// The drift of the grains whose centres, velocities, predicted velocities, spins and
+    /// predicted spins are `kin` (handed out in pieces from here on), with their inverse
+    /// masses and inertias `inv`, the centres at the last neighbour build `reference` (not
+    /// tracked unless one per grain), the time step and rotation flag `(dt, rotations)`.
+    fn new(
+        kin: [&mut [[f64; 3]]; 5],
+        (inv_mass, inv_inertia): (&'a [f64], &'a [f64]),
+        reference: &'a [[f64; 3]],
+        (dt, rotations): (f64, bool),
+        shift_z: f64,
+    ) -> Self {
+        let n = kin[0].len();
+        let [pos, vel, vel_pred, omega, omega_pred] = kin.map(Parts::new);
+        Drift {
+            pos,
+            vel,
+            vel_pred,
+            omega,
+            omega_pred,
+            inv_mass,
+            inv_inertia,
+            reference: if reference.len() == n { reference } else { &[] },
+            h: 0.5 * dt,
+            dt,
+            rotations,
+            shift_z,
+        }
+    }
+
+    /// Half kick (v and ω, with their predicted full-step values) and drift of grains `r`,
+    /// whose force and torque are `force` and `torque` (N, N m); returns the largest squared
+    /// displacement since the last neighbour build relative to the box (m²; ∞ untracked).
+    ///
+    /// # Safety
+    /// No other unit touches grains `r` of the drifted arrays meanwhile.
+    unsafe fn grains(&self, r: Range<usize>, force: &[[f64; 3]], torque: &[[f64; 3]]) -> f64 {
+        // SAFETY: the caller's promise.
+        unsafe {
+            if self.rotations {
+                half_kick_predict(
+                    self.omega.get(r.clone()),
+                    self.omega_pred.get(r.clone()),
+                    torque,
+                    &self.inv_inertia[r.clone()],
+                    self.h,
+                );
+            }
+            let refs = match self.reference {
+                [] => &[],
+                all => &all[r.clone()],
+            };
+            kick_drift(
+                self.pos.get(r.clone()),
+                self.vel.get(r.clone()),
+                self.vel_pred.get(r.clone()),
+                force,
+                &self.inv_mass[r],
+                self.h,
+                self.dt,
+                refs,
+                [0.0, 0.0, self.shift_z],
+            )
+        }
+    }
 }
 
 /// What the force on a grain starts from: its weight and the settling drag.
