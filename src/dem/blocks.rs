@@ -18,6 +18,7 @@
 
 #[cfg(test)]
 use crate::neighbor::J_ROLE;
+use super::world::GRAIN_CHUNK;
 use crate::neighbor::{index_by_grain, Pair};
 
 /// Smallest number of grains in a block.
@@ -65,6 +66,11 @@ pub struct BlockPairs {
     pub cross_items: Vec<u32>,
     /// Block of each candidate pair (scratch of [`BlockPairs::partition`]).
     class: Vec<u32>,
+    /// The grain units of the per-grain pass: each block cut into runs of at most
+    /// [`GRAIN_CHUNK`] grains; unit u is grains `unit_start[u]..unit_start[u + 1]`.
+    unit_start: Vec<usize>,
+    /// First grain unit of each block (`blocks + 1` entries, the last one the unit count).
+    block_unit: Vec<usize>,
 }
 
 impl BlockPairs {
@@ -99,6 +105,43 @@ impl BlockPairs {
             *k += 1;
         }
         self.index_cross(n);
+        self.cut_units();
+    }
+
+    /// [`BlockPairs::unit_start`] and [`BlockPairs::block_unit`] from the block cuts. A grain
+    /// unit never straddles two blocks, so the thread that runs a block's pairs can run its
+    /// grains' per-grain work too (the per-unit sums are then grouped the same way whichever
+    /// thread runs them).
+    fn cut_units(&mut self) {
+        self.unit_start.clear();
+        self.block_unit.clear();
+        for b in 0..self.blocks {
+            self.block_unit.push(self.unit_start.len());
+            self.unit_start.extend(self.grains(b).step_by(GRAIN_CHUNK));
+        }
+        self.block_unit.push(self.unit_start.len());
+        self.unit_start.push(self.starts[self.blocks]);
+    }
+
+    /// Number of grain units.
+    pub fn units(&self) -> usize {
+        self.unit_start.len().saturating_sub(1)
+    }
+
+    /// Grains of grain unit `u`.
+    pub fn unit(&self, u: usize) -> std::ops::Range<usize> {
+        self.unit_start[u]..self.unit_start[u + 1]
+    }
+
+    /// Grain units of block `b`.
+    pub fn units_of(&self, b: usize) -> std::ops::Range<usize> {
+        self.block_unit[b]..self.block_unit[b + 1]
+    }
+
+    /// Block b's items of [`BlockPairs::cross_items`] (its grains' cross pairs, grain by grain).
+    pub fn cross_items_of(&self, b: usize) -> &[u32] {
+        let g = self.grains(b);
+        &self.cross_items[self.cross_start[g.start] as usize..self.cross_start[g.end] as usize]
     }
 
     /// Block cuts at equal shares of the cost Σ (GRAIN_WEIGHT + the weights of the pairs listed

@@ -296,6 +296,17 @@ unsafe impl<T: Sync> Sync for View<'_, T> {}
 // SAFETY: as above.
 unsafe impl<T: Sync> Send for View<'_, T> {}
 
+impl<'a, T> View<'a, T> {
+    /// A view of `s`, for reading while no unit writes it.
+    pub fn of(s: &'a [T]) -> Self {
+        View {
+            ptr: s.as_ptr(),
+            len: s.len(),
+            _life: std::marker::PhantomData,
+        }
+    }
+}
+
 impl<T: Copy> View<'_, T> {
     /// Element `i`.
     ///

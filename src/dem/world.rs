@@ -229,6 +229,9 @@ pub struct DemWorld {
     force_evals: u64,
     /// Responses of the cross pairs (threaded paths only).
     cross_response: Vec<PairResponse>,
+    /// Per cross pair, its (collision, friction) power at the last force evaluation (W),
+    /// when the cross pairs are evaluated from both sides with the ledger.
+    cross_power: Vec<[f64; 2]>,
     /// Tangential spring elongation of each grain's contacts with the six walls (m).
     wall_history: Vec<[[f64; 3]; 6]>,
     /// Springs of the pairs before a rebuild, keyed by (min, max) grain (scratch).
@@ -471,6 +474,7 @@ impl DemWorld {
             pair_touch: Vec::new(),
             force_evals: 0,
             cross_response: Vec::new(),
+            cross_power: Vec::new(),
             wall_history: vec![[[0.0; 3]; 6]; n],
             history_carry: Vec::new(),
             partials: Vec::new(),
@@ -926,6 +930,8 @@ impl DemWorld {
         self.cross_response.clear();
         self.cross_response
             .resize(self.blocks.cross_len(), PairResponse::default());
+        self.cross_power.clear();
+        self.cross_power.resize(self.blocks.cross_len(), [0.0; 2]);
         if carry && !self.history_carry.is_empty() {
             let last = self.force_evals;
             for ((p, st), t) in self
@@ -1010,19 +1016,30 @@ impl DemWorld {
 
     /// The force pass, in the order of [`super::blocks`], as two phases of fixed units:
     /// (1) block by block, gravity and drag and the block's own pairs scattered into its
-    /// grains, alongside the cross pairs' responses (chunk by chunk) into their
-    /// [`PairResponse`]; (2) grain chunk by grain chunk, each grain's cross pairs gathered in
-    /// pair order, its wall contacts and its second half kick. Each unit's sums go to its
-    /// slot and are added in unit order, so the result does not depend on who runs the units.
-    /// On one thread the cross pairs are scattered straight into the forces after every
-    /// block's own pairs instead (no store, no gather): the same additions in the same order.
+    /// grains; (2) grain unit by grain unit ([`BlockPairs::unit`]), its wall contacts and its
+    /// second half kick. Each unit's sums go to its slot and are added in unit order, so the
+    /// result does not depend on who runs the units. The cross pairs come in between, so
+    /// that each grain gets them in pair order after its block's own pairs:
+    ///
+    /// - on one thread, scattered straight into the forces after every block's own pairs;
+    /// - on a team, for laws without contact history, evaluated from both sides: in phase 2
+    ///   each block first computes every cross pair of its grains and adds the response to
+    ///   its own grain only (+F for the pair's i, −F for its j; the same numbers either side),
+    ///   then runs its grain units. Only the other block's boundary grains are read across
+    ///   threads; nothing is stored for another thread to gather;
+    /// - on a team, for laws with springs (whose state one side alone may write), their
+    ///   responses stored per pair chunk by chunk alongside phase 1, then gathered per grain
+    ///   in phase 2.
+    ///
+    /// The collision and friction powers of the cross pairs are summed chunk by chunk of
+    /// [`CROSS_CHUNK`] pairs on every path.
     ///
     /// With `drift` (the box's displacement since the last neighbour build, m; laws without
     /// contact history only), each block first gives its grains the step's first half kick
-    /// and drift, then its own pairs; the cross pairs follow in a phase of their own once
-    /// every block has drifted. `None` when the drift moved a grain past the neighbour skin:
-    /// the pass is then incomplete (forces partial, nothing else written) and the caller
-    /// rebuilds and calls again without drift.
+    /// and drift, then its own pairs; the cross pairs wait until every block has drifted.
+    /// `None` when the drift moved a grain past the neighbour skin: the pass is then
+    /// incomplete (forces partial, nothing else written) and the caller rebuilds and calls
+    /// again without drift.
     fn contacts<N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
         &mut self,
         kick: bool,
@@ -1037,11 +1054,16 @@ impl DemWorld {
         let n = self.pos.len();
         let (dt, rot) = (self.dt, self.laws.rotations);
         let bp = &self.blocks;
-        // phase 1: blocks and cross-pair chunks
+        // phase 1: blocks (and, on a team with springs, cross-pair chunks)
         let nb = bp.blocks;
         let cross0 = bp.seg[nb];
-        let nc = bp.cross_len().div_ceil(CROSS_CHUNK);
         let serial = matches!(exec, Exec::Serial);
+        let both_sides = !serial && !T::HISTORY && nb > 1;
+        let nc = if both_sides {
+            0
+        } else {
+            bp.cross_len().div_ceil(CROSS_CHUNK)
+        };
         self.partials.clear();
         self.partials.resize(nb + nc, [0.0; 3]);
         let rebuild_due = {
@@ -1188,62 +1210,133 @@ impl DemWorld {
         }
         let fold2 = |s: &[[f64; 3]]| s.iter().fold((0.0, 0.0), |a, p| (a.0 + p[0], a.1 + p[1]));
         let (oc, of) = fold2(&self.partials[..nb]);
-        let (xc, xf) = fold2(&self.partials[nb..]);
-        // phase 2: grain chunks (cross pairs gathered, walls, second half kick)
-        let b = self.box_size;
-        let gctx = GrainCtx {
-            simd: self.simd,
-            uniform: self.uniform,
-            pos: &self.pos,
-            vel_pred: &self.vel_pred,
-            omega_pred: &self.omega_pred,
-            radius: &self.radius,
-            mass: &self.mass,
-            inv_mass: &self.inv_mass,
-            inv_inertia: &self.inv_inertia,
-            kick,
-            wall_coef: &self.wall_coef,
-            // (on one thread the cross pairs are in the forces already)
-            cross_start: if serial { &[] } else { &bp.cross_start },
-            cross_items: &bp.cross_items,
-            cross_state: if serial { &[] } else { &self.cross_response },
-            box_size: b,
-            floor: self.box_z,
-            ceil: self.box_z + b[2],
-            wall_v: self.box_v_pred,
-            friction: self.laws.friction(true),
-            clamp: self.laws.attraction == AttractionPolicy::Clamp,
-            rotations: rot,
-            dt,
-        };
-        let units = n.div_ceil(GRAIN_CHUNK);
+        // phase 2: grain units (cross pairs from both sides or gathered, walls, second half
+        // kick)
+        let units = bp.units();
         self.grain_partials.clear();
         self.grain_partials.resize(units, [0.0; 5]);
         {
+            let b = self.box_size;
+            let gctx = GrainCtx {
+                simd: self.simd,
+                uniform: self.uniform,
+                pos: &self.pos,
+                vel_pred: &self.vel_pred,
+                omega_pred: &self.omega_pred,
+                radius: &self.radius,
+                mass: &self.mass,
+                inv_mass: &self.inv_mass,
+                inv_inertia: &self.inv_inertia,
+                kick,
+                wall_coef: &self.wall_coef,
+                // (the cross pairs are in the forces already, unless stored per pair)
+                cross_start: if serial || both_sides {
+                    &[]
+                } else {
+                    &bp.cross_start
+                },
+                cross_items: &bp.cross_items,
+                cross_state: if serial || both_sides {
+                    &[]
+                } else {
+                    &self.cross_response
+                },
+                box_size: b,
+                floor: self.box_z,
+                ceil: self.box_z + b[2],
+                wall_v: self.box_v_pred,
+                friction: self.laws.friction(true),
+                clamp: self.laws.attraction == AttractionPolicy::Clamp,
+                rotations: rot,
+                dt,
+            };
+            let ctx = PairCtx {
+                eval: self.force_evals,
+                simd: self.simd,
+                uniform: self.uniform,
+                pos: View::of(&self.pos),
+                vel: View::of(&self.vel_pred),
+                omega: View::of(&self.omega_pred),
+                radius: &self.radius,
+                friction: self.laws.friction(false),
+                clamp: self.laws.attraction == AttractionPolicy::Clamp,
+                rotations: rot,
+                dt,
+            };
+            let cross_pairs = &bp.pairs[cross0..];
+            let cross_coef = match self.uniform {
+                Some(_) => &[][..],
+                None => &self.pair_coef[cross0..],
+            };
             let slots = Parts::new(&mut self.grain_partials);
+            let power = Parts::new(&mut self.cross_power);
             let force = Parts::new(&mut self.force);
             let torque = Parts::new(&mut self.torque);
             let hist = Parts::new(&mut self.wall_history);
             let vel = Parts::new(&mut self.vel);
             let omega = Parts::new(&mut self.omega);
-            exec.units(units, &|c| {
-                let r = c * GRAIN_CHUNK..(c + 1) * GRAIN_CHUNK;
-                // SAFETY: grain chunk `c` alone touches its grains and its slot.
+            // grain unit `u` of grains `r`, whose forces and torques are `f` and `t`
+            let unit = |u: usize, f: &mut [[f64; 3]], t: &mut [[f64; 3]]| {
+                let r = bp.unit(u);
+                // SAFETY: grain unit `u` alone touches its grains and its slot.
                 let chunk = unsafe {
                     GrainChunk {
                         first: r.start,
-                        force: force.get(r.clone()),
-                        torque: torque.get(r.clone()),
+                        force: f,
+                        torque: t,
                         wall_history: hist.get(r.clone()),
                         vel: vel.get(r.clone()),
                         omega: omega.get(r),
                     }
                 };
                 let out = grain_chunk::<N, T, LEDGER>(&gctx, chunk);
-                // SAFETY: slot `c` is this unit's.
-                unsafe { slots.get(c..c + 1)[0] = out };
-            });
+                // SAFETY: slot `u` is this unit's.
+                unsafe { slots.get(u..u + 1)[0] = out };
+            };
+            if both_sides {
+                exec.units(nb, &|blk| {
+                    let g = bp.grains(blk);
+                    // SAFETY: block `blk` alone touches its grains' forces and the powers of
+                    // the cross pairs whose i is one of them.
+                    let (f, t) = unsafe { (force.get(g.clone()), torque.get(g.clone())) };
+                    let side = CrossSide {
+                        grains: g.clone(),
+                        cross_start: &bp.cross_start,
+                        cross_items: bp.cross_items_of(blk),
+                        pairs: cross_pairs,
+                        coef: cross_coef,
+                        power: &power,
+                        force: &mut *f,
+                        torque: &mut *t,
+                    };
+                    // SAFETY: as above.
+                    unsafe { cross_side::<N, T, LEDGER>(&ctx, side) };
+                    for u in bp.units_of(blk) {
+                        let r = bp.unit(u);
+                        let local = r.start - g.start..r.end - g.start;
+                        unit(u, &mut f[local.clone()], &mut t[local]);
+                    }
+                });
+            } else {
+                exec.units(units, &|u| {
+                    let r = bp.unit(u);
+                    // SAFETY: grain unit `u` alone touches its grains.
+                    let (f, t) = unsafe { (force.get(r.clone()), torque.get(r)) };
+                    unit(u, f, t);
+                });
+            }
         }
+        let (xc, xf) = if both_sides && !LEDGER {
+            (0.0, 0.0)
+        } else if both_sides {
+            // the powers per cross pair, summed as the cross chunks of the other paths do
+            self.cross_power.chunks(CROSS_CHUNK).fold((0.0, 0.0), |a, c| {
+                let s = c.iter().fold((0.0, 0.0), |s, p| (s.0 + p[0], s.1 + p[1]));
+                (a.0 + s.0, a.1 + s.1)
+            })
+        } else {
+            fold2(&self.partials[nb..])
+        };
         let mut t = [0.0; 5];
         for p in &self.grain_partials {
             for (a, b) in t.iter_mut().zip(p) {
@@ -1678,6 +1771,183 @@ fn pair_chunk_avx2<
     c: PairChunk,
 ) -> [f64; 3] {
     pair_chunk_impl::<F64x8, N, T, SCATTER, LEDGER>(ctx, c)
+}
+
+/// The cross pairs of one block, seen from its side: each of its grains' cross pairs
+/// ([`BlockPairs::cross_items_of`]), whose responses go to that grain only.
+struct CrossSide<'a> {
+    /// The block's grains (`force[0]` is grain `grains.start`'s).
+    grains: Range<usize>,
+    /// Per grain, where its items start in the whole [`BlockPairs::cross_items`].
+    cross_start: &'a [u32],
+    /// The block's items: per grain in grain order, its cross pairs in pair order (index
+    /// among the cross pairs, [`J_ROLE`] where the grain is the pair's j).
+    cross_items: &'a [u32],
+    /// All cross pairs, and their coefficients (empty when all grains are alike).
+    pairs: &'a [Pair],
+    coef: &'a [ContactCoefficients],
+    /// Per cross pair, its (collision, friction) power (W): written, with the ledger, by the
+    /// block of the pair's i (0 when not in contact).
+    power: &'a Parts<[f64; 2]>,
+    force: &'a mut [[f64; 3]],
+    torque: &'a mut [[f64; 3]],
+}
+
+/// [`cross_side_impl`] compiled for the instruction set `ctx.simd`.
+///
+/// # Safety
+/// No other unit of the phase may touch the powers of the pairs whose i is one of the block's
+/// grains, nor write the grains' centres, velocities and spins that `ctx` reads.
+#[inline(never)]
+unsafe fn cross_side<N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
+    ctx: &PairCtx,
+    s: CrossSide,
+) {
+    match ctx.simd {
+        // SAFETY: as in `pair_chunk`; the rest is the caller's promise.
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx2 => unsafe { cross_side_avx2::<N, T, LEDGER>(ctx, s) },
+        // SAFETY: the caller's promise.
+        Simd::Baseline => unsafe { cross_side_impl::<F64x8, N, T, LEDGER>(ctx, s) },
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn cross_side_avx2<N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
+    ctx: &PairCtx,
+    s: CrossSide,
+) {
+    // SAFETY: the caller's promise.
+    unsafe { cross_side_impl::<F64x8, N, T, LEDGER>(ctx, s) }
+}
+
+/// A block's side of its cross pairs (laws without contact history): a branch-free pass keeps
+/// the items in contact, then [`contact_response`] runs on those, `L::N` at a time in lanes,
+/// on the pair's own orientation (r_i − r_j, so the numbers are those the pair's other side
+/// computes); the force is added to the block's grain (+F for the pair's i, −F for its j) and
+/// the torque −R τ_arm, item by item: each grain gets its cross pairs in pair order.
+///
+/// # Safety
+/// As [`cross_side`].
+#[inline(always)]
+unsafe fn cross_side_impl<L: Lanes, N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
+    ctx: &PairCtx,
+    mut s: CrossSide,
+) {
+    debug_assert!(!T::HISTORY, "springs are written by one side only");
+    let pos = ctx.pos;
+    // the items in contact, their grains (relative to the block) and separations, kept for the
+    // lanes: the first `m` entries (left uninitialised, as in `pair_chunk_impl`)
+    let mut item = [const { MaybeUninit::<u32>::uninit() }; PAIR_CHUNK];
+    let mut who = [const { MaybeUninit::<u32>::uninit() }; PAIR_CHUNK];
+    let mut sep = [const { MaybeUninit::<[f64; 3]>::uninit() }; PAIR_CHUNK];
+    let mut m = 0usize;
+    let mut g = PairLanes::<L>::default();
+    if let Some(u) = ctx.uniform {
+        g.r_i = L::splat(u.radius);
+        g.r_j = L::splat(u.radius);
+        g.coef = u.pair.map(L::splat);
+    }
+    let base = s.cross_start[s.grains.start] as usize;
+    for (k, gi) in s.grains.clone().enumerate() {
+        let items = s.cross_start[gi] as usize - base..s.cross_start[gi + 1] as usize - base;
+        for &e in &s.cross_items[items] {
+            let a = (e & !J_ROLE) as usize;
+            let pair = s.pairs[a];
+            let (i, j) = (pair.i as usize, pair.j as usize);
+            let d = sub3(pos.at(i), pos.at(j));
+            let (ri, rj) = ctx.radii(i, j);
+            let cut = ri + rj;
+            let on = dot(d, d) < cut * cut;
+            if LEDGER && e & J_ROLE == 0 {
+                // SAFETY: pair a's i is this block's grain (the caller's promise).
+                unsafe { s.power.get(a..a + 1)[0] = [0.0; 2] };
+            }
+            item[m].write(e);
+            who[m].write(k as u32);
+            sep[m].write(d);
+            m += on as usize;
+            if m == PAIR_CHUNK {
+                // SAFETY: entries 0..m were written above.
+                let (e, w, d) = unsafe { (written(&item, m), written(&who, m), written(&sep, m)) };
+                // SAFETY: the caller's promise.
+                unsafe { cross_lanes::<L, N, T, LEDGER>(ctx, &mut s, &mut g, (e, w, d)) };
+                m = 0;
+            }
+        }
+    }
+    // SAFETY: entries 0..m were written above.
+    let (e, w, d) = unsafe { (written(&item, m), written(&who, m), written(&sep, m)) };
+    // SAFETY: the caller's promise.
+    unsafe { cross_lanes::<L, N, T, LEDGER>(ctx, &mut s, &mut g, (e, w, d)) };
+}
+
+/// The responses of a block's cross items in contact `(item, grain in the block,
+/// separation)`, `L::N` at a time, added to the block's grains in item order.
+///
+/// # Safety
+/// As [`cross_side`].
+#[inline(always)]
+unsafe fn cross_lanes<L: Lanes, N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
+    ctx: &PairCtx,
+    s: &mut CrossSide,
+    g: &mut PairLanes<L>,
+    (items, who, seps): (&[u32], &[u32], &[[f64; 3]]),
+) {
+    for ((block, ks), ds) in items
+        .chunks(L::N)
+        .zip(who.chunks(L::N))
+        .zip(seps.chunks(L::N))
+    {
+        for (l, (&e, &d)) in block.iter().zip(ds).enumerate() {
+            let a = (e & !J_ROLE) as usize;
+            let pair = s.pairs[a];
+            g.gather(ctx, pair.i as usize, pair.j as usize, l, d);
+            if ctx.uniform.is_none() {
+                set_lane(&mut g.coef, l, s.coef[a]);
+            }
+        }
+        let r = contact_response::<N, T, L>(
+            &g.kinematics(ctx.rotations),
+            &g.coef,
+            ctx.friction,
+            ctx.clamp,
+            ctx.rotations,
+            ctx.dt,
+            &mut g.history,
+        );
+        for (l, (&e, &k)) in block.iter().zip(ks).enumerate() {
+            let (f, t) = (get_lane(&r.force, l), get_lane(&r.torque_arm, l));
+            let k = k as usize;
+            let fi = &mut s.force[k];
+            if e & J_ROLE == 0 {
+                fi[0] += f[0];
+                fi[1] += f[1];
+                fi[2] += f[2];
+                if LEDGER {
+                    let a = (e & !J_ROLE) as usize;
+                    let p = [r.p_collision.get(l), r.p_friction.get(l)];
+                    // SAFETY: pair a's i is this block's grain (the caller's promise).
+                    unsafe { s.power.get(a..a + 1)[0] = p };
+                }
+            } else {
+                fi[0] -= f[0];
+                fi[1] -= f[1];
+                fi[2] -= f[2];
+            }
+            if T::ACTIVE && ctx.rotations {
+                let rg = match ctx.uniform {
+                    Some(u) => u.radius,
+                    None => ctx.radius[s.grains.start + k],
+                };
+                let ti = &mut s.torque[k];
+                ti[0] -= rg * t[0];
+                ti[1] -= rg * t[1];
+                ti[2] -= rg * t[2];
+            }
+        }
+    }
 }
 
 /// [`grain_chunk_impl`] compiled for the instruction set `ctx.simd`.
