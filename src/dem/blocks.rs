@@ -16,9 +16,9 @@
 //! the sums are the same on any number of threads. A bed of fewer than 2 × [`MIN_BLOCK`]
 //! grains is one block: no cross pairs at all.
 
+use super::world::GRAIN_CHUNK;
 #[cfg(test)]
 use crate::neighbor::J_ROLE;
-use super::world::GRAIN_CHUNK;
 use crate::neighbor::{index_by_grain, Pair};
 
 /// Smallest number of grains in a block.
@@ -44,7 +44,9 @@ const PAIR_WEIGHT: u64 = 1;
 const CONTACT_WEIGHT: u64 = 6;
 
 /// Candidate pairs ordered block by block: `pairs[seg[b]..seg[b + 1]]` are block b's own
-/// pairs (in neighbour-list order), `pairs[seg[nb]..]` the cross pairs; and, per grain, the
+/// pairs (in neighbour-list order), `pairs[seg[nb]..]` the cross pairs (those whose i is in
+/// block 0, then in block 1, …, each in neighbour-list order, so that what a block writes per
+/// cross pair of its i lies together in memory); and, per grain, the
 /// cross pairs it belongs to (index relative to `seg[nb]`, with [`J_ROLE`](crate::neighbor::J_ROLE) where the grain is
 /// the pair's `j`).
 #[derive(Debug, Clone, Default)]
@@ -55,7 +57,7 @@ pub struct BlockPairs {
     pub starts: Vec<usize>,
     /// Block of each grain (scratch of [`BlockPairs::partition`]).
     block_of: Vec<u32>,
-    /// The pairs, own pairs of block 0, 1, …, then the cross pairs.
+    /// The pairs, own pairs of block 0, 1, …, then the cross pairs by the block of their i.
     pub pairs: Vec<Pair>,
     /// Start of each block's own pairs; `seg[blocks]` is the start of the cross pairs and
     /// `seg[blocks + 1]` the number of pairs.
@@ -64,6 +66,8 @@ pub struct BlockPairs {
     pub cross_start: Vec<u32>,
     /// Per grain, its cross pairs in pair order (relative index, [`J_ROLE`](crate::neighbor::J_ROLE) for the `j`).
     pub cross_items: Vec<u32>,
+    /// The grain of each entry of `cross_items`.
+    pub cross_owner: Vec<u32>,
     /// Block of each candidate pair (scratch of [`BlockPairs::partition`]).
     class: Vec<u32>,
     /// The grain units of the per-grain pass: each block cut into runs of at most
@@ -82,28 +86,33 @@ impl BlockPairs {
         self.blocks = nb;
         self.cut(pairs, n, in_contact);
         self.class.clear();
-        self.seg.clear();
-        self.seg.resize(nb + 2, 0);
+        // classes: block b's own pairs (b), then the cross pairs whose i is in block b (nb + b)
+        let seg = &mut self.seg;
+        seg.clear();
+        seg.resize(2 * nb + 1, 0);
         for p in pairs {
             let (bi, bj) = (self.block_of[p.i as usize], self.block_of[p.j as usize]);
-            let c = if bi == bj { bi as usize } else { nb };
-            self.class.push(c as u32);
-            self.seg[c + 1] += 1;
+            let c = if bi == bj { bi } else { nb as u32 + bi };
+            self.class.push(c);
+            seg[c as usize + 1] += 1;
         }
-        for c in 0..=nb {
-            self.seg[c + 1] += self.seg[c];
+        for c in 0..2 * nb {
+            seg[c + 1] += seg[c];
         }
         self.pairs.clear();
         self.pairs.resize(pairs.len(), Pair { i: 0, j: 0 });
-        // counting sort by block (cursor in `cross_start`, reused as scratch)
+        // counting sort by class (cursor in `cross_start`, reused as scratch)
         let cursor = &mut self.cross_start;
         cursor.clear();
-        cursor.extend(self.seg[..=nb].iter().map(|&s| s as u32));
+        cursor.extend(seg[..2 * nb].iter().map(|&s| s as u32));
         for (p, &c) in pairs.iter().zip(&self.class) {
             let k = &mut cursor[c as usize];
             self.pairs[*k as usize] = *p;
             *k += 1;
         }
+        // from here on `seg` has the blocks' starts, the cross pairs' start and the end
+        seg.truncate(nb + 1);
+        seg.push(pairs.len());
         self.index_cross(n);
         self.cut_units();
     }
@@ -138,10 +147,12 @@ impl BlockPairs {
         self.block_unit[b]..self.block_unit[b + 1]
     }
 
-    /// Block b's items of [`BlockPairs::cross_items`] (its grains' cross pairs, grain by grain).
-    pub fn cross_items_of(&self, b: usize) -> &[u32] {
+    /// Block b's items of [`BlockPairs::cross_items`] (its grains' cross pairs, grain by
+    /// grain) and their grains.
+    pub fn cross_items_of(&self, b: usize) -> (&[u32], &[u32]) {
         let g = self.grains(b);
-        &self.cross_items[self.cross_start[g.start] as usize..self.cross_start[g.end] as usize]
+        let r = self.cross_start[g.start] as usize..self.cross_start[g.end] as usize;
+        (&self.cross_items[r.clone()], &self.cross_owner[r])
     }
 
     /// Block cuts at equal shares of the cost Σ (GRAIN_WEIGHT + the weights of the pairs listed
@@ -189,6 +200,12 @@ impl BlockPairs {
     fn index_cross(&mut self, n: usize) {
         let cross = &self.pairs[self.seg[self.blocks]..];
         index_by_grain(cross, n, &mut self.cross_start, &mut self.cross_items);
+        self.cross_owner.clear();
+        self.cross_owner.resize(self.cross_items.len(), 0);
+        for g in 0..n {
+            let r = self.cross_start[g] as usize..self.cross_start[g + 1] as usize;
+            self.cross_owner[r].fill(g as u32);
+        }
     }
 
     /// Grains of block `b`.
@@ -271,10 +288,14 @@ mod tests {
                 .collect();
             assert_eq!(&bp.pairs[bp.seg[b]..bp.seg[b + 1]], &want[..]);
         }
-        let cross: Vec<Pair> = pairs
-            .iter()
-            .copied()
-            .filter(|p| block(p.i) != block(p.j))
+        // the cross pairs by the block of their i, each block's in list order
+        let cross: Vec<Pair> = (0..bp.blocks)
+            .flat_map(|b| {
+                pairs
+                    .iter()
+                    .copied()
+                    .filter(move |p| block(p.i) == b && block(p.j) != b)
+            })
             .collect();
         assert!(!cross.is_empty());
         assert_eq!(&bp.pairs[bp.seg[bp.blocks]..], &cross[..]);

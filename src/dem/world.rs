@@ -17,7 +17,7 @@ use crate::contact::{AttractionPolicy, NormalLaw, TangentialLaw};
 use crate::error::{ModelError, Quantity};
 use crate::integrate::{advance_orientation, half_kick, half_kick_predict, kick_drift};
 pub use crate::model::{BoxDrive, PrimarySystem};
-use crate::neighbor::{NeighborList, Pair, J_ROLE};
+use crate::neighbor::{Curve, NeighborList, Pair, J_ROLE};
 use crate::simd::Simd;
 use crate::units::G;
 
@@ -428,7 +428,17 @@ impl DemWorld {
             wall: c.wall.material,
         };
         let r_max = radius.iter().cloned().fold(0.0, f64::max);
-        let neighbors = NeighborList::new(model.box_size_m, r_max, model.skin(r_max));
+        // a bed of several grain blocks is stored along vertical columns, so that the blocks'
+        // faces are vertical ([`Curve::Columns`]: 4000 grains, vibrated, 16 % fewer cross
+        // pairs and 6–15 % more speed on two threads); one block keeps the 3-D Morton curve,
+        // which ran a 250-grain bed 7–12 % faster on one thread
+        let curve = if super::blocks::block_count(n) > 1 {
+            Curve::Columns
+        } else {
+            Curve::Morton
+        };
+        let neighbors =
+            NeighborList::new(model.box_size_m, r_max, model.skin(r_max)).with_curve(curve);
         let wall_coef = (0..n)
             .map(|i| laws.coefficients(radius[i], mass[i], f64::INFINITY, f64::INFINITY, true))
             .collect();
@@ -1299,10 +1309,11 @@ impl DemWorld {
                     // SAFETY: block `blk` alone touches its grains' forces and the powers of
                     // the cross pairs whose i is one of them.
                     let (f, t) = unsafe { (force.get(g.clone()), torque.get(g.clone())) };
+                    let (cross_items, owner) = bp.cross_items_of(blk);
                     let side = CrossSide {
-                        grains: g.clone(),
-                        cross_start: &bp.cross_start,
-                        cross_items: bp.cross_items_of(blk),
+                        first: g.start,
+                        cross_items,
+                        owner,
                         pairs: cross_pairs,
                         coef: cross_coef,
                         power: &power,
@@ -1330,10 +1341,12 @@ impl DemWorld {
             (0.0, 0.0)
         } else if both_sides {
             // the powers per cross pair, summed as the cross chunks of the other paths do
-            self.cross_power.chunks(CROSS_CHUNK).fold((0.0, 0.0), |a, c| {
-                let s = c.iter().fold((0.0, 0.0), |s, p| (s.0 + p[0], s.1 + p[1]));
-                (a.0 + s.0, a.1 + s.1)
-            })
+            self.cross_power
+                .chunks(CROSS_CHUNK)
+                .fold((0.0, 0.0), |a, c| {
+                    let s = c.iter().fold((0.0, 0.0), |s, p| (s.0 + p[0], s.1 + p[1]));
+                    (a.0 + s.0, a.1 + s.1)
+                })
         } else {
             fold2(&self.partials[nb..])
         };
@@ -1776,13 +1789,12 @@ fn pair_chunk_avx2<
 /// The cross pairs of one block, seen from its side: each of its grains' cross pairs
 /// ([`BlockPairs::cross_items_of`]), whose responses go to that grain only.
 struct CrossSide<'a> {
-    /// The block's grains (`force[0]` is grain `grains.start`'s).
-    grains: Range<usize>,
-    /// Per grain, where its items start in the whole [`BlockPairs::cross_items`].
-    cross_start: &'a [u32],
+    /// The block's first grain (that of `force[0]`).
+    first: usize,
     /// The block's items: per grain in grain order, its cross pairs in pair order (index
-    /// among the cross pairs, [`J_ROLE`] where the grain is the pair's j).
+    /// among the cross pairs, [`J_ROLE`] where the grain is the pair's j), and their grains.
     cross_items: &'a [u32],
+    owner: &'a [u32],
     /// All cross pairs, and their coefficients (empty when all grains are alike).
     pairs: &'a [Pair],
     coef: &'a [ContactCoefficients],
@@ -1849,32 +1861,28 @@ unsafe fn cross_side_impl<L: Lanes, N: NormalKernel, T: TangentialKernel, const 
         g.r_j = L::splat(u.radius);
         g.coef = u.pair.map(L::splat);
     }
-    let base = s.cross_start[s.grains.start] as usize;
-    for (k, gi) in s.grains.clone().enumerate() {
-        let items = s.cross_start[gi] as usize - base..s.cross_start[gi + 1] as usize - base;
-        for &e in &s.cross_items[items] {
-            let a = (e & !J_ROLE) as usize;
-            let pair = s.pairs[a];
-            let (i, j) = (pair.i as usize, pair.j as usize);
-            let d = sub3(pos.at(i), pos.at(j));
-            let (ri, rj) = ctx.radii(i, j);
-            let cut = ri + rj;
-            let on = dot(d, d) < cut * cut;
-            if LEDGER && e & J_ROLE == 0 {
-                // SAFETY: pair a's i is this block's grain (the caller's promise).
-                unsafe { s.power.get(a..a + 1)[0] = [0.0; 2] };
-            }
-            item[m].write(e);
-            who[m].write(k as u32);
-            sep[m].write(d);
-            m += on as usize;
-            if m == PAIR_CHUNK {
-                // SAFETY: entries 0..m were written above.
-                let (e, w, d) = unsafe { (written(&item, m), written(&who, m), written(&sep, m)) };
-                // SAFETY: the caller's promise.
-                unsafe { cross_lanes::<L, N, T, LEDGER>(ctx, &mut s, &mut g, (e, w, d)) };
-                m = 0;
-            }
+    for (&e, &gi) in s.cross_items.iter().zip(s.owner) {
+        let a = (e & !J_ROLE) as usize;
+        let pair = s.pairs[a];
+        let (i, j) = (pair.i as usize, pair.j as usize);
+        let d = sub3(pos.at(i), pos.at(j));
+        let (ri, rj) = ctx.radii(i, j);
+        let cut = ri + rj;
+        let on = dot(d, d) < cut * cut;
+        if LEDGER && e & J_ROLE == 0 {
+            // SAFETY: pair a's i is this block's grain (the caller's promise).
+            unsafe { s.power.get(a..a + 1)[0] = [0.0; 2] };
+        }
+        item[m].write(e);
+        who[m].write(gi - s.first as u32);
+        sep[m].write(d);
+        m += on as usize;
+        if m == PAIR_CHUNK {
+            // SAFETY: entries 0..m were written above.
+            let (e, w, d) = unsafe { (written(&item, m), written(&who, m), written(&sep, m)) };
+            // SAFETY: the caller's promise.
+            unsafe { cross_lanes::<L, N, T, LEDGER>(ctx, &mut s, &mut g, (e, w, d)) };
+            m = 0;
         }
     }
     // SAFETY: entries 0..m were written above.
@@ -1939,7 +1947,7 @@ unsafe fn cross_lanes<L: Lanes, N: NormalKernel, T: TangentialKernel, const LEDG
             if T::ACTIVE && ctx.rotations {
                 let rg = match ctx.uniform {
                     Some(u) => u.radius,
-                    None => ctx.radius[s.grains.start + k],
+                    None => ctx.radius[s.first + k],
                 };
                 let ti = &mut s.torque[k];
                 ti[0] -= rg * t[0];

@@ -79,6 +79,21 @@ pub struct NeighborList {
     ref_shift: [f64; 3],
     /// Number of (re)builds so far.
     pub builds: u64,
+    /// The space-filling curve of the cell keys.
+    curve: Curve,
+}
+
+/// The space-filling curve the cells (and grains) are stored along.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Curve {
+    /// 3-D Morton (Z-order) code: the bits of x, y and z interleaved (21 bits each).
+    #[default]
+    Morton,
+    /// Vertical columns: the 2-D Morton code of (x, y) above the height z (21 bits each).
+    /// A run of this curve is a set of whole columns, so a run cut out of a shallow bed has
+    /// only vertical faces: the engine's grain blocks (runs of the curve) then share fewer
+    /// pairs than 3-D Morton runs, whose faces include horizontal ones across the bed.
+    Columns,
 }
 
 impl NeighborList {
@@ -105,7 +120,14 @@ impl NeighborList {
             ref_pos: Vec::new(),
             ref_shift: [0.0; 3],
             builds: 0,
+            curve: Curve::Morton,
         }
+    }
+
+    /// The same list with its cells stored along `curve`.
+    pub fn with_curve(mut self, curve: Curve) -> Self {
+        self.curve = curve;
+        self
     }
 
     /// Verlet skin (m).
@@ -147,10 +169,28 @@ impl NeighborList {
         c
     }
 
-    /// Morton (Z-order) code of cell `c`: the bits of x, y, z interleaved (21 bits each).
+    /// Key of cell `c` along the list's [`Curve`].
     #[inline]
     fn key(&self, c: [usize; 3]) -> u64 {
-        spread3(c[0] as u64) | (spread3(c[1] as u64) << 1) | (spread3(c[2] as u64) << 2)
+        match self.curve {
+            Curve::Morton => {
+                spread3(c[0] as u64) | (spread3(c[1] as u64) << 1) | (spread3(c[2] as u64) << 2)
+            }
+            Curve::Columns => {
+                ((spread2(c[0] as u64) | (spread2(c[1] as u64) << 1)) << 21)
+                    | (c[2] as u64 & 0x1f_ffff)
+            }
+        }
+    }
+
+    /// The cell of `key` (inverse of [`NeighborList::key`]).
+    #[inline]
+    fn cell_of(&self, key: u64) -> [usize; 3] {
+        match self.curve {
+            Curve::Morton => [compact3(key), compact3(key >> 1), compact3(key >> 2)],
+            Curve::Columns => [compact2(key >> 21), compact2(key >> 22), key & 0x1f_ffff],
+        }
+        .map(|x| x as usize)
     }
 
     /// Sorts the grains by their cell's Morton code (ties by index) for positions `pos`
@@ -234,9 +274,7 @@ impl NeighborList {
         let skin = self.skin_m;
         for c in 0..self.cell_keys.len() {
             let key = self.cell_keys[c];
-            let cx = compact3(key) as usize;
-            let cy = compact3(key >> 1) as usize;
-            let cz = compact3(key >> 2) as usize;
+            let [cx, cy, cz] = self.cell_of(key);
             let (a0, a1) = (self.cell_start[c] as usize, self.cell_start[c + 1] as usize);
             for (dx, dy, dz) in HALF_STENCIL {
                 let (x, y, z) = (cx as isize + dx, cy as isize + dy, cz as isize + dz);
@@ -323,6 +361,30 @@ fn slot_of(key: u64, mask: usize) -> usize {
     (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 32) as usize & mask
 }
 
+/// The 21 low bits of `x` spread to every second bit (from bit 0).
+#[inline]
+fn spread2(x: u64) -> u64 {
+    let mut x = x & 0x1f_ffff;
+    x = (x | (x << 16)) & 0x0000_ffff_0000_ffff;
+    x = (x | (x << 8)) & 0x00ff_00ff_00ff_00ff;
+    x = (x | (x << 4)) & 0x0f0f_0f0f_0f0f_0f0f;
+    x = (x | (x << 2)) & 0x3333_3333_3333_3333;
+    x = (x | (x << 1)) & 0x5555_5555_5555_5555;
+    x
+}
+
+/// Inverse of [`spread2`]: every second bit of `x` (from bit 0) packed into 21 bits.
+#[inline]
+fn compact2(x: u64) -> u64 {
+    let mut x = x & 0x5555_5555_5555_5555;
+    x = (x | (x >> 1)) & 0x3333_3333_3333_3333;
+    x = (x | (x >> 2)) & 0x0f0f_0f0f_0f0f_0f0f;
+    x = (x | (x >> 4)) & 0x00ff_00ff_00ff_00ff;
+    x = (x | (x >> 8)) & 0x0000_ffff_0000_ffff;
+    x = (x | (x >> 16)) & 0x0000_0000_ffff_ffff;
+    x & 0x1f_ffff
+}
+
 /// The low 21 bits of `x` spread to every third bit (bit k → bit 3k).
 #[inline]
 fn spread3(x: u64) -> u64 {
@@ -379,6 +441,19 @@ mod tests {
         assert_eq!(nl.key([0, 1, 0]), 2);
         assert_eq!(nl.key([0, 0, 1]), 4);
         assert_eq!(nl.key([3, 3, 3]), 63);
+        for x in [0u64, 1, 2, 5, 1000, (1 << 20) - 1, (1 << 21) - 1] {
+            assert_eq!(compact2(spread2(x)), x);
+        }
+        let cols = NeighborList::new([1.0; 3], 0.01, 0.001).with_curve(Curve::Columns);
+        assert_eq!(cols.key([0, 0, 1]), 1);
+        assert_eq!(cols.key([1, 0, 0]), 1 << 21);
+        assert_eq!(cols.key([0, 1, 0]), 2 << 21);
+        // a whole column comes before the next one
+        assert!(cols.key([0, 0, (1 << 21) - 1]) < cols.key([1, 0, 0]));
+        for c in [[0, 0, 0], [3, 7, 1], [1000, 5, 77], [(1 << 21) - 1; 3]] {
+            assert_eq!(cols.cell_of(cols.key(c)), c);
+            assert_eq!(nl.cell_of(nl.key(c)), c);
+        }
     }
 
     #[test]

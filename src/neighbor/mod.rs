@@ -3,4 +3,4 @@
 
 pub mod cell_grid;
 
-pub use cell_grid::{index_by_grain, NeighborList, Pair, J_ROLE};
+pub use cell_grid::{index_by_grain, Curve, NeighborList, Pair, J_ROLE};
