@@ -18,7 +18,7 @@ use crate::error::{ModelError, Quantity};
 use crate::integrate::{advance_orientation, half_kick, half_kick_predict, kick_drift};
 pub use crate::model::{BoxDrive, PrimarySystem};
 use crate::neighbor::{Curve, NeighborList, Pair, J_ROLE};
-use crate::simd::Simd;
+use crate::simd::{Simd, WritePrefetch};
 use crate::units::G;
 
 use super::blocks::BlockPairs;
@@ -270,6 +270,9 @@ pub struct DemWorld {
     /// Instruction set of the contact loops (default: the widest this processor has; every
     /// choice gives bitwise the same results).
     pub simd: Simd,
+    /// Write prefetches in the drift, where the processor has them (no value changes;
+    /// `None` turns them off, e.g. to measure them).
+    pub prefetch: Option<WritePrefetch>,
     /// Threads of a [`Team`] to step with (`None`: the rayon pool's size, and a team only when
     /// stepped from outside a rayon pool). Results do not depend on it.
     pub team_threads: Option<usize>,
@@ -501,6 +504,7 @@ impl DemWorld {
             steps: 0,
             uniform,
             simd: Simd::detect(),
+            prefetch: WritePrefetch::detect(),
             team_threads: None,
             team: TeamSlot(None),
             mode: Mode::Serial,
@@ -831,7 +835,7 @@ impl DemWorld {
             (&self.inv_mass, &self.inv_inertia),
             self.neighbors.reference().0,
             (self.dt, rot),
-            shift_z,
+            (shift_z, self.prefetch),
         );
         exec.units(units, &|c| {
             let r = c * GRAIN_CHUNK..((c + 1) * GRAIN_CHUNK).min(n);
@@ -1090,7 +1094,7 @@ impl DemWorld {
                 (&self.inv_mass, &self.inv_inertia),
                 self.neighbors.reference().0,
                 (dt, rot),
-                drift.unwrap_or(0.0),
+                (drift.unwrap_or(0.0), self.prefetch),
             );
             let force = Parts::new(&mut self.force);
             let torque = Parts::new(&mut self.torque);
@@ -2014,6 +2018,8 @@ struct Drift<'a> {
     rotations: bool,
     /// The box's vertical displacement since the last neighbour build (m).
     shift_z: f64,
+    /// Write prefetches of the stored lines ([`WritePrefetch`]).
+    prefetch: Option<WritePrefetch>,
 }
 
 impl<'a> Drift<'a> {
@@ -2026,7 +2032,7 @@ impl<'a> Drift<'a> {
         (inv_mass, inv_inertia): (&'a [f64], &'a [f64]),
         reference: &'a [[f64; 3]],
         (dt, rotations): (f64, bool),
-        shift_z: f64,
+        (shift_z, prefetch): (f64, Option<WritePrefetch>),
     ) -> Self {
         let n = kin[0].len();
         let [pos, vel, vel_pred, omega, omega_pred] = kin.map(Parts::new);
@@ -2043,6 +2049,7 @@ impl<'a> Drift<'a> {
             dt,
             rotations,
             shift_z,
+            prefetch,
         }
     }
 
@@ -2062,6 +2069,7 @@ impl<'a> Drift<'a> {
                     torque,
                     &self.inv_inertia[r.clone()],
                     self.h,
+                    self.prefetch,
                 );
             }
             let refs = match self.reference {
@@ -2074,10 +2082,10 @@ impl<'a> Drift<'a> {
                 self.vel_pred.get(r.clone()),
                 force,
                 &self.inv_mass[r],
-                self.h,
-                self.dt,
+                (self.h, self.dt),
                 refs,
                 [0.0, 0.0, self.shift_z],
+                self.prefetch,
             )
         }
     }
