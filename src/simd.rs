@@ -61,18 +61,17 @@ impl WritePrefetch {
             use std::arch::x86_64::__cpuid;
             // (`__cpuid` is safe on x86-64 from Rust 1.94 on; the block keeps older
             // compilers building)
+            // (leaf 8000_0001h is read only where the processor has it; else no flags)
             #[allow(unused_unsafe)]
             // SAFETY: CPUID exists on every x86-64 processor.
-            let (max_ext, ecx) = unsafe {
-                let max_ext = __cpuid(0x8000_0000).eax;
-                let ecx = if max_ext >= 0x8000_0001 {
+            let ecx = unsafe {
+                if __cpuid(0x8000_0000).eax >= 0x8000_0001 {
                     __cpuid(0x8000_0001).ecx
                 } else {
                     0
-                };
-                (max_ext, ecx)
+                }
             };
-            if max_ext >= 0x8000_0001 && ecx & (1 << 8) != 0 {
+            if ecx & (1 << 8) != 0 {
                 return Some(WritePrefetch(()));
             }
         }

@@ -66,7 +66,9 @@ pub struct BlockPairs {
     pub cross_start: Vec<u32>,
     /// Per grain, its cross pairs in pair order (relative index, [`J_ROLE`](crate::neighbor::J_ROLE) for the `j`).
     pub cross_items: Vec<u32>,
-    /// The grain of each entry of `cross_items`.
+    /// The grain of each entry of `cross_items` (derivable from `cross_start`, but stored:
+    /// the cross-pair pass then walks only a block's items instead of every grain of the
+    /// block, most of which have none; 2–4 % of a two-thread step on the vibrated 4000 bed).
     pub cross_owner: Vec<u32>,
     /// Block of each candidate pair (scratch of [`BlockPairs::partition`]).
     class: Vec<u32>,
