@@ -236,6 +236,9 @@ pub struct DemWorld {
     wall_history: Vec<[[f64; 3]; 6]>,
     /// Springs of the pairs before a rebuild, keyed by (min, max) grain (scratch).
     history_carry: Vec<(u64, [f64; 3])>,
+    /// Runs of occupied cells of a threaded neighbour rebuild, and their pairs (scratch).
+    cell_runs: Vec<usize>,
+    pair_runs: Vec<Vec<Pair>>,
     /// Partial sums of the chunks (scratch, reused every step).
     partials: Vec<[f64; 3]>,
     /// Partial sums of the grain chunks: F_gz, powers, Σ m z, Σ m ż (scratch).
@@ -490,6 +493,8 @@ impl DemWorld {
             cross_power: Vec::new(),
             wall_history: vec![[[0.0; 3]; 6]; n],
             history_carry: Vec::new(),
+            cell_runs: Vec::new(),
+            pair_runs: Vec::new(),
             partials: Vec::new(),
             grain_partials: Vec::new(),
             mass_total,
@@ -916,7 +921,7 @@ impl DemWorld {
             }
             self.history_carry.sort_unstable_by_key(|e| e.0);
         }
-        self.neighbors.rebuild(&self.pos, &self.radius, shift);
+        self.find_pairs(shift);
         let (pos, radius) = (&self.pos, &self.radius);
         self.blocks
             .partition(&self.neighbors.pairs, self.pos.len(), |p: &Pair| {
@@ -960,6 +965,42 @@ impl DemWorld {
                     *t = last;
                 }
             }
+        }
+    }
+
+    /// The neighbour list of the current centres (box origin `shift`, m). On several
+    /// threads the cell list is prepared here, the pairs are found run of cells by run on
+    /// the step's executor and concatenated in run order: the list a one-thread rebuild
+    /// makes, pair for pair.
+    fn find_pairs(&mut self, shift: [f64; 3]) {
+        let exec = self.mode.exec(&self.team);
+        let runs = match exec {
+            Exec::Serial => 1,
+            Exec::Team(team) => REBUILD_RUNS_PER_THREAD * team.threads(),
+            Exec::Rayon => REBUILD_RUNS_PER_THREAD * rayon::current_num_threads(),
+        };
+        if runs == 1 {
+            self.neighbors.rebuild(&self.pos, &self.radius, shift);
+            return;
+        }
+        self.neighbors.prepare(&self.pos, shift);
+        self.neighbors.cell_runs(runs, &mut self.cell_runs);
+        self.pair_runs.resize_with(runs, Vec::new);
+        {
+            let (nl, cells) = (&self.neighbors, &self.cell_runs);
+            let (pos, radius) = (&self.pos, &self.radius);
+            let out = Parts::new(&mut self.pair_runs);
+            exec.units(runs, &|u| {
+                // SAFETY: run `u` alone touches its list.
+                let list = unsafe { &mut out.get(u..u + 1)[0] };
+                list.clear();
+                nl.pairs_of_cells(cells[u]..cells[u + 1], pos, radius, list);
+            });
+        }
+        let pairs = &mut self.neighbors.pairs;
+        pairs.clear();
+        for list in &self.pair_runs {
+            pairs.extend_from_slice(list);
         }
     }
 
@@ -1549,6 +1590,10 @@ unsafe fn written<T>(a: &[MaybeUninit<T>], m: usize) -> &[T] {
     // SAFETY: the caller's promise; `MaybeUninit<T>` has the layout of `T`.
     unsafe { std::slice::from_raw_parts(a.as_ptr().cast::<T>(), m) }
 }
+
+/// Runs of cells per thread of a threaded neighbour rebuild (some to claim when a thread
+/// finishes its share early).
+const REBUILD_RUNS_PER_THREAD: usize = 4;
 
 /// One chunk of candidate pairs: a branch-free pass keeps the pairs in contact (and clears
 /// the others' outputs), then [`contact_response`] runs on those only, `L::N`

@@ -75,6 +75,12 @@ pub struct NeighborList {
     /// Open-addressing hash table of the occupied cells (a power of two ≥ 2 × cells
     /// slots): a slot holds 1 + the cell's index in `cell_keys`, 0 when empty.
     cell_table: Vec<u32>,
+    /// [`Curve::Columns`] only: the occupied columns' codes (key >> 21), ascending, and the
+    /// start of each column's cells in `cell_keys` (one more entry than columns).
+    col_keys: Vec<u64>,
+    col_start: Vec<u32>,
+    /// Open-addressing hash table of the occupied columns (as `cell_table`).
+    col_table: Vec<u32>,
     ref_pos: Vec<[f64; 3]>,
     ref_shift: [f64; 3],
     /// Number of (re)builds so far.
@@ -117,6 +123,9 @@ impl NeighborList {
             cell_keys: Vec::new(),
             cell_start: Vec::new(),
             cell_table: Vec::new(),
+            col_keys: Vec::new(),
+            col_start: Vec::new(),
+            col_table: Vec::new(),
             ref_pos: Vec::new(),
             ref_shift: [0.0; 3],
             builds: 0,
@@ -152,6 +161,8 @@ impl NeighborList {
             + self.cell_keys.capacity() * 8
             + self.cell_start.capacity() * 4
             + self.cell_table.capacity() * 4
+            + self.col_keys.capacity() * 8
+            + (self.col_start.capacity() + self.col_table.capacity()) * 4
             + self.ref_pos.capacity() * 24
     }
 
@@ -248,10 +259,23 @@ impl NeighborList {
     }
 
     /// Rebuilds the pair list: all pairs with |r_i − r_j| < R_i + R_j + skin, in the order of
-    /// the cells' Morton codes, then the half stencil, then the grains' indices.
+    /// the cells along the curve, then the half stencil, then the grains' order in the cells.
     ///
     /// `pos` are lab-frame centres (m), `shift` the box origin in the lab frame (m).
+    /// The same as [`NeighborList::prepare`], then [`NeighborList::pairs_of_cells`] over
+    /// every cell (which a caller may instead split into runs and do on several threads).
     pub fn rebuild(&mut self, pos: &[[f64; 3]], radius: &[f64], shift: [f64; 3]) {
+        self.prepare(pos, shift);
+        let mut pairs = std::mem::take(&mut self.pairs);
+        pairs.clear();
+        self.pairs_of_cells(0..self.cell_keys.len(), pos, radius, &mut pairs);
+        self.pairs = pairs;
+    }
+
+    /// The first half of a rebuild: reference positions, the sorted cell list and its hash
+    /// tables. The pairs are then found by [`NeighborList::pairs_of_cells`] and stored in
+    /// [`NeighborList::pairs`] by the caller.
+    pub fn prepare(&mut self, pos: &[[f64; 3]], shift: [f64; 3]) {
         let n = pos.len();
         self.builds += 1;
         self.ref_pos.clear();
@@ -269,13 +293,70 @@ impl NeighborList {
         }
         self.cell_start.push(n as u32);
         self.fill_table();
-        self.pairs.clear();
+        self.fill_columns();
+    }
+
+    /// Cuts the occupied cells into `units` runs of about equal grain counts (whole columns
+    /// with [`Curve::Columns`]): `out` gets the `units + 1` boundaries (indices of cells).
+    pub fn cell_runs(&self, units: usize, out: &mut Vec<usize>) {
+        out.clear();
+        out.push(0);
+        let cells = self.cell_keys.len();
+        let n = self.keyed.len();
+        let units = units.max(1);
+        // the places a run may end: every cell, or the end of every column
+        let ends: &[u32] = match self.curve {
+            Curve::Morton => &self.cell_start[1..],
+            Curve::Columns => &self.col_start[1..],
+        };
+        let grains_before = |e: u32| match self.curve {
+            Curve::Morton => e as usize,
+            Curve::Columns => self.cell_start[e as usize] as usize,
+        };
+        let mut e = 0;
+        for u in 1..units {
+            let want = u * n / units;
+            while e < ends.len() && grains_before(ends[e]) < want {
+                e += 1;
+            }
+            let cell = match (self.curve, ends.get(e)) {
+                (Curve::Morton, Some(_)) => e + 1,
+                (Curve::Columns, Some(&c)) => c as usize,
+                (_, None) => cells,
+            };
+            out.push(cell.max(*out.last().unwrap_or(&0)).min(cells));
+        }
+        out.push(cells);
+    }
+
+    /// Appends to `out` the candidate pairs whose first grain lies in the occupied cells
+    /// `cells` (indices in curve order, after [`NeighborList::prepare`]), in list order: the
+    /// lists of consecutive runs of cells, concatenated, are the list of the whole.
+    pub fn pairs_of_cells(
+        &self,
+        cells: std::ops::Range<usize>,
+        pos: &[[f64; 3]],
+        radius: &[f64],
+        out: &mut Vec<Pair>,
+    ) {
+        match self.curve {
+            Curve::Morton => self.pairs_by_hash(cells, pos, radius, out),
+            Curve::Columns => self.pairs_by_columns(cells, pos, radius, out),
+        }
+    }
+
+    /// [`NeighborList::pairs_of_cells`] with one hash lookup per neighbour cell.
+    fn pairs_by_hash(
+        &self,
+        cells: std::ops::Range<usize>,
+        pos: &[[f64; 3]],
+        radius: &[f64],
+        out: &mut Vec<Pair>,
+    ) {
         let [nx, ny, nz] = self.dims;
-        let skin = self.skin_m;
-        for c in 0..self.cell_keys.len() {
+        for c in cells {
             let key = self.cell_keys[c];
             let [cx, cy, cz] = self.cell_of(key);
-            let (a0, a1) = (self.cell_start[c] as usize, self.cell_start[c + 1] as usize);
             for (dx, dy, dz) in HALF_STENCIL {
                 let (x, y, z) = (cx as isize + dx, cy as isize + dy, cz as isize + dz);
                 if x < 0 || y < 0 || z < 0 {
@@ -294,63 +375,186 @@ impl NeighborList {
                         None => continue,
                     }
                 };
-                let (b0, b1) = (
-                    self.cell_start[c2] as usize,
-                    self.cell_start[c2 + 1] as usize,
+                self.cell_pairs(c, c2, (pos, radius), out);
+            }
+        }
+    }
+
+    /// [`NeighborList::pairs_of_cells`] for [`Curve::Columns`]: one hash lookup per
+    /// neighbour *column* (9 per column), then each neighbour cell found by a cursor that
+    /// walks up its column as the cells of this column go up. The same pairs in the same
+    /// order as [`NeighborList::pairs_by_hash`] (unit test), for a fraction of the lookups.
+    fn pairs_by_columns(
+        &self,
+        cells: std::ops::Range<usize>,
+        pos: &[[f64; 3]],
+        radius: &[f64],
+        out: &mut Vec<Pair>,
+    ) {
+        if cells.is_empty() {
+            return;
+        }
+        let [nx, ny, _] = self.dims;
+        let z_of = |c: usize| self.cell_keys[c] & Z_MASK;
+        // the column of the run's first cell
+        let mut col = self
+            .col_start
+            .partition_point(|&s| s as usize <= cells.start)
+            - 1;
+        while col + 1 < self.col_start.len() && (self.col_start[col] as usize) < cells.end {
+            let (c0, c1) = (
+                (self.col_start[col] as usize).max(cells.start),
+                (self.col_start[col + 1] as usize).min(cells.end),
+            );
+            let [cx, cy, _] = self.cell_of(self.cell_keys[c0]);
+            // per (dx, dy) ∈ {−1, 0, 1}²: the neighbour column's cells, as [cursor, end)
+            let mut cursor = [(0usize, 0usize); 9];
+            for (k, cur) in cursor.iter_mut().enumerate() {
+                let (x, y) = (
+                    cx as isize + k as isize % 3 - 1,
+                    cy as isize + k as isize / 3 - 1,
                 );
-                for a in a0..a1 {
-                    let i = self.keyed[a].1 as usize;
-                    let (pi, ri) = (pos[i], radius[i]);
-                    let start = if same { a + 1 } else { b0 };
-                    for b in start..b1 {
-                        let j = self.keyed[b].1 as usize;
-                        let d = [pi[0] - pos[j][0], pi[1] - pos[j][1], pi[2] - pos[j][2]];
-                        let cut = ri + radius[j] + skin;
-                        if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < cut * cut {
-                            self.pairs.push(Pair {
-                                i: i as u32,
-                                j: j as u32,
-                            });
+                if x < 0 || y < 0 || x as usize >= nx || y as usize >= ny {
+                    continue;
+                }
+                let code = spread2(x as u64) | (spread2(y as u64) << 1);
+                if let Some(q) = self.find_column(code) {
+                    *cur = (self.col_start[q] as usize, self.col_start[q + 1] as usize);
+                }
+            }
+            for c in c0..c1 {
+                let z = z_of(c);
+                for (dx, dy, dz) in HALF_STENCIL {
+                    let c2 = if (dx, dy, dz) == (0, 0, 0) {
+                        c
+                    } else {
+                        let (cur, end) = &mut cursor[((dy + 1) * 3 + dx + 1) as usize];
+                        while *cur < *end && z_of(*cur) < z {
+                            *cur += 1;
                         }
-                    }
+                        // the first cell at z or above; one further for z + 1
+                        let mut q = *cur;
+                        if dz == 1 && q < *end && z_of(q) == z {
+                            q += 1;
+                        }
+                        if q >= *end || z_of(q) != z + dz as u64 {
+                            continue;
+                        }
+                        q
+                    };
+                    self.cell_pairs(c, c2, (pos, radius), out);
+                }
+            }
+            col += 1;
+        }
+    }
+
+    /// The candidate pairs (i in cell `c`, j in cell `c2`; i before j when `c2 == c`).
+    #[inline]
+    fn cell_pairs(
+        &self,
+        c: usize,
+        c2: usize,
+        (pos, radius): (&[[f64; 3]], &[f64]),
+        out: &mut Vec<Pair>,
+    ) {
+        let skin = self.skin_m;
+        let same = c == c2;
+        let (a0, a1) = (self.cell_start[c] as usize, self.cell_start[c + 1] as usize);
+        let (b0, b1) = (
+            self.cell_start[c2] as usize,
+            self.cell_start[c2 + 1] as usize,
+        );
+        for a in a0..a1 {
+            let i = self.keyed[a].1 as usize;
+            let (pi, ri) = (pos[i], radius[i]);
+            let start = if same { a + 1 } else { b0 };
+            for b in start..b1 {
+                let j = self.keyed[b].1 as usize;
+                let d = [pi[0] - pos[j][0], pi[1] - pos[j][1], pi[2] - pos[j][2]];
+                let cut = ri + radius[j] + skin;
+                if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < cut * cut {
+                    out.push(Pair {
+                        i: i as u32,
+                        j: j as u32,
+                    });
                 }
             }
         }
     }
 
+    /// Fills the column list and its table from `cell_keys` ([`Curve::Columns`] only).
+    fn fill_columns(&mut self) {
+        self.col_keys.clear();
+        self.col_start.clear();
+        self.col_table.clear();
+        if self.curve != Curve::Columns {
+            return;
+        }
+        for (c, &k) in self.cell_keys.iter().enumerate() {
+            if self.col_keys.last() != Some(&(k >> 21)) {
+                self.col_keys.push(k >> 21);
+                self.col_start.push(c as u32);
+            }
+        }
+        self.col_start.push(self.cell_keys.len() as u32);
+        fill_hash(&self.col_keys, &mut self.col_table);
+    }
+
+    /// Index in `col_keys` of the occupied column `code`, if any.
+    #[inline]
+    fn find_column(&self, code: u64) -> Option<usize> {
+        find_hashed(&self.col_keys, &self.col_table, code)
+    }
+
     /// Fills [`NeighborList::cell_table`] from `cell_keys`.
     fn fill_table(&mut self) {
-        let slots = (2 * self.cell_keys.len()).next_power_of_two().max(2);
-        self.cell_table.clear();
-        self.cell_table.resize(slots, 0);
-        let mask = slots - 1;
-        for (c, &k) in self.cell_keys.iter().enumerate() {
-            let mut s = slot_of(k, mask);
-            while self.cell_table[s] != 0 {
-                s = (s + 1) & mask;
-            }
-            self.cell_table[s] = c as u32 + 1;
-        }
+        fill_hash(&self.cell_keys, &mut self.cell_table);
     }
 
     /// Index in `cell_keys` of the occupied cell of key `key`, if any (expected O(1): the
     /// table is at most half full).
     #[inline]
     fn find_cell(&self, key: u64) -> Option<usize> {
-        let mask = self.cell_table.len() - 1;
-        let mut s = slot_of(key, mask);
-        loop {
-            match self.cell_table[s] {
-                0 => return None,
-                e if self.cell_keys[e as usize - 1] == key => return Some(e as usize - 1),
-                _ => s = (s + 1) & mask,
-            }
-        }
+        find_hashed(&self.cell_keys, &self.cell_table, key)
     }
 
     /// Box size the grid was made for (m).
     pub fn box_size(&self) -> [f64; 3] {
         self.box_m
+    }
+}
+
+/// The height bits of a [`Curve::Columns`] key.
+const Z_MASK: u64 = 0x1f_ffff;
+
+/// An open-addressing hash table of the distinct `keys` (a power of two ≥ 2 × keys slots):
+/// a slot holds 1 + the key's index in `keys`, 0 when empty.
+fn fill_hash(keys: &[u64], table: &mut Vec<u32>) {
+    let slots = (2 * keys.len()).next_power_of_two().max(2);
+    table.clear();
+    table.resize(slots, 0);
+    let mask = slots - 1;
+    for (c, &k) in keys.iter().enumerate() {
+        let mut s = slot_of(k, mask);
+        while table[s] != 0 {
+            s = (s + 1) & mask;
+        }
+        table[s] = c as u32 + 1;
+    }
+}
+
+/// Index in `keys` of `key` through its [`fill_hash`] table, if present.
+#[inline]
+fn find_hashed(keys: &[u64], table: &[u32], key: u64) -> Option<usize> {
+    let mask = table.len() - 1;
+    let mut s = slot_of(key, mask);
+    loop {
+        match table[s] {
+            0 => return None,
+            e if keys[e as usize - 1] == key => return Some(e as usize - 1),
+            _ => s = (s + 1) & mask,
+        }
     }
 }
 
@@ -493,6 +697,77 @@ mod tests {
                 }
             }
             assert_eq!(found, nl.occupied_cells());
+        }
+    }
+
+    #[test]
+    fn column_cursors_find_the_pairs_of_the_hash_lookups_in_their_order() {
+        // a dense layer and a sparse gas above it, with empty cells and gaps in the columns
+        let bx = [0.031, 0.023, 0.05];
+        let mut s = 99u64;
+        let mut rnd = || {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let n = 900;
+        let pos: Vec<[f64; 3]> = (0..n)
+            .map(|k| {
+                let z = if k % 4 == 0 {
+                    0.05 * rnd()
+                } else {
+                    0.012 * rnd()
+                };
+                [rnd() * bx[0], rnd() * bx[1], z + 0.003]
+            })
+            .collect();
+        let rad: Vec<f64> = (0..n).map(|_| 0.0008 + 0.0004 * rnd()).collect();
+        for curve in [Curve::Morton, Curve::Columns] {
+            let mut nl = NeighborList::new(bx, 0.0012, 0.0003).with_curve(curve);
+            nl.rebuild(&pos, &rad, [0.0, 0.0, 0.003]);
+            let whole = nl.pairs.clone();
+            assert!(whole.len() > n);
+            // every pair closer than R_i + R_j + skin, once (brute force)
+            let mut got: Vec<(u32, u32)> =
+                whole.iter().map(|p| (p.i.min(p.j), p.i.max(p.j))).collect();
+            got.sort_unstable();
+            let mut want = Vec::new();
+            for i in 0..n {
+                for j in i + 1..n {
+                    let d2: f64 = (0..3).map(|k| (pos[i][k] - pos[j][k]).powi(2)).sum();
+                    let cut = rad[i] + rad[j] + 0.0003;
+                    if d2 < cut * cut {
+                        want.push((i as u32, j as u32));
+                    }
+                }
+            }
+            assert_eq!(got, want, "{curve:?}");
+            let mut by_hash = Vec::new();
+            nl.pairs_by_hash(0..nl.occupied_cells(), &pos, &rad, &mut by_hash);
+            assert_eq!(whole, by_hash, "{curve:?}");
+            // runs of cells, listed one after the other, give the whole list
+            let mut runs = Vec::new();
+            for units in [1, 2, 3, 7, 64, 5000] {
+                nl.cell_runs(units, &mut runs);
+                assert_eq!(runs.len(), units + 1);
+                assert!(runs.windows(2).all(|w| w[0] <= w[1]));
+                assert_eq!(*runs.last().unwrap(), nl.occupied_cells());
+                let mut cat = Vec::new();
+                for w in runs.windows(2) {
+                    nl.pairs_of_cells(w[0]..w[1], &pos, &rad, &mut cat);
+                }
+                assert_eq!(cat, whole, "{curve:?}, {units} runs");
+            }
+            // the runs share the grains out about evenly
+            nl.cell_runs(4, &mut runs);
+            for w in runs.windows(2) {
+                let g = (nl.cell_start[w[1]] - nl.cell_start[w[0]]) as usize;
+                assert!(
+                    g > n / 8 && g < n / 2,
+                    "{curve:?}: {g} grains in a run of 4"
+                );
+            }
         }
     }
 
