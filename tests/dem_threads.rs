@@ -258,3 +258,45 @@ fn every_instruction_set_gives_the_same_run() {
         }
     }
 }
+
+/// The contact counts a run reports (`DemWorld::contact_counts`, summary.json's
+/// `*_per_grain`) are those of a brute-force count over every pair of grains and every wall
+/// of the settled bed.
+#[test]
+fn contact_counts_match_a_brute_force_count() {
+    let mut p = DemParams::thesis_b_softened(1000.0);
+    p.count = 400;
+    let model = pdamp::setup::dem_model(&p).unwrap();
+    let (dt, _) = choose_dt(&model, &drive(), None, DEFAULT_DT_FRACTION).unwrap();
+    let mut w = initial_world(&model, drive(), dt, 0.0).unwrap();
+    settle(&mut w, 0.2);
+    let c = w.contact_counts();
+    let n = w.len();
+    let (mut pairs, mut walls) = (0, 0);
+    for i in 0..n {
+        for j in i + 1..n {
+            let d2: f64 = (0..3).map(|k| (w.pos[i][k] - w.pos[j][k]).powi(2)).sum();
+            let cut = w.radius[i] + w.radius[j];
+            pairs += usize::from(d2 < cut * cut);
+        }
+        // the six walls of the box at rest: x, y in [0, L], floor at box_z
+        let (q, r, b) = (w.pos[i], w.radius[i], w.box_size);
+        let gaps = [
+            q[0],
+            b[0] - q[0],
+            q[1],
+            b[1] - q[1],
+            q[2] - w.box_z,
+            b[2] - (q[2] - w.box_z),
+        ];
+        walls += gaps.iter().filter(|&&g| g < r).count();
+    }
+    assert_eq!(c.pair_contacts, pairs);
+    assert_eq!(c.wall_contacts, walls);
+    assert!(c.candidate_pairs >= pairs);
+    // a settled bed: most grains touch others, the bottom layer the floor
+    assert!(
+        pairs > n && walls > n / 10,
+        "{pairs} contacts, {walls} on walls"
+    );
+}

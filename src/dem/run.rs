@@ -127,6 +127,29 @@ pub(crate) fn interpolate_strobe(cycle: u64, t_s: f64, a: [f64; 5], b: [f64; 5])
     }
 }
 
+/// Contacts per grain of a state ([`ContactCounts`](super::world::ContactCounts) over the grain count).
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
+pub struct ContactsPerGrain {
+    /// Candidate pairs of the neighbour list per grain.
+    pub candidate_pairs: f64,
+    /// Grain–grain pairs in contact per grain (half the mean coordination number).
+    pub pair_contacts: f64,
+    /// Grain–wall contacts per grain.
+    pub wall_contacts: f64,
+}
+
+impl ContactsPerGrain {
+    /// The counts `c` of `n` grains, per grain (0 without grains).
+    pub fn of(c: super::world::ContactCounts, n: usize) -> Self {
+        let per = |k: usize| if n == 0 { 0.0 } else { k as f64 / n as f64 };
+        ContactsPerGrain {
+            candidate_pairs: per(c.candidate_pairs),
+            pair_contacts: per(c.pair_contacts),
+            wall_contacts: per(c.wall_contacts),
+        }
+    }
+}
+
 /// Summary of a DEM run (`summary.json` keys).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct DemSummary {
@@ -172,6 +195,9 @@ pub struct DemSummary {
     pub settle_steps: u64,
     /// Neighbour-list builds during the driven run.
     pub neighbor_builds: u64,
+    /// Contacts at the end of the run, per grain: candidate pairs, grain–grain pairs in
+    /// contact (half the mean coordination number) and wall contacts.
+    pub contacts_per_grain: ContactsPerGrain,
     /// Number of grains.
     pub grains: usize,
     /// Total grain mass m_p (kg).
@@ -384,6 +410,7 @@ pub(crate) fn run_dem_stepped(
         settle_time_s: bed.settle_time_s,
         settle_steps: bed.settle_steps,
         neighbor_builds: world.neighbor_builds() - builds0,
+        contacts_per_grain: ContactsPerGrain::of(world.contact_counts(), world.len()),
         grains: world.len(),
         grain_mass_kg: bed.mass_kg,
         bed_height_m: bed.height_m,

@@ -312,6 +312,19 @@ impl Clone for TeamSlot {
     }
 }
 
+/// Contact counts of a state ([`DemWorld::contact_counts`]). Twice `pair_contacts` per grain
+/// is the mean coordination number of the grains among themselves; the cost of a step grows
+/// with it (a pair in contact costs far more than a grain).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ContactCounts {
+    /// Candidate pairs of the neighbour list (closer than R_i + R_j + skin).
+    pub candidate_pairs: usize,
+    /// Grain–grain pairs in contact.
+    pub pair_contacts: usize,
+    /// Grain–wall contacts.
+    pub wall_contacts: usize,
+}
+
 /// What every grain shares when all grains are alike (one radius, one mass).
 #[derive(Debug, Clone, Copy)]
 struct Uniform {
@@ -628,6 +641,25 @@ impl DemWorld {
     /// Candidate pairs currently in the Verlet list.
     pub fn pair_count(&self) -> usize {
         self.neighbors.pairs.len()
+    }
+
+    /// The contacts of the current state: candidate pairs of the neighbour list, grain–grain
+    /// pairs in contact (overlap > 0) and grain–wall contacts.
+    pub fn contact_counts(&self) -> ContactCounts {
+        let mut c = ContactCounts {
+            candidate_pairs: self.neighbors.pairs.len(),
+            ..ContactCounts::default()
+        };
+        for p in &self.neighbors.pairs {
+            let (i, j) = (p.i as usize, p.j as usize);
+            let d = sub3(self.pos[i], self.pos[j]);
+            let cut = self.radius[i] + self.radius[j];
+            c.pair_contacts += usize::from(dot(d, d) < cut * cut);
+        }
+        for i in 0..self.len() {
+            c.wall_contacts += self.wall_overlaps(i).iter().filter(|&&z| z > 0.0).count();
+        }
+        c
     }
 
     /// (grain blocks, candidate pairs across blocks) of the force pass ([`super::blocks`]).

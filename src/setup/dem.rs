@@ -531,6 +531,19 @@ pub fn simulate(
         ("settle_time_s", s.settle_time_s),
         ("settle_steps", s.settle_steps as f64),
         ("neighbor_builds", s.neighbor_builds as f64),
+        // contacts at the end of the run, per grain (cost of a step: see bench/README.md)
+        (
+            "candidate_pairs_per_grain",
+            s.contacts_per_grain.candidate_pairs,
+        ),
+        (
+            "pair_contacts_per_grain",
+            s.contacts_per_grain.pair_contacts,
+        ),
+        (
+            "wall_contacts_per_grain",
+            s.contacts_per_grain.wall_contacts,
+        ),
         ("grains", s.grains as f64),
         ("grain_mass_kg", s.grain_mass_kg),
         ("bed_height_m", s.bed_height_m),
