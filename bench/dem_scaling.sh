@@ -4,7 +4,10 @@
 # (bed height kept), the bed packed by the advancing front and settled for at most
 # SETTLE s (0.05), then NWARM + NRUN driven steps at amplitude 0 (NRUN = clamp(2e7/N, 400,
 # 20 000), NWARM = max(200, NRUN/10), as bench/dem_vs_liggghts.sh). Prints
-# particle_steps_per_cpu_s (stepping thread) and particle_steps_per_s per N, medians of REPEAT.
+# particle_steps_per_cpu_s (stepping thread) and particle_steps_per_s per N, medians of REPEAT,
+# and the contacts per grain at the end of the last run (grain-grain pairs in contact, wall
+# contacts): a step's cost grows with them, so they say how much of the cost in N is the
+# bed's physics (see bench/README.md, "What the step's cost in N is made of").
 #
 # usage: nice -n 5 bench/dem_scaling.sh            # N = 250 4000 16000 64000, REPEAT=1
 # env:   NS, REPEAT (1), SETTLE (0.05), CPU (0), PDAMP (binary), WORK, EXTRA (more --set args)
@@ -21,8 +24,8 @@ DT=2.8e-6
 mkdir -p "$WORK"
 median() { sort -g | awk '{a[NR]=$1} END {if (NR == 0) print "nan"; else if (NR % 2) print a[(NR+1)/2]; else print (a[NR/2]+a[NR/2+1])/2}'; }
 echo "# pdamp DEM bed at rest, 1 thread, $(date -u '+%Y-%m-%d %H:%M UTC'), load $(cut -d' ' -f1-3 /proc/loadavg), $PDAMP"
-echo "| N | box L (mm) | driven steps | M particle-steps / CPU s | M particle-steps / s (wall) | load before |"
-echo "|---|---|---|---|---|---|"
+echo "| N | box L (mm) | driven steps | M particle-steps / CPU s | M particle-steps / s (wall) | pair contacts / grain | wall contacts / grain | ns / grain-step (CPU) | load before |"
+echo "|---|---|---|---|---|---|---|---|---|"
 for n in $NS; do
     L=$(awk -v n="$n" 'BEGIN {printf "%.6g", 0.03675 * sqrt(n / 250)}')
     r=$(awk -v n="$n" 'BEGIN {s = int(2e7 / n); if (s < 400) s = 400; if (s > 20000) s = 20000; print s}')
@@ -41,6 +44,8 @@ for n in $NS; do
         sed -n 's/.*"particle_steps_per_s": *\([0-9.eE+-]*\).*/\1/p' "$out/summary.json" | head -1 >>"$WORK/w.txt"
     done
     c=$(median <"$WORK/c.txt"); wl=$(median <"$WORK/w.txt")
-    awk -v n="$n" -v L="$L" -v s=$((r + w)) -v c="$c" -v wl="$wl" -v ld="$load" \
-        'BEGIN {printf "| %d | %.2f | %d | %.2f | %.2f | %s |\n", n, L * 1000, s, c / 1e6, wl / 1e6, ld}'
+    pc=$(sed -n 's/.*"pair_contacts_per_grain": *\([0-9.eE+-]*\).*/\1/p' "$out/summary.json" | head -1)
+    wc=$(sed -n 's/.*"wall_contacts_per_grain": *\([0-9.eE+-]*\).*/\1/p' "$out/summary.json" | head -1)
+    awk -v n="$n" -v L="$L" -v s=$((r + w)) -v c="$c" -v wl="$wl" -v ld="$load" -v pc="${pc:-nan}" -v wc="${wc:-nan}" \
+        'BEGIN {printf "| %d | %.2f | %d | %.2f | %.2f | %.3f | %.3f | %.1f | %s |\n", n, L * 1000, s, c / 1e6, wl / 1e6, pc, wc, 1e9 / c, ld}'
 done
