@@ -46,8 +46,8 @@ pub const SORT_MIN_GRAINS: usize = 1000;
 /// Bytes a DEM run holds per grain, neighbour structure included: ~520 B of grain arrays
 /// (state, predictions, forces, per-grain coefficients and wall springs, cell list), ~230 B of
 /// curve-sort scratch and grain ids (~110 B more of grain-id copies with snapshots) plus up to
-/// ~8 candidate pairs of 132 B (pair, its block-ordered copy and block class, coefficients,
-/// state, per-grain index), rounded up.
+/// ~8 candidate pairs of 140 B (pair, its block-ordered copy and block class, its copy in a
+/// run of a threaded rebuild, coefficients, state, per-grain index), rounded up.
 pub const BYTES_PER_GRAIN: f64 = 2048.0;
 
 /// Memory a DEM run of `n` grains needs (bytes), independent of the box (the cell list is
