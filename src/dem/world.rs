@@ -651,10 +651,7 @@ impl DemWorld {
             ..ContactCounts::default()
         };
         for p in &self.neighbors.pairs {
-            let (i, j) = (p.i as usize, p.j as usize);
-            let d = sub3(self.pos[i], self.pos[j]);
-            let cut = self.radius[i] + self.radius[j];
-            c.pair_contacts += usize::from(dot(d, d) < cut * cut);
+            c.pair_contacts += usize::from(touching(&self.pos, &self.radius, p));
         }
         for i in 0..self.len() {
             c.wall_contacts += self.wall_overlaps(i).iter().filter(|&&z| z > 0.0).count();
@@ -957,10 +954,7 @@ impl DemWorld {
         let (pos, radius) = (&self.pos, &self.radius);
         self.blocks
             .partition(&self.neighbors.pairs, self.pos.len(), |p: &Pair| {
-                let (i, j) = (p.i as usize, p.j as usize);
-                let d = sub3(pos[i], pos[j]);
-                let cut = radius[i] + radius[j];
-                dot(d, d) < cut * cut
+                touching(pos, radius, p)
             });
         self.pair_coef.clear();
         for &Pair { i, j } in &self.blocks.pairs {
@@ -1621,6 +1615,15 @@ unsafe fn written<T>(a: &[MaybeUninit<T>], m: usize) -> &[T] {
     debug_assert!(m <= a.len());
     // SAFETY: the caller's promise; `MaybeUninit<T>` has the layout of `T`.
     unsafe { std::slice::from_raw_parts(a.as_ptr().cast::<T>(), m) }
+}
+
+/// Whether the grains of pair `p` overlap: |r_i − r_j| < R_i + R_j (centres `pos` in m, radii
+/// `radius` in m).
+fn touching(pos: &[[f64; 3]], radius: &[f64], p: &Pair) -> bool {
+    let (i, j) = (p.i as usize, p.j as usize);
+    let d = sub3(pos[i], pos[j]);
+    let cut = radius[i] + radius[j];
+    dot(d, d) < cut * cut
 }
 
 /// Runs of cells per thread of a threaded neighbour rebuild (some to claim when a thread

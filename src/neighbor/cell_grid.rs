@@ -299,33 +299,24 @@ impl NeighborList {
     /// Cuts the occupied cells into `units` runs of about equal grain counts (whole columns
     /// with [`Curve::Columns`]): `out` gets the `units + 1` boundaries (indices of cells).
     pub fn cell_runs(&self, units: usize, out: &mut Vec<usize>) {
+        let cells = self.cell_keys.len();
+        let units = units.max(1);
+        // grains before cell c: cell_start[c]; a run ends at the first allowed cell (any cell,
+        // or the start of a column) with at least `want` grains before it
+        let grains = |c: usize| self.cell_start[c] as usize;
+        let cut = |want: usize| match self.curve {
+            Curve::Morton => self.cell_start.partition_point(|&s| (s as usize) < want),
+            Curve::Columns => {
+                let k = self
+                    .col_start
+                    .partition_point(|&c| grains(c as usize) < want);
+                self.col_start.get(k).map_or(cells, |&c| c as usize)
+            }
+        };
+        let n = self.keyed.len();
         out.clear();
         out.push(0);
-        let cells = self.cell_keys.len();
-        let n = self.keyed.len();
-        let units = units.max(1);
-        // the places a run may end: every cell, or the end of every column
-        let ends: &[u32] = match self.curve {
-            Curve::Morton => &self.cell_start[1..],
-            Curve::Columns => &self.col_start[1..],
-        };
-        let grains_before = |e: u32| match self.curve {
-            Curve::Morton => e as usize,
-            Curve::Columns => self.cell_start[e as usize] as usize,
-        };
-        let mut e = 0;
-        for u in 1..units {
-            let want = u * n / units;
-            while e < ends.len() && grains_before(ends[e]) < want {
-                e += 1;
-            }
-            let cell = match (self.curve, ends.get(e)) {
-                (Curve::Morton, Some(_)) => e + 1,
-                (Curve::Columns, Some(&c)) => c as usize,
-                (_, None) => cells,
-            };
-            out.push(cell.max(*out.last().unwrap_or(&0)).min(cells));
-        }
+        out.extend((1..units).map(|u| cut(u * n / units).min(cells)));
         out.push(cells);
     }
 
