@@ -242,6 +242,12 @@ pub enum Exec<'a> {
 impl Exec<'_> {
     /// Runs `f(u)` for every unit u of `0..units`.
     pub fn units(self, units: usize, f: &Job<'_>) {
+        if units == 0 {
+            // (no phase at all: a team would otherwise wake its threads for nothing — the
+            // cross-pair phase of a step is empty whenever cross pairs are done from both
+            // sides)
+            return;
+        }
         match self {
             Exec::Serial => (0..units).for_each(f),
             Exec::Rayon => (0..units).into_par_iter().for_each(f),
