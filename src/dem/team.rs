@@ -403,6 +403,18 @@ mod tests {
     }
 
     #[test]
+    fn a_phase_of_no_units_does_not_wake_the_team() {
+        let team = Team::new(2).unwrap();
+        let generation = || team.shared.generation.load(Ordering::Acquire);
+        let before = generation();
+        Exec::Team(&team).units(0, &|_| panic!("no unit to run"));
+        assert_eq!(generation(), before);
+        // one unit does start a generation
+        Exec::Team(&team).units(1, &|_| {});
+        assert_eq!(generation(), before + 1);
+    }
+
+    #[test]
     fn a_panicking_worker_is_reported_to_the_leader() {
         let team = Team::new(2).unwrap();
         let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
