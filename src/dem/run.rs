@@ -127,7 +127,8 @@ pub(crate) fn interpolate_strobe(cycle: u64, t_s: f64, a: [f64; 5], b: [f64; 5])
     }
 }
 
-/// Contacts per grain of a state ([`ContactCounts`](super::world::ContactCounts) over the grain count).
+/// Contacts per grain: a state's [`ContactCounts`](super::world::ContactCounts) over the grain count,
+/// or their mean over several states.
 #[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
 pub struct ContactsPerGrain {
     /// Candidate pairs of the neighbour list per grain.
@@ -195,8 +196,10 @@ pub struct DemSummary {
     pub settle_steps: u64,
     /// Neighbour-list builds during the driven run.
     pub neighbor_builds: u64,
-    /// Contacts at the end of the run, per grain: candidate pairs, grain–grain pairs in
-    /// contact (half the mean coordination number) and wall contacts.
+    /// Contacts per grain, mean over the samples of the steady window (the last
+    /// `steady_fraction` of the run; the run's last step is always a sample): candidate
+    /// pairs, grain–grain pairs in contact (half the mean coordination number) and wall
+    /// contacts.
     pub contacts_per_grain: ContactsPerGrain,
     /// Number of grains.
     pub grains: usize,
@@ -410,7 +413,7 @@ pub(crate) fn run_dem_stepped(
         settle_time_s: bed.settle_time_s,
         settle_steps: bed.settle_steps,
         neighbor_builds: world.neighbor_builds() - builds0,
-        contacts_per_grain: ContactsPerGrain::of(world.contact_counts(), world.len()),
+        contacts_per_grain: steady.contacts_per_grain(&world),
         grains: world.len(),
         grain_mass_kg: bed.mass_kg,
         bed_height_m: bed.height_m,
@@ -544,7 +547,8 @@ struct Timing {
 
 /// Steps the driving world `n_steps` times: the strobe points of the analysis window, the
 /// samples (each energy-checked), snapshots and progress go to `obs`; the steady window
-/// takes every state; `stepped` sees every state too.
+/// takes every state (and counts the contacts at the samples); `stepped` sees every state
+/// too.
 fn drive_steps(
     world: &mut DemWorld,
     n_steps: u64,
@@ -586,6 +590,7 @@ fn drive_steps(
         if do_sample || do_snap || do_progress {
             let c0 = Instant::now();
             if do_sample {
+                steady.count_contacts(k, world);
                 let s = watch.checked_sample(world)?;
                 if every.sampled(world) {
                     obs.sample(&s)?;
@@ -607,4 +612,80 @@ fn drive_steps(
     };
     obs.finish()?;
     Ok(Timing { wall_s, cpu_s })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::dem::DemParams;
+
+    #[test]
+    fn contacts_per_grain_are_their_mean_over_the_steady_window_samples() {
+        let mut p = DemParams::thesis_b_softened(1000.0);
+        p.count = 200;
+        p.settle_time = Some(0.05);
+        let model = crate::setup::dem_model(&p).unwrap();
+        let drive = BoxDrive {
+            primary: None,
+            amplitude_m: 4.5e-3,
+            frequency_hz: 15.0,
+        };
+        let (dt, _) = crate::dem::stability::choose_dt(
+            &model,
+            &drive,
+            None,
+            crate::dem::stability::DEFAULT_DT_FRACTION,
+        )
+        .unwrap();
+        let per_sample = 25;
+        let cfg = DemRunConfig {
+            duration_s: 1000.0 * dt,
+            sample_interval_s: per_sample as f64 * dt,
+            steady_fraction: 0.5,
+            dt: DtChoice::Seconds(dt),
+            samples: false,
+            ..DemRunConfig::default()
+        };
+        // the counts after every driven step (a pass of their own, as in the run)
+        let mut seen = Vec::new();
+        let summary = run_dem_stepped(&model, drive, &cfg, &mut Vec::new(), &mut |w| {
+            seen.push(ContactsPerGrain::of(w.contact_counts(), w.len()));
+            Ok(())
+        })
+        .unwrap();
+        let steps = summary.steps;
+        assert_eq!(seen.len() as u64, steps);
+        // the samples of the window: every `per_sample` steps from the window's start, and the
+        // last step
+        let from = ((1.0 - cfg.steady_fraction) * steps as f64).floor() as u64;
+        let picked: Vec<ContactsPerGrain> = (from.max(1)..=steps)
+            .filter(|&k| k % per_sample == 0 || k == steps)
+            .map(|k| seen[k as usize - 1])
+            .collect();
+        assert!(picked.len() >= 10, "{} samples", picked.len());
+        let n = picked.len() as f64;
+        let mean = |f: fn(&ContactsPerGrain) -> f64| picked.iter().map(f).sum::<f64>() / n;
+        let got = summary.contacts_per_grain;
+        for (name, f) in [
+            (
+                "candidate pairs",
+                (|c: &ContactsPerGrain| c.candidate_pairs) as fn(&_) -> f64,
+            ),
+            ("pair contacts", |c| c.pair_contacts),
+            ("wall contacts", |c| c.wall_contacts),
+        ] {
+            let (want, g) = (mean(f), f(&got));
+            assert!(
+                (g - want).abs() <= 1e-12 * want.abs().max(1.0),
+                "{name}: {g} against the mean {want}"
+            );
+        }
+        // the vibrated bed's counts move within the window, so the mean is not the last state
+        let last = seen[steps as usize - 1];
+        assert!(
+            picked.iter().any(|c| c.pair_contacts != last.pair_contacts),
+            "contacts did not change in the window"
+        );
+        assert!(got.pair_contacts > 0.0 && got.wall_contacts > 0.0);
+    }
 }

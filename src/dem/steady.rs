@@ -3,8 +3,8 @@
 //!
 //! - [`SteadyWindow`]: over the last `steady_fraction` of the run, the box's extremes (the
 //!   amplitude Z = (z_max − z_min)/2, m), the energy ledger at the window's start (so that
-//!   dissipation and input are reported per forcing cycle, J/cycle) and the bed's collective
-//!   impacts ([`BedImpacts`]);
+//!   dissipation and input are reported per forcing cycle, J/cycle), the bed's collective
+//!   impacts ([`BedImpacts`]) and the mean contact counts per grain at the window's samples;
 //! - [`StrobeClock`]: whether a forcing phase t = nT (T = 1/f) falls inside the coming step,
 //!   and the state before it, so that the strobe point is interpolated between the two states
 //!   around nT ([`super::run::interpolate_strobe`]) — never read off a resampled series;
@@ -17,6 +17,7 @@ use crate::observe::{DemSampleState, ModelSample, Sample};
 
 use super::bed_impacts::BedImpacts;
 use super::energy::{balance, EnergyLedger, EnergyState};
+use super::run::ContactsPerGrain;
 use super::stability::check;
 use super::world::DemWorld;
 
@@ -32,6 +33,8 @@ pub(crate) struct SteadyWindow {
     pub z_max_m: f64,
     /// Collective bed–floor and bed–ceiling impacts in the window.
     pub impacts: BedImpacts,
+    /// Sum of the contact counts per grain at the window's samples, and how many samples.
+    contacts: (ContactsPerGrain, u32),
 }
 
 impl SteadyWindow {
@@ -44,6 +47,38 @@ impl SteadyWindow {
             z_min_m: f64::INFINITY,
             z_max_m: f64::NEG_INFINITY,
             impacts: BedImpacts::new(m_p, g, frequency_hz),
+            contacts: (ContactsPerGrain::default(), 0),
+        }
+    }
+
+    /// Counts the contacts of the state after step `k` (a sample step; nothing before the
+    /// window). A count passes over every candidate pair and grain, so it is taken at the
+    /// samples only, not at every step.
+    pub fn count_contacts(&mut self, k: u64, w: &DemWorld) {
+        if k < self.from_step {
+            return;
+        }
+        let c = ContactsPerGrain::of(w.contact_counts(), w.len());
+        let (sum, count) = &mut self.contacts;
+        sum.candidate_pairs += c.candidate_pairs;
+        sum.pair_contacts += c.pair_contacts;
+        sum.wall_contacts += c.wall_contacts;
+        *count += 1;
+    }
+
+    /// Mean contact counts per grain over the window's samples; those of the state `w` when
+    /// the window holds no sample.
+    pub fn contacts_per_grain(&self, w: &DemWorld) -> ContactsPerGrain {
+        match self.contacts {
+            (_, 0) => ContactsPerGrain::of(w.contact_counts(), w.len()),
+            (sum, count) => {
+                let n = f64::from(count);
+                ContactsPerGrain {
+                    candidate_pairs: sum.candidate_pairs / n,
+                    pair_contacts: sum.pair_contacts / n,
+                    wall_contacts: sum.wall_contacts / n,
+                }
+            }
         }
     }
 

@@ -531,7 +531,8 @@ pub fn simulate(
         ("settle_time_s", s.settle_time_s),
         ("settle_steps", s.settle_steps as f64),
         ("neighbor_builds", s.neighbor_builds as f64),
-        // contacts at the end of the run, per grain (cost of a step: see bench/README.md)
+        // contacts per grain, mean over the steady window's samples (cost of a step: see
+        // bench/README.md)
         (
             "candidate_pairs_per_grain",
             s.contacts_per_grain.candidate_pairs,
