@@ -646,7 +646,7 @@ mod tests {
             samples: false,
             ..DemRunConfig::default()
         };
-        // the counts after every driven step (a pass of their own, as in the run)
+        // the counts after every driven step, taken here apart from the run's own count
         let mut seen = Vec::new();
         let summary = run_dem_stepped(&model, drive, &cfg, &mut Vec::new(), &mut |w| {
             seen.push(ContactsPerGrain::of(w.contact_counts(), w.len()));

@@ -258,6 +258,9 @@ impl Exec<'_> {
     /// Runs `f(u)` for every unit of `0..a` and `g(u)` for every unit of `0..b`, as one phase
     /// (each thread of a team takes its share of both, then claims what is left of either).
     pub fn units2(self, (a, f): (usize, &Job<'_>), (b, g): (usize, &Job<'_>)) {
+        if a + b == 0 {
+            return;
+        }
         match self {
             Exec::Serial => {
                 (0..a).for_each(f);
@@ -408,6 +411,7 @@ mod tests {
         let generation = || team.shared.generation.load(Ordering::Acquire);
         let before = generation();
         Exec::Team(&team).units(0, &|_| panic!("no unit to run"));
+        Exec::Team(&team).units2((0, &|_| panic!("no unit")), (0, &|_| panic!("no unit")));
         assert_eq!(generation(), before);
         // one unit does start a generation
         Exec::Team(&team).units(1, &|_| {});
