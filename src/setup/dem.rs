@@ -593,6 +593,7 @@ pub fn simulate(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::dem::run::{run_dem_stepped, ContactsPerGrain};
     use crate::dem::stability::DEFAULT_DT_FRACTION;
 
     #[test]
@@ -664,5 +665,70 @@ mod tests {
         let e = super::super::scene_error(e).to_string();
         assert!(e.contains("run.dt") && e.contains("t_s/20"), "{e}");
         assert!(choose_dt(&p, &d, Some(ts / 30.0), DEFAULT_DT_FRACTION).is_ok());
+    }
+
+    // (an engine figure, tested here because the engine's own tests may not build a scene)
+    #[test]
+    fn contacts_per_grain_are_their_mean_over_the_steady_window_samples() {
+        let mut p = DemParams::thesis_b_softened(1000.0);
+        p.count = 200;
+        p.settle_time = Some(0.05);
+        let model = dem_model(&p).unwrap();
+        let drive = BoxDrive {
+            primary: None,
+            amplitude_m: 4.5e-3,
+            frequency_hz: 15.0,
+        };
+        let (dt, _) = choose_dt(&model, &drive, None, DEFAULT_DT_FRACTION).unwrap();
+        let per_sample = 25;
+        let cfg = DemRunConfig {
+            duration_s: 1000.0 * dt,
+            sample_interval_s: per_sample as f64 * dt,
+            steady_fraction: 0.5,
+            dt: DtChoice::Seconds(dt),
+            samples: false,
+            ..DemRunConfig::default()
+        };
+        // the counts after every driven step, taken here apart from the run's own count
+        let mut seen = Vec::new();
+        let summary = run_dem_stepped(&model, drive, &cfg, &mut Vec::new(), &mut |w| {
+            seen.push(ContactsPerGrain::of(w.contact_counts(), w.len()));
+            Ok(())
+        })
+        .unwrap();
+        let steps = summary.steps;
+        assert_eq!(seen.len() as u64, steps);
+        // the samples of the window: every `per_sample` steps from the window's start, and the
+        // last step
+        let from = ((1.0 - cfg.steady_fraction) * steps as f64).floor() as u64;
+        let picked: Vec<ContactsPerGrain> = (from.max(1)..=steps)
+            .filter(|&k| k % per_sample == 0 || k == steps)
+            .map(|k| seen[k as usize - 1])
+            .collect();
+        assert!(picked.len() >= 10, "{} samples", picked.len());
+        let n = picked.len() as f64;
+        let mean = |f: fn(&ContactsPerGrain) -> f64| picked.iter().map(f).sum::<f64>() / n;
+        let got = summary.contacts_per_grain;
+        for (name, f) in [
+            (
+                "candidate pairs",
+                (|c: &ContactsPerGrain| c.candidate_pairs) as fn(&_) -> f64,
+            ),
+            ("pair contacts", |c| c.pair_contacts),
+            ("wall contacts", |c| c.wall_contacts),
+        ] {
+            let (want, g) = (mean(f), f(&got));
+            assert!(
+                (g - want).abs() <= 1e-12 * want.abs().max(1.0),
+                "{name}: {g} against the mean {want}"
+            );
+        }
+        // the vibrated bed's counts move within the window, so the mean is not the last state
+        let last = seen[steps as usize - 1];
+        assert!(
+            picked.iter().any(|c| c.pair_contacts != last.pair_contacts),
+            "contacts did not change in the window"
+        );
+        assert!(got.pair_contacts > 0.0 && got.wall_contacts > 0.0);
     }
 }
