@@ -5,8 +5,9 @@
 # SETTLE s (0.05), then NWARM + NRUN driven steps at amplitude 0 (NRUN = clamp(2e7/N, 400,
 # 20 000), NWARM = max(200, NRUN/10), as bench/dem_vs_liggghts.sh). Prints
 # particle_steps_per_cpu_s (stepping thread) and particle_steps_per_s per N, medians of REPEAT,
-# and the contacts per grain at the end of the last run (grain-grain pairs in contact, wall
-# contacts): a step's cost grows with them, so they say how much of the cost in N is the
+# and the contacts per grain of the last run (grain-grain pairs in contact, wall contacts;
+# summary.json's mean over the steady window's samples, here the last step only): a step's
+# cost grows with them, so they say how much of the cost in N is the
 # bed's physics (see bench/README.md, "What the step's cost in N is made of").
 #
 # usage: nice -n 5 bench/dem_scaling.sh            # N = 250 4000 16000 64000, REPEAT=1

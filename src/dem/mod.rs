@@ -22,7 +22,5 @@ pub use model::{DemModel, Grains, Packing};
 pub use replica::{
     run_replica, ReplicaOptions, ReplicaReport, ReplicaRow, ReplicaTracker, ReplicaVerdict,
 };
-pub use run::{
-    initial_positions, run_dem, ContactsPerGrain, DemRunConfig, DemSample, DemSummary, DtChoice,
-};
-pub use world::{BoxDrive, ContactCounts, DemWorld, PrimarySystem};
+pub use run::{initial_positions, run_dem, DemRunConfig, DemSample, DemSummary, DtChoice};
+pub use world::{BoxDrive, ContactCounts, ContactsPerGrain, DemWorld, PrimarySystem};

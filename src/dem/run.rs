@@ -17,7 +17,7 @@ use super::energy::{balance, EnergyLedger};
 use super::model::{DemModel, Packing};
 use super::stability::{choose_dt, TimeStepScales, DEFAULT_DT_FRACTION};
 use super::steady::{strobe_state, EnergyWatch, SteadyWindow, StrobeClock};
-use super::world::{BoxDrive, DemWorld};
+use super::world::{BoxDrive, ContactsPerGrain, DemWorld};
 
 /// Relative ledger residual above which a run warns (stderr, `summary.json`) (1 %).
 pub const LEDGER_WARNING_LIMIT: f64 = 0.01;
@@ -124,30 +124,6 @@ pub(crate) fn interpolate_strobe(cycle: u64, t_s: f64, a: [f64; 5], b: [f64; 5])
         grain_v_m_s: at(2),
         box_z_m: at(3),
         box_v_m_s: at(4),
-    }
-}
-
-/// Contacts per grain: a state's [`ContactCounts`](super::world::ContactCounts) over the grain count,
-/// or their mean over several states.
-#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
-pub struct ContactsPerGrain {
-    /// Candidate pairs of the neighbour list per grain.
-    pub candidate_pairs: f64,
-    /// Grain–grain pairs in contact per grain (half the mean coordination number).
-    pub pair_contacts: f64,
-    /// Grain–wall contacts per grain.
-    pub wall_contacts: f64,
-}
-
-impl ContactsPerGrain {
-    /// The counts `c` of `n` grains, per grain (0 without grains).
-    pub fn of(c: super::world::ContactCounts, n: usize) -> Self {
-        let per = |k: usize| if n == 0 { 0.0 } else { k as f64 / n as f64 };
-        ContactsPerGrain {
-            candidate_pairs: per(c.candidate_pairs),
-            pair_contacts: per(c.pair_contacts),
-            wall_contacts: per(c.wall_contacts),
-        }
     }
 }
 

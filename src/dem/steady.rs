@@ -17,9 +17,8 @@ use crate::observe::{DemSampleState, ModelSample, Sample};
 
 use super::bed_impacts::BedImpacts;
 use super::energy::{balance, EnergyLedger, EnergyState};
-use super::run::ContactsPerGrain;
 use super::stability::check;
-use super::world::DemWorld;
+use super::world::{ContactCounts, ContactsPerGrain, DemWorld};
 
 /// The steady window's running statistics (from step `from_step` on).
 #[derive(Debug, Clone)]
@@ -33,8 +32,8 @@ pub(crate) struct SteadyWindow {
     pub z_max_m: f64,
     /// Collective bed–floor and bed–ceiling impacts in the window.
     pub impacts: BedImpacts,
-    /// Sum of the contact counts per grain at the window's samples, and how many samples.
-    contacts: (ContactsPerGrain, u32),
+    /// Sum of the contact counts at the window's samples, and how many samples.
+    contacts: (ContactCounts, usize),
 }
 
 impl SteadyWindow {
@@ -47,7 +46,7 @@ impl SteadyWindow {
             z_min_m: f64::INFINITY,
             z_max_m: f64::NEG_INFINITY,
             impacts: BedImpacts::new(m_p, g, frequency_hz),
-            contacts: (ContactsPerGrain::default(), 0),
+            contacts: (ContactCounts::default(), 0),
         }
     }
 
@@ -58,11 +57,8 @@ impl SteadyWindow {
         if k < self.from_step {
             return;
         }
-        let c = ContactsPerGrain::of(w.contact_counts(), w.len());
         let (sum, count) = &mut self.contacts;
-        sum.candidate_pairs += c.candidate_pairs;
-        sum.pair_contacts += c.pair_contacts;
-        sum.wall_contacts += c.wall_contacts;
+        *sum += w.contact_counts();
         *count += 1;
     }
 
@@ -71,14 +67,7 @@ impl SteadyWindow {
     pub fn contacts_per_grain(&self, w: &DemWorld) -> ContactsPerGrain {
         match self.contacts {
             (_, 0) => ContactsPerGrain::of(w.contact_counts(), w.len()),
-            (sum, count) => {
-                let n = f64::from(count);
-                ContactsPerGrain {
-                    candidate_pairs: sum.candidate_pairs / n,
-                    pair_contacts: sum.pair_contacts / n,
-                    wall_contacts: sum.wall_contacts / n,
-                }
-            }
+            (sum, count) => ContactsPerGrain::of(sum, count * w.len()),
         }
     }
 

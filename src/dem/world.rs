@@ -325,6 +325,38 @@ pub struct ContactCounts {
     pub wall_contacts: usize,
 }
 
+impl std::ops::AddAssign for ContactCounts {
+    fn add_assign(&mut self, o: ContactCounts) {
+        self.candidate_pairs += o.candidate_pairs;
+        self.pair_contacts += o.pair_contacts;
+        self.wall_contacts += o.wall_contacts;
+    }
+}
+
+/// Contacts per grain: a state's [`ContactCounts`] over the grain count,
+/// or their mean over several states.
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
+pub struct ContactsPerGrain {
+    /// Candidate pairs of the neighbour list per grain.
+    pub candidate_pairs: f64,
+    /// Grain–grain pairs in contact per grain (half the mean coordination number).
+    pub pair_contacts: f64,
+    /// Grain–wall contacts per grain.
+    pub wall_contacts: f64,
+}
+
+impl ContactsPerGrain {
+    /// The counts `c` of `n` grains, per grain (0 without grains).
+    pub fn of(c: ContactCounts, n: usize) -> Self {
+        let per = |k: usize| if n == 0 { 0.0 } else { k as f64 / n as f64 };
+        ContactsPerGrain {
+            candidate_pairs: per(c.candidate_pairs),
+            pair_contacts: per(c.pair_contacts),
+            wall_contacts: per(c.wall_contacts),
+        }
+    }
+}
+
 /// What every grain shares when all grains are alike (one radius, one mass).
 #[derive(Debug, Clone, Copy)]
 struct Uniform {

@@ -593,8 +593,9 @@ pub fn simulate(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::dem::run::{run_dem_stepped, ContactsPerGrain};
+    use crate::dem::run::run_dem_stepped;
     use crate::dem::stability::DEFAULT_DT_FRACTION;
+    use crate::dem::world::ContactsPerGrain;
 
     #[test]
     fn a_grain_count_beyond_memory_is_refused_naming_the_key_and_the_estimate() {
