@@ -175,7 +175,7 @@ fn white_noise_is_not_chaotic() {
     let x = white_gaussian(10_000, 2024);
     let rep = analyze(&x, None, None);
     assert!(
-        matches!(rep.regime, Regime::Stochastic | Regime::Undetermined),
+        matches!(rep.regime, Regime::Irregular | Regime::Undetermined),
         "{}",
         rep.regime
     );
@@ -262,7 +262,7 @@ fn pathological_series_never_panic() {
         }
     }
     assert_eq!(reports.len(), 8, "every case but `huge` gives a report");
-    // Noise-like series are stochastic: the noise itself, its 64 first samples, its signs
+    // Noise-like series are irregular (noise-like): the noise itself, its 64 first samples, its signs
     // (telegraph) and a lone spike (no divergence region in Kantz's curves).
     for name in [
         "64 samples",
@@ -274,7 +274,7 @@ fn pathological_series_never_panic() {
     ] {
         assert_eq!(
             reports[name].regime,
-            Regime::Stochastic,
+            Regime::Irregular,
             "{name}: {}",
             reports[name].reason
         );
@@ -353,7 +353,7 @@ fn lorenz_with_ten_percent_noise_is_chaotic_with_its_exponent() {
     // every distance, leaving ~1 e-fold between the noise and saturation. The fit starts after
     // the first delay, without the Δn = kτ points where the compared samples are the ones the
     // neighbour search selected (their noise is conditioned small); skipping the whole
-    // embedding window (m − 1)τ left 0.4 e-fold and the verdict "stochastic". λ₁ = 0.9056 per
+    // embedding window (m − 1)τ left 0.4 e-fold and the verdict "stochastic" (now "irregular"). λ₁ = 0.9056 per
     // time unit (SPEC §9) within 15 % (the band).
     let dt = 0.01;
     let x = with_noise(&lorenz_x(20_000, dt), 0.10, 7);
@@ -384,9 +384,9 @@ fn noisy_sine_is_periodic() {
 fn ar1_noise_is_never_chaotic() {
     // Negative control: a linear Gaussian AR(1) process (φ = 0.95, strongly coloured) is
     // noise; IAAFT surrogates share its spectrum and amplitudes, so the prediction-error test
-    // cannot reject (p > 0.05) and the verdict is stochastic, never chaotic.
+    // cannot reject (p > 0.05) and the verdict is irregular (noise-like), never chaotic.
     let x = common::ar1(0.95, 20_000, 0, 5);
     let rep = analyze(&x, Some(1.0), None);
-    assert_eq!(rep.regime, Regime::Stochastic, "{}", rep.reason);
+    assert_eq!(rep.regime, Regime::Irregular, "{}", rep.reason);
     assert_eq!(rep.evidence.surrogate_rejects, Some(false));
 }

@@ -96,7 +96,7 @@ fn analysis_columns_are_thread_independent_too() {
             "periodic",
             "quasi-periodic",
             "chaotic",
-            "stochastic",
+            "irregular",
             "undetermined",
             "too-short"
         ]

@@ -292,6 +292,8 @@ fn regime_frf_two_panels_with_error_bars() {
             per_s: &model,
             stderr_per_s: Some(&model_se),
         }),
+        phase_locked: None,
+        replica: None,
     };
     // PNG of the requested size, amplitude in blue, data exponent in vermillion
     check_renders(&fig, "regime_frf", BLUE, 200);

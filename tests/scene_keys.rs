@@ -16,7 +16,7 @@ fn accepts(scene: &str, key: &str, value: &str) -> Result<(), String> {
 
 #[test]
 fn every_key_constant_is_accepted_by_the_scene_parser() {
-    let cases: [(&str, &str, &str); 14] = [
+    let cases: [(&str, &str, &str); 15] = [
         (IMPACT, EXCITATION_FREQUENCY, "12.5"),
         (IMPACT, EXCITATION_AMPLITUDE, "0.003"),
         (IMPACT, DAMPER_GAP, "0.05"),
@@ -28,6 +28,7 @@ fn every_key_constant_is_accepted_by_the_scene_parser() {
         (DEM, DAMPER_RADIUS, "0.003"),
         (DEM, DAMPER_BOX, "[0.03675,0.03675,0.1225]"),
         (DEM, DAMPER_GAMMA_N, "100.0"),
+        (DEM, DAMPER_SEED, "3"),
         (DEM, DAMPER_GAMMA_S, "300.0"),
         (DEM, DAMPER_YOUNGS_MODULUS, "2.03e8"),
         (DEM, RUN_DT_FRACTION, "0.02"),

@@ -34,6 +34,7 @@ fn reduced_chapter4_study_writes_every_figure_and_counts_two_impacts_at_14_5_hz(
         duration_s: None,
         panel_freqs_hz: vec![14.5],
         doubling_freqs_hz: vec![5.5, 14.5],
+        ensemble_seeds: vec![2],
     };
     let figures = chapter4::all(&ctx, &s, &d, &c, &|_| true).unwrap().figures;
     let names: Vec<&str> = figures.iter().map(|f| f.name.as_str()).collect();
@@ -41,6 +42,7 @@ fn reduced_chapter4_study_writes_every_figure_and_counts_two_impacts_at_14_5_hz(
         names,
         [
             "ch4_regime_frf",
+            "ch4_ensemble",
             "ch4_bifurcation",
             "ch4_impacts",
             "ch4_run_length",
@@ -71,6 +73,28 @@ fn reduced_chapter4_study_writes_every_figure_and_counts_two_impacts_at_14_5_hz(
     assert_eq!(runs.rows.len(), 2);
     let change = runs.f64_column("amplitude_change_pct").unwrap();
     assert!(change.iter().all(|c| c.is_finite()), "{change:?}");
+    // two starts per frequency; each frequency's ensemble words name the count of starts
+    let ens = Table::read(&dir.path().join("ch4_ensemble.csv")).unwrap();
+    assert_eq!(ens.rows.len(), 4);
+    let words = ens.str_column("ensemble").unwrap();
+    assert!(
+        words
+            .iter()
+            .all(|w| w.ends_with("in all 2 starts") || w.starts_with("split: ")),
+        "{words:?}"
+    );
+    // the regime table carries the qualifiers and the replica outcome (12 periods: too short
+    // for a verdict, but the columns are there)
+    let frf = Table::read(&dir.path().join("ch4_regime_frf.csv")).unwrap();
+    for col in [
+        "verdict",
+        "phase_locked",
+        "section_scatter",
+        "replica",
+        "ensemble",
+    ] {
+        assert!(frf.has(col), "ch4_regime_frf.csv lacks {col}");
+    }
     let section = Table::read(&dir.path().join("ch4_panel_f14.5_section.csv")).unwrap();
     // 60 % of 12 periods analysed: the strobe points at t = 5T … 12T
     assert!(

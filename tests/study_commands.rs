@@ -175,6 +175,7 @@ fn chapter4_commands_parse() {
         duration_s: None,
         panel_freqs_hz: vec![14.5],
         doubling_freqs_hz: vec![],
+        ensemble_seeds: vec![],
     };
     let figures = pdamp::study::chapter4::all(&ctx, &s, &d, &c, &|_| true)
         .unwrap()

@@ -379,7 +379,7 @@ class Analysis:
     """The regime verdict of a series and its evidence (``pdamp analyze --json``).
 
     Attributes:
-        regime: ``"periodic"``, ``"quasi-periodic"``, ``"chaotic"``, ``"stochastic"``,
+        regime: ``"periodic"``, ``"quasi-periodic"``, ``"chaotic"``, ``"irregular"`` (noise-like),
             ``"undetermined"`` or ``"too-short"``.
         verdict: the regime with its period, e.g. ``"periodic-2"``.
         reason: the classifier's rule that fired, in words.

@@ -27,10 +27,12 @@ use crate::analysis::regime::{
     classify, harmonic_fundamental, recurrence_period, Evidence, Regime, RegimeThresholds,
 };
 use crate::analysis::regime::{classify_forced, Exponent, ForcedEvidence, LOCKED_FRACTION_MIN};
+use crate::analysis::replica_test::ReplicaReport;
 use crate::analysis::return_map_lyapunov::{
     return_map_lyapunov, ReturnMapLyapunov, ReturnMapOptions,
 };
-use crate::analysis::section::{analyze_section, SectionAnalysis, SectionOptions};
+use crate::analysis::section::{analyze_section, normalise, SectionAnalysis, SectionOptions};
+use crate::analysis::section_dimension::{section_dimension, ChaosDimension};
 use crate::analysis::section_lyapunov::{
     section_lyapunov, SectionLyapunov, SectionLyapunovOptions,
 };
@@ -192,6 +194,14 @@ pub struct AnalysisReport {
     /// carries ≥ 90 % of the variance, or else the one-period result; forced runs only.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub phase_lock: Option<PhaseLock>,
+    /// Qualifier of the verdict: the motion follows the forcing (Λ_p ≥ 0.9) although the
+    /// verdict is not periodic, e.g. "chaotic, phase-locked to the forcing".
+    #[serde(default)]
+    pub phase_locked: bool,
+    /// Qualifier of a chaotic or irregular verdict: low- or high-dimensional section
+    /// ([`crate::analysis::section_dimension`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub chaos_dimension: Option<ChaosDimension>,
     /// Sampling interval of the series analysed (s), after any decimation.
     pub series_dt_s: Option<f64>,
     /// The exponent of the first-return map of a phase-coherent chaotic flow, when it gave the
@@ -206,12 +216,15 @@ pub struct AnalysisReport {
 
 impl AnalysisReport {
     /// `periodic-p` for a periodic verdict with a period, else the regime's name
-    /// (`chaotic`, `quasi-periodic`, …).
+    /// (`chaotic`, `quasi-periodic`, …), followed by its qualifiers: "chaotic, phase-locked to
+    /// the forcing (Λ₁ = 0.985), high-dimensional" ([`crate::analysis::regime::label`]).
     pub fn verdict(&self) -> String {
-        match (self.regime, self.period) {
-            (Regime::Periodic, Some(p)) => format!("periodic-{p}"),
-            (r, _) => r.as_str().to_string(),
-        }
+        crate::analysis::regime::label(
+            self.regime,
+            self.period,
+            self.phase_lock.as_ref().filter(|_| self.phase_locked),
+            self.chaos_dimension.as_ref(),
+        )
     }
 }
 
@@ -431,11 +444,14 @@ pub fn analyze_series(x: &[f64], opts: &AnalyzeOptions) -> Result<AnalysisReport
                     section_verdict(
                         &mut report,
                         sec,
-                        points,
-                        &[1.0, 1.0],
-                        forcing_hz,
-                        None,
-                        "interpolated",
+                        SectionInput {
+                            points,
+                            scales: &[1.0, 1.0],
+                            forcing_hz,
+                            model: None,
+                            replica: None,
+                            source: "interpolated",
+                        },
                     );
                     // the per-sample exponent of the report stays the series' Kantz estimate
                     if let Some(l) = evidence.mle_per_sample {
@@ -534,6 +550,9 @@ pub struct ForcedRun<'a> {
     /// `series`; its synchronous average measures the noise level of a phase-locked motion
     /// (see [`crate::analysis::phase_lock`]). Empty: `series` is used.
     pub in_box_series: &'a [f64],
+    /// The simulator's two-replica test ([`crate::analysis::replica_test`]), when it ran: it
+    /// decides whether the motion is sensitive.
+    pub replica: Option<&'a ReplicaReport>,
 }
 
 /// Returns the regime of a forced run judged from its exact stroboscopic section first, with
@@ -596,11 +615,14 @@ pub fn analyze_forced(
     section_verdict(
         &mut report,
         sec,
-        run.section,
-        run.scales,
-        run.forcing_hz,
-        run.model_exponent,
-        "exact",
+        SectionInput {
+            points: run.section,
+            scales: run.scales,
+            forcing_hz: run.forcing_hz,
+            model: run.model_exponent,
+            replica: run.replica,
+            source: "exact",
+        },
     );
     report.evidence = evidence;
     Ok(report)
@@ -623,17 +645,27 @@ fn shortest_lock(x: &[f64], dt_s: f64, forcing_hz: f64) -> Option<PhaseLock> {
         .or(Some(one))
 }
 
-/// Section exponent, classification and report fields from a section analysis.
-fn section_verdict(
-    report: &mut AnalysisReport,
-    sec: SectionAnalysis,
-    points: &[Vec<f64>],
-    scales: &[f64],
+/// What [`section_verdict`] judges besides the section's pattern.
+struct SectionInput<'a> {
+    points: &'a [Vec<f64>],
+    scales: &'a [f64],
     forcing_hz: f64,
     model: Option<Exponent>,
+    replica: Option<&'a ReplicaReport>,
     source: &'static str,
-) {
+}
+
+/// Section exponent, classification and report fields from a section analysis.
+fn section_verdict(report: &mut AnalysisReport, sec: SectionAnalysis, input: SectionInput<'_>) {
     use crate::analysis::section::SectionPattern as P;
+    let SectionInput {
+        points,
+        scales,
+        forcing_hz,
+        model,
+        replica,
+        source,
+    } = input;
     let data = match sec.pattern {
         P::Irregular | P::QuasiPeriodic { .. } => {
             match section_lyapunov(points, scales, &SectionLyapunovOptions::default()) {
@@ -648,6 +680,12 @@ fn section_verdict(
         }
         _ => None,
     };
+    let dimension = match sec.pattern {
+        P::Irregular => normalise(points, scales)
+            .ok()
+            .and_then(|u| section_dimension(&u)),
+        _ => None,
+    };
     let data_exp = data.as_ref().map(|l| Exponent {
         per_period: l.per_period,
         stderr_per_period: l.stderr_per_period,
@@ -658,7 +696,11 @@ fn section_verdict(
         model_exponent: model,
         zero_band: 0.01,
         phase_lock: report.phase_lock,
+        replica,
+        dimension,
     });
+    report.phase_locked = verdict.phase_locked.is_some();
+    report.chaos_dimension = verdict.dimension;
     report.regime = verdict.regime;
     report.period = verdict.period;
     report.reason = verdict.reason;
@@ -725,6 +767,8 @@ fn empty_report(n: usize, dt_s: Option<f64>) -> AnalysisReport {
         model_mle_stderr_per_s: None,
         section_exponent: None,
         phase_lock: None,
+        phase_locked: false,
+        chaos_dimension: None,
         series_dt_s: dt_s,
         return_map_exponent: None,
         evidence: Evidence::default(),

@@ -1,4 +1,4 @@
-//! Regime classifier: periodic-n, quasi-periodic, chaotic, stochastic or undetermined, from the
+//! Regime classifier: periodic-n, quasi-periodic, chaotic, irregular (noise-like) or undetermined, from the
 //! evidence of the other estimators (SPEC §4: lines and sub-harmonics, Poincaré points / closed
 //! curve / cloud, the sign of Kantz's exponent) cross-checked by the 0–1 test.
 //!
@@ -8,7 +8,9 @@
 
 use crate::analysis::phase_lock::PhaseLock;
 use crate::analysis::poincare::{SectionShape, SectionSummary};
-use crate::analysis::section::{SectionAnalysis, SectionPattern};
+use crate::analysis::replica_test::{ReplicaOutcome, ReplicaReport};
+use crate::analysis::section::{Grouping, SectionAnalysis, SectionPattern};
+use crate::analysis::section_dimension::ChaosDimension;
 use crate::analysis::spectrum::SpectralLine;
 use serde::{Deserialize, Serialize};
 
@@ -22,8 +24,10 @@ pub enum Regime {
     QuasiPeriodic,
     /// Deterministic chaos: positive exponent with a clear scaling region and K ≈ 1.
     Chaotic,
-    /// Irregular without low-dimensional determinism (noise).
-    Stochastic,
+    /// Irregular without low-dimensional determinism that the data can show: noise-like
+    /// (noise, or chaos of more degrees of freedom than the record resolves). Never the
+    /// verdict on a simulation whose sensitivity was measured (the two-replica test).
+    Irregular,
     /// The evidence disagrees (the reason says which indicators conflict).
     Undetermined,
     /// The steady window is too short for a verdict (the reason gives the length needed).
@@ -31,14 +35,15 @@ pub enum Regime {
 }
 
 impl Regime {
-    /// The name used in JSON and CSV: `periodic`, `quasi-periodic`, `chaotic`, `stochastic`,
+    /// The name used in JSON and CSV: `periodic`, `quasi-periodic`, `chaotic`, `irregular`
+    /// (noise-like; files written before issue 39 say `stochastic`, read as `irregular`),
     /// `undetermined`, `too-short`.
     pub fn as_str(self) -> &'static str {
         match self {
             Regime::Periodic => "periodic",
             Regime::QuasiPeriodic => "quasi-periodic",
             Regime::Chaotic => "chaotic",
-            Regime::Stochastic => "stochastic",
+            Regime::Irregular => "irregular",
             Regime::Undetermined => "undetermined",
             Regime::TooShort => "too-short",
         }
@@ -57,7 +62,7 @@ impl Regime {
         Regime::Periodic,
         Regime::QuasiPeriodic,
         Regime::Chaotic,
-        Regime::Stochastic,
+        Regime::Irregular,
         Regime::Undetermined,
         Regime::TooShort,
     ];
@@ -69,6 +74,9 @@ impl std::str::FromStr for Regime {
     /// Reads a name written by [`Regime::as_str`] (surrounding blanks ignored).
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         let t = s.trim();
+        if t == "stochastic" {
+            return Ok(Regime::Irregular); // the name before issue 39
+        }
         Regime::ALL
             .into_iter()
             .find(|r| r.as_str() == t)
@@ -205,7 +213,7 @@ impl Default for RegimeThresholds {
     }
 }
 
-/// A verdict with its period and the rule that decided it.
+/// A verdict with its period, its qualifiers and the rule that decided it.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Verdict {
     /// The regime.
@@ -215,6 +223,76 @@ pub struct Verdict {
     pub period: Option<f64>,
     /// The rule that fired, in words.
     pub reason: String,
+    /// Qualifier: the motion relative to the container follows the forcing (Λ_p ≥
+    /// [`LOCKED_FRACTION_MIN`]) although the verdict is not periodic ("chaotic, phase-locked
+    /// to the forcing").
+    pub phase_locked: Option<PhaseLock>,
+    /// Qualifier of a chaotic or irregular verdict: how many degrees of freedom drive the
+    /// section ([`crate::analysis::section_dimension`]).
+    pub dimension: Option<ChaosDimension>,
+}
+
+impl Verdict {
+    /// A verdict without qualifiers.
+    pub fn new(regime: Regime, period: Option<f64>, reason: String) -> Verdict {
+        Verdict {
+            regime,
+            period,
+            reason,
+            phase_locked: None,
+            dimension: None,
+        }
+    }
+
+    /// The verdict in words with its qualifiers, e.g. "periodic-3" or "chaotic; phase-locked
+    /// to the forcing (Λ₁ = 0.985); high-dimensional" (semicolons: the words are a CSV cell).
+    pub fn label(&self) -> String {
+        label(
+            self.regime,
+            self.period,
+            self.phase_locked.as_ref(),
+            self.dimension.as_ref(),
+        )
+    }
+}
+
+/// The words of a verdict: regime (periodic-n with its period), then the phase-lock and
+/// dimension qualifiers.
+pub fn label(
+    regime: Regime,
+    period: Option<f64>,
+    lock: Option<&PhaseLock>,
+    dimension: Option<&ChaosDimension>,
+) -> String {
+    let mut s = match (regime, period) {
+        (Regime::Periodic, Some(p)) => format!("periodic-{p}"),
+        (Regime::Irregular, _) => "irregular (noise-like)".to_string(),
+        _ => regime.as_str().to_string(),
+    };
+    if let Some(l) = lock {
+        s.push_str(&format!(
+            "; phase-locked to the forcing (Λ{} = {:.3})",
+            subscript(l.periods),
+            l.locked_fraction
+        ));
+    }
+    if let Some(d) = dimension {
+        s.push_str("; ");
+        s.push_str(d.as_str());
+    }
+    s
+}
+
+/// A small positive integer in Unicode subscript digits.
+fn subscript(n: usize) -> String {
+    n.to_string()
+        .chars()
+        .map(|c| {
+            c.to_digit(10)
+                .and_then(|d| char::from_u32(0x2080 + d))
+                .unwrap_or(c)
+        })
+        .collect()
 }
 
 /// Returns the regime of a series from its [`Evidence`].
@@ -230,7 +308,7 @@ pub struct Verdict {
 ///    with K < `zero_one` (when available).
 /// 3. Chaotic: K > `zero_one`, a Kantz scaling region growing ≥ `min_growth` e-folds with a
 ///    positive slope, and FNN converged (when available).
-/// 4. Stochastic: K > `zero_one` and (Kantz computed without a scaling region, or FNN not
+/// 4. Irregular (noise-like): K > `zero_one` and (Kantz computed without a scaling region, or FNN not
 ///    converged).
 /// 5. Otherwise undetermined.
 ///
@@ -242,11 +320,7 @@ pub struct Verdict {
 /// Lett. A 185, 77–87 (1994); M. B. Kennel, R. Brown, H. D. I. Abarbanel, Phys. Rev. A 45,
 /// 3403–3411 (1992).
 pub fn classify(e: &Evidence, t: &RegimeThresholds) -> Verdict {
-    let verdict = |regime, period, reason: String| Verdict {
-        regime,
-        period,
-        reason,
-    };
+    let verdict = Verdict::new;
     let line_spectrum = e.line_count > 0 && e.line_power_fraction >= t.line_fraction;
     let k_regular = e.zero_one_k.is_none_or(|k| k < t.zero_one);
     let k_irregular = e.zero_one_k.is_some_and(|k| k > t.zero_one);
@@ -386,7 +460,11 @@ pub fn classify(e: &Evidence, t: &RegimeThresholds) -> Verdict {
             _ if !deterministic => "false nearest neighbours do not vanish (no low-dimensional determinism)",
             _ => "no exponential-divergence region in Kantz's curves",
         };
-        return verdict(Regime::Stochastic, None, format!("irregular: {why}"));
+        return verdict(
+            Regime::Irregular,
+            None,
+            format!("irregular (noise-like): {why}"),
+        );
     }
     let mut conflicts = Vec::new();
     if scaling && !resolved {
@@ -457,192 +535,325 @@ pub struct ForcedEvidence<'a> {
     /// Neutral band of the exponents per period (default 0.01: slower divergence than
     /// e-fold per 100 forcing periods is not called chaos).
     pub zero_band: f64,
-    /// Synchronous average of the motion relative to the container: the measured noise level
-    /// of a phase-locked motion ([`crate::analysis::phase_lock`]).
+    /// Synchronous average of the motion relative to the container
+    /// ([`crate::analysis::phase_lock`]): a qualifier of the verdict, never the verdict.
     pub phase_lock: Option<PhaseLock>,
+    /// The simulation's own sensitivity test ([`crate::analysis::replica_test`]), when the
+    /// simulator ran two replicas.
+    pub replica: Option<&'a ReplicaReport>,
+    /// Low- or high-dimensional section ([`crate::analysis::section_dimension`]), when
+    /// estimated.
+    pub dimension: Option<ChaosDimension>,
 }
 
-/// Locked fraction Λ_p at and above which a forced motion without a model exponent and
-/// without resolved deterministic divergence is periodic-p with noise: the mean waveform
-/// carries ≥ 90 % of the variance, i.e. the noise RMS is ≤ 32 % of the motion's RMS (about
-/// 11 % of a sinusoidal waveform's peak-to-peak height). A granular bed under periodic drive
-/// scatters about its waveform by collisional noise (N grains, each kicked at random phases);
-/// this threshold tells that scatter from a motion that has left the waveform.
+/// Locked fraction Λ_p at and above which the motion relative to the container is called
+/// phase-locked to the forcing: the mean waveform carries ≥ 90 % of the variance, i.e. the
+/// RMS about it is ≤ 32 % of the motion's RMS. A qualifier that travels with the verdict
+/// ("chaotic, phase-locked to the forcing"): the collective motion follows the drive, which
+/// says nothing about whether it repeats.
 pub const LOCKED_FRACTION_MIN: f64 = 0.9;
 
-/// Returns the regime of a forced system, judged from its exact stroboscopic section first.
+/// Returns the regime of a forced system, judged from its exact stroboscopic section and,
+/// where the simulator provides them, its model exponent or its two-replica test.
 ///
 /// # Formula
-/// 1. Too short: the section holds fewer points than the pattern test needs → `too-short` with
-///    the number of forcing periods needed.
-/// 2. The model exponent, when given, decides chaos: positive (λ > max(3σ, band)) → chaotic,
-///    unless the section is a finite set of points (an indicator conflict → undetermined,
-///    naming both).
-/// 3. The section's pattern decides the rest: periodic-n (exact, or with non-deterministic
-///    scatter) → periodic with period n; an invariant circle → quasi-periodic (with its rotation
-///    number), unless an exponent is clearly positive.
-/// 4. An irregular section: with a model exponent that is not positive → undetermined (a long
-///    transient or a period above the maximum; the reason says so); without one, periodic-p
-///    with noise when the motion relative to the container is phase-locked (Λ_p ≥
-///    [`LOCKED_FRACTION_MIN`], the shortest such p ≤ 4) — whatever the data exponent, which
-///    then measures the divergence of the unlocked ≤ 10 % of the variance (in a granular bed:
-///    the grains' collisional chaos about a periodic collective motion); else chaotic when the
-///    data exponent is positive and the scatter deterministic (determinism ratio < 0.5); else undetermined for a
-///    deterministic cloud without resolved divergence, stochastic for a noise-like one.
+/// A section is *tight* with period n when its points fall into n groups visited cyclically
+/// whose RMS scatter W_n is ≤ 5 % of the orbit's extent (the sum of squares over the axes,
+/// so every axis, position and velocity, is within 5 %), the groups ≥ 4 W_n apart
+/// ([`crate::analysis::section`]). 5 %: a group that small is one point of the orbit to the
+/// eye and to every figure of merit the damper is designed for (the amplitude and the energy
+/// per cycle move by about W²), while a chaotic band or a granular gas spreads over tens of
+/// per cent.
+/// 1. Too short: fewer section points than the pattern test needs → `too-short`.
+/// 2. Model exponent (the impact model's tangent dynamics) decides chaos: positive (λ >
+///    max(3σ, band)) → chaotic, unless the section is a finite set of points (an indicator
+///    conflict → undetermined); not positive with a cloud → undetermined; otherwise the
+///    section's pattern.
+/// 3. Two-replica test (the DEM): sensitive → periodic-n when the section is tight with
+///    period n (the sensitive part is confined to the groups: d_sat is quoted), quasi-periodic
+///    for a thin invariant circle, chaotic otherwise (the sensitive part is as large as the
+///    cloud); insensitive → the section's pattern (a cloud the replicas do not split is a
+///    long transient or a long period → undetermined); inconclusive → undetermined, unless
+///    the section is exactly periodic.
+/// 4. Data only (a user's series): the section's pattern; a cloud is chaotic when the data
+///    exponent is positive and the scatter deterministic (determinism ratio < 0.5),
+///    undetermined when deterministic without resolved divergence, else irregular
+///    (noise-like).
+///
+/// Qualifiers: `phase_locked` when Λ_p ≥ [`LOCKED_FRACTION_MIN`] and the verdict is not
+/// periodic; `dimension` on chaotic and irregular verdicts.
 ///
 /// # Units
 /// Exponents per forcing period.
 pub fn classify_forced(e: &ForcedEvidence<'_>) -> Verdict {
-    let v = |regime, period, reason: String| Verdict {
-        regime,
-        period,
-        reason,
+    let mut v = match (e.model_exponent, e.replica) {
+        _ if matches!(e.section.pattern, SectionPattern::TooShort { .. }) => too_short(e.section),
+        (Some(m), _) => by_model(e, m),
+        (None, Some(r)) => by_replica(e, r),
+        (None, None) => by_data(e),
     };
-    let fmt = |x: &Exponent| {
+    if v.regime != Regime::Periodic && v.regime != Regime::TooShort {
+        v.phase_locked = e
+            .phase_lock
+            .filter(|l| l.locked_fraction >= LOCKED_FRACTION_MIN);
+    }
+    if matches!(v.regime, Regime::Chaotic | Regime::Irregular) {
+        v.dimension = e.dimension;
+    }
+    v
+}
+
+fn fmt_exp(x: &Exponent) -> String {
+    format!(
+        "{:+.4} ± {:.4} per period",
+        x.per_period, x.stderr_per_period
+    )
+}
+
+fn too_short(sec: &SectionAnalysis) -> Verdict {
+    let SectionPattern::TooShort { points, needed } = sec.pattern else {
+        unreachable!("called for a too-short section")
+    };
+    Verdict::new(
+        Regime::TooShort,
+        None,
         format!(
-            "{:+.4} ± {:.4} per period",
-            x.per_period, x.stderr_per_period
+            "the analysed window holds {points} forcing periods; a verdict needs at least {needed}: analyse a longer record"
+        ),
+    )
+}
+
+/// The worst axis's scatter of the section's best grouping, in per cent of the orbit.
+fn worst_axis_pct(sec: &SectionAnalysis) -> f64 {
+    100.0 * sec.axis_scatter.iter().copied().fold(0.0, f64::max)
+}
+
+/// Periodic-n from the section's own pattern (exact, converging or with noise).
+fn periodic_from_section(sec: &SectionAnalysis, period: usize, noisy: bool) -> Verdict {
+    let how = if noisy {
+        format!(
+            "with a non-deterministic scatter of {:.2} % of the extent (determinism ratio {:.2})",
+            100.0 * sec.scatter,
+            sec.determinism_ratio.unwrap_or(f64::NAN)
         )
+    } else if let Some(rate) = sec.convergence_rate {
+        format!("still converging in the window (return distance decays at {rate:.4} per period)")
+    } else {
+        format!("coinciding to {:.1e} of the extent", sec.scatter)
     };
-    let model = e.model_exponent.map(|m| (m, m.sign(e.zero_band)));
-    let data = e.data_exponent.map(|d| (d, d.sign(e.zero_band)));
+    Verdict::new(
+        Regime::Periodic,
+        Some(period as f64),
+        format!("the exact section visits {period} point(s) cyclically, {how}"),
+    )
+}
+
+fn quasi_periodic(rotation_number: f64, extra: &str) -> Verdict {
+    Verdict::new(
+        Regime::QuasiPeriodic,
+        None,
+        format!(
+            "the exact section is a closed curve rotated by the map (rotation number {rotation_number:.4}){extra}"
+        ),
+    )
+}
+
+/// Rule 2: the model's exponent decides chaos.
+fn by_model(e: &ForcedEvidence<'_>, m: Exponent) -> Verdict {
     let sec = e.section;
+    let sign = m.sign(e.zero_band);
+    let data = e.data_exponent.map(|d| (d, d.sign(e.zero_band)));
     match sec.pattern {
-        SectionPattern::TooShort { points, needed } => v(
-            Regime::TooShort,
+        SectionPattern::Periodic { period, .. } if sign == ExponentSign::Positive => Verdict::new(
+            Regime::Undetermined,
             None,
             format!(
-                "the analysed window holds {points} forcing periods; a verdict needs at least {needed}: analyse a longer record"
+                "indicators conflict: the section is periodic-{period} but the model exponent is {}",
+                fmt_exp(&m)
             ),
         ),
-        SectionPattern::Periodic { period, noisy } => {
-            if let Some((m, ExponentSign::Positive)) = model {
-                return v(
-                    Regime::Undetermined,
-                    None,
-                    format!(
-                        "indicators conflict: the section is periodic-{period} but the model exponent is {}",
-                        fmt(&m)
-                    ),
-                );
-            }
-            let how = if noisy {
-                format!(
-                    "with a non-deterministic scatter of {:.2} % of the extent (determinism ratio {:.2})",
-                    100.0 * sec.scatter,
-                    sec.determinism_ratio.unwrap_or(f64::NAN)
-                )
-            } else if let Some(rate) = sec.convergence_rate {
-                format!(
-                    "still converging in the window (return distance decays at {rate:.4} per period)"
-                )
-            } else {
-                format!("coinciding to {:.1e} of the extent", sec.scatter)
-            };
-            v(
-                Regime::Periodic,
-                Some(period as f64),
-                format!("the exact section visits {period} point(s) cyclically, {how}"),
-            )
-        }
+        SectionPattern::Periodic { period, noisy } => periodic_from_section(sec, period, noisy),
         SectionPattern::QuasiPeriodic { rotation_number } => {
-            let positive = [model, data]
+            let positive = [Some((m, sign)), data]
                 .into_iter()
                 .flatten()
                 .find(|(_, s)| *s == ExponentSign::Positive);
-            if let Some((x, _)) = positive {
-                return v(
+            match positive {
+                Some((x, _)) => Verdict::new(
                     Regime::Undetermined,
                     None,
                     format!(
                         "indicators conflict: the section is a closed curve (rotation number {rotation_number:.4}) but an exponent is {}",
-                        fmt(&x)
+                        fmt_exp(&x)
                     ),
-                );
+                ),
+                None => quasi_periodic(rotation_number, ""),
             }
-            v(
-                Regime::QuasiPeriodic,
-                None,
-                format!(
-                    "the exact section is a closed curve rotated by the map (rotation number {rotation_number:.4})"
-                ),
-            )
         }
-        SectionPattern::Irregular => match (model, data) {
-            (Some((m, ExponentSign::Positive)), _) => v(
-                Regime::Chaotic,
-                None,
-                format!(
-                    "the model exponent is {} and the section is a cloud{}",
-                    fmt(&m),
-                    data.map_or(String::new(), |(d, _)| format!(
-                        " (data estimate {})",
-                        fmt(&d)
-                    ))
-                ),
+        _ if sign == ExponentSign::Positive => Verdict::new(
+            Regime::Chaotic,
+            None,
+            format!(
+                "the model exponent is {} and the section is a cloud{}",
+                fmt_exp(&m),
+                data.map_or(String::new(), |(d, _)| format!(
+                    " (data estimate {})",
+                    fmt_exp(&d)
+                ))
             ),
-            (Some((m, _)), _) => v(
+        ),
+        _ => Verdict::new(
+            Regime::Undetermined,
+            None,
+            format!(
+                "indicators conflict: the section shows no period ≤ the maximum but the model exponent is {} (a long transient or a longer period)",
+                fmt_exp(&m)
+            ),
+        ),
+    }
+}
+
+/// Rule 3: the simulation's two-replica test with the section's tightness.
+fn by_replica(e: &ForcedEvidence<'_>, r: &ReplicaReport) -> Verdict {
+    let sec = e.section;
+    let exact = matches!(sec.pattern, SectionPattern::Periodic { noisy: false, .. });
+    let tight = |g: &Grouping, what: &str| {
+        Verdict::new(
+            Regime::Periodic,
+            Some(g.period as f64),
+            format!(
+                "the exact section is {} tight group(s) visited cyclically (scatter {:.2} % of the orbit, worst axis {:.2} %); two replicas {what}",
+                g.period,
+                100.0 * g.scatter,
+                100.0 * g.axis_scatter.iter().copied().fold(0.0, f64::max),
+            ),
+        )
+    };
+    match &r.outcome {
+        ReplicaOutcome::Inconclusive { why } => match sec.pattern {
+            SectionPattern::Periodic { period, noisy } if exact => {
+                periodic_from_section(sec, period, noisy)
+            }
+            _ => Verdict::new(
                 Regime::Undetermined,
                 None,
                 format!(
-                    "indicators conflict: the section shows no period ≤ the maximum but the model exponent is {} (a long transient or a longer period)",
-                    fmt(&m)
+                    "the two-replica test is inconclusive ({why}); the section alone is {}",
+                    section_words(sec)
                 ),
             ),
-            (None, d)
-                if e
-                    .phase_lock
-                    .is_some_and(|l| l.locked_fraction >= LOCKED_FRACTION_MIN) =>
-            {
-                let l = e.phase_lock.expect("checked");
-                v(
-                    Regime::Periodic,
-                    Some(l.periods as f64),
-                    format!(
-                        "phase-locked with noise: the mean {}-period waveform carries {:.1} % of the variance (noise RMS {:.3e}, waveform height {:.3e}); the section is a cloud of {:.1} % of the extent (determinism ratio {:.2}{})",
-                        l.periods,
-                        100.0 * l.locked_fraction,
-                        l.noise_rms,
-                        l.waveform_peak_to_peak,
-                        100.0 * sec.size,
-                        sec.determinism_ratio.unwrap_or(f64::NAN),
-                        d.map_or(String::new(), |(d, _)| format!(
-                            ", data exponent {}: the divergence of the unlocked {:.1} %, not of the motion",
-                            fmt(&d),
-                            100.0 * (1.0 - l.locked_fraction)
-                        ))
-                    ),
-                )
+        },
+        ReplicaOutcome::Insensitive => match (sec.pattern, &sec.tight) {
+            (SectionPattern::Periodic { period, noisy }, _) if exact => {
+                periodic_from_section(sec, period, noisy)
             }
-            (None, Some((d, ExponentSign::Positive)))
-                if sec.determinism_ratio.is_none_or(|r| r < 0.5) =>
-            {
-                v(
+            (_, Some(g)) => tight(g, "stay together (insensitive)"),
+            (SectionPattern::QuasiPeriodic { rotation_number }, None) => {
+                quasi_periodic(rotation_number, "; two replicas stay together (insensitive)")
+            }
+            _ => Verdict::new(
+                Regime::Undetermined,
+                None,
+                format!(
+                    "the section is {} but two replicas do not separate (saturation {:.1e} of the orbit): a long transient or a period above the maximum",
+                    section_words(sec),
+                    r.saturation_rel
+                ),
+            ),
+        },
+        ReplicaOutcome::Sensitive {
+            saturation_rel_orbit,
+        } => {
+            let sens = format!(
+                "separate to {:.2} % of the orbit{} — sensitive, but only within the groups",
+                100.0 * saturation_rel_orbit,
+                rate_words(r)
+            );
+            match (sec.pattern, &sec.tight) {
+                (_, Some(g)) => tight(g, &sens),
+                (SectionPattern::QuasiPeriodic { rotation_number }, None) => quasi_periodic(
+                    rotation_number,
+                    &format!(
+                        "; two replicas separate to {:.2} % of the orbit (sensitive within the curve's thickness)",
+                        100.0 * saturation_rel_orbit
+                    ),
+                ),
+                _ => Verdict::new(
                     Regime::Chaotic,
                     None,
                     format!(
-                        "the section is a deterministic cloud (determinism ratio {:.2}) diverging at {}",
-                        sec.determinism_ratio.unwrap_or(f64::NAN),
-                        fmt(&d)
+                        "the exact section is a cloud (size {:.1} % of the orbit, worst axis scatter {:.1} %) and two replicas started 1e-9 apart separate to {:.1} % of the orbit, as two independent states of the section{}",
+                        100.0 * sec.size,
+                        worst_axis_pct(sec),
+                        100.0 * saturation_rel_orbit,
+                        rate_words(r)
                     ),
-                )
+                ),
             }
-            (None, d) if sec.determinism_ratio.is_some_and(|r| r < 0.5) => v(
+        }
+    }
+}
+
+fn rate_words(r: &ReplicaReport) -> String {
+    match r.growth_rate_per_s() {
+        Some((g, Some(se))) => format!(" at {g:.3} ± {se:.3} 1/s"),
+        Some((g, None)) => format!(" (initial rate {g:.3} 1/s)"),
+        None => String::new(),
+    }
+}
+
+fn section_words(sec: &SectionAnalysis) -> String {
+    match sec.pattern {
+        SectionPattern::Periodic { period, .. } => format!("periodic-{period}"),
+        SectionPattern::QuasiPeriodic { .. } => "a closed curve".into(),
+        _ => format!("a cloud of {:.1} % of the orbit", 100.0 * sec.size),
+    }
+}
+
+/// Rule 4: the data alone.
+fn by_data(e: &ForcedEvidence<'_>) -> Verdict {
+    let sec = e.section;
+    let data = e.data_exponent.map(|d| (d, d.sign(e.zero_band)));
+    let ratio = sec.determinism_ratio;
+    match sec.pattern {
+        SectionPattern::Periodic { period, noisy } => periodic_from_section(sec, period, noisy),
+        SectionPattern::QuasiPeriodic { rotation_number } => match data {
+            Some((d, ExponentSign::Positive)) => Verdict::new(
+                Regime::Undetermined,
+                None,
+                format!(
+                    "indicators conflict: the section is a closed curve (rotation number {rotation_number:.4}) but an exponent is {}",
+                    fmt_exp(&d)
+                ),
+            ),
+            _ => quasi_periodic(rotation_number, ""),
+        },
+        _ => match data {
+            Some((d, ExponentSign::Positive)) if ratio.is_none_or(|r| r < 0.5) => Verdict::new(
+                Regime::Chaotic,
+                None,
+                format!(
+                    "the section is a deterministic cloud (determinism ratio {:.2}) diverging at {}",
+                    ratio.unwrap_or(f64::NAN),
+                    fmt_exp(&d)
+                ),
+            ),
+            d if ratio.is_some_and(|r| r < 0.5) => Verdict::new(
                 Regime::Undetermined,
                 None,
                 format!(
                     "indicators conflict: the section is a deterministic cloud (determinism ratio {:.2}) but shows no resolved divergence{} (weak chaos, or a torus that is not star-shaped)",
-                    sec.determinism_ratio.unwrap_or(f64::NAN),
-                    d.map_or(String::new(), |(d, _)| format!(": data exponent {}", fmt(&d)))
+                    ratio.unwrap_or(f64::NAN),
+                    d.map_or(String::new(), |(d, _)| format!(": data exponent {}", fmt_exp(&d)))
                 ),
             ),
-            (None, d) => v(
-                Regime::Stochastic,
+            d => Verdict::new(
+                Regime::Irregular,
                 None,
                 format!(
-                    "the section is a cloud without low-dimensional determinism (determinism ratio {:.2}{})",
-                    sec.determinism_ratio.unwrap_or(f64::NAN),
-                    d.map_or(String::new(), |(d, _)| format!(", data exponent {}", fmt(&d)))
+                    "the section is a cloud without low-dimensional determinism (determinism ratio {:.2}{}): noise, or chaos of more degrees of freedom than the section resolves — a simulation can tell with its two-replica test",
+                    ratio.unwrap_or(f64::NAN),
+                    d.map_or(String::new(), |(d, _)| format!(", data exponent {}", fmt_exp(&d)))
                 ),
             ),
         },
@@ -714,7 +925,8 @@ mod tests {
             fnn_converged: Some(false),
             ..Default::default()
         };
-        assert_eq!(classify(&noise, &t).regime, Regime::Stochastic);
+        assert_eq!(classify(&noise, &t).regime, Regime::Irregular);
+        assert_eq!("stochastic".parse::<Regime>(), Ok(Regime::Irregular));
         let chaos = Evidence {
             zero_one_k: Some(0.99),
             fnn_converged: Some(true),

@@ -125,6 +125,27 @@ pub struct SectionAnalysis {
     /// For an orbit still converging in the window: the decay rate of ‖u_{k+p} − u_k‖ per
     /// forcing period (negative; a data estimate of the orbit's leading exponent).
     pub convergence_rate: Option<f64>,
+    /// RMS scatter of the `best_period` grouping on each axis, relative to that axis's extent
+    /// (W_p² is their sum of squares).
+    #[serde(default)]
+    pub axis_scatter: Vec<f64>,
+    /// The smallest period p whose groups are tight — W_p ≤ `noise_tol` (so every axis's
+    /// scatter is ≤ `noise_tol`), within 1.5 × the best W_q (both corrected for the fitted
+    /// centroids, W_q / √(1 − q/n)) and the groups separated — whatever the determinism of the
+    /// scatter; `None`: no tight grouping (a cloud, a curve).
+    #[serde(default)]
+    pub tight: Option<Grouping>,
+}
+
+/// A grouping of the section points by k mod p.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Grouping {
+    /// Period p (forcing periods).
+    pub period: usize,
+    /// W_p: RMS distance to the group centroids (relative to the extents).
+    pub scatter: f64,
+    /// The same per axis (relative to each axis's extent).
+    pub axis_scatter: Vec<f64>,
 }
 
 /// Returns the pattern of an exact stroboscopic section (see the module docs).
@@ -159,6 +180,33 @@ pub fn analyze_section(
     opts: &SectionOptions,
 ) -> Result<SectionAnalysis, AnalysisError> {
     let u = normalise(points, scales)?;
+    let mut out = pattern(&u, opts);
+    let max_p = opts.max_period.max(1).min(u.len() / 4);
+    if !matches!(out.pattern, SectionPattern::TooShort { .. }) && max_p >= 1 {
+        out.axis_scatter = axis_scatter(&u, out.best_period);
+        let w: Vec<f64> = (1..=max_p).map(|p| residue_scatter(&u, p)).collect();
+        // W_p² of n points in p groups of pure scatter is biased low by the factor (1 − p/n)
+        // (p fitted centroids): compare periods on the corrected W_p / √(1 − p/n), or a long
+        // period would always look "better" than the true one
+        let n = u.len() as f64;
+        let corrected = |p: usize| w[p - 1] / (1.0 - p as f64 / n).sqrt();
+        let best = (1..=max_p).map(corrected).fold(f64::INFINITY, f64::min);
+        out.tight = (1..=max_p)
+            .find(|&p| {
+                let wp = w[p - 1];
+                wp <= opts.noise_tol && corrected(p) <= 1.5 * best && groups_separated(&u, p, wp)
+            })
+            .map(|p| Grouping {
+                period: p,
+                scatter: w[p - 1],
+                axis_scatter: axis_scatter(&u, p),
+            });
+    }
+    Ok(out)
+}
+
+/// The pattern of normalised section points (the rules of the module docs).
+fn pattern(u: &[Vec<f64>], opts: &SectionOptions) -> SectionAnalysis {
     let n = u.len();
     let needed = opts.min_points.max(8);
     let mut out = SectionAnalysis {
@@ -171,14 +219,16 @@ pub fn analyze_section(
         order_fraction: None,
         thickness: None,
         convergence_rate: None,
+        axis_scatter: Vec::new(),
+        tight: None,
     };
     if n < needed {
         out.scatter = 0.0;
-        return Ok(out);
+        return out;
     }
-    out.size = residue_scatter(&u, 1);
+    out.size = residue_scatter(u, 1);
     let max_p = opts.max_period.max(1).min(n / 4);
-    let w: Vec<f64> = (1..=max_p).map(|p| residue_scatter(&u, p)).collect();
+    let w: Vec<f64> = (1..=max_p).map(|p| residue_scatter(u, p)).collect();
     let (best_i, &best_w) = w
         .iter()
         .enumerate()
@@ -193,9 +243,9 @@ pub fn analyze_section(
             period: p,
             noisy: false,
         };
-        return Ok(out);
+        return out;
     }
-    if let Some((p, rate)) = converging_period(&u, max_p, opts.noise_tol) {
+    if let Some((p, rate)) = converging_period(u, max_p, opts.noise_tol) {
         out.best_period = p;
         out.scatter = w[p - 1];
         out.convergence_rate = Some(rate);
@@ -203,14 +253,14 @@ pub fn analyze_section(
             period: p,
             noisy: false,
         };
-        return Ok(out);
+        return out;
     }
     let candidate = (1..=max_p).find(|&p| {
         let wp = w[p - 1];
-        wp <= opts.noise_tol && wp <= 1.5 * best_w && groups_separated(&u, p, wp)
+        wp <= opts.noise_tol && wp <= 1.5 * best_w && groups_separated(u, p, wp)
     });
     if let Some(p) = candidate {
-        let ratio = determinism_ratio(&u, w[p - 1]);
+        let ratio = determinism_ratio(u, w[p - 1]);
         out.determinism_ratio = ratio;
         if ratio.is_none_or(|r| r >= opts.determinism_max) {
             out.best_period = p;
@@ -219,12 +269,12 @@ pub fn analyze_section(
                 period: p,
                 noisy: true,
             };
-            return Ok(out);
+            return out;
         }
     } else {
-        out.determinism_ratio = determinism_ratio(&u, out.size);
+        out.determinism_ratio = determinism_ratio(u, out.size);
     }
-    let torus = circle_rotation(&u);
+    let torus = circle_rotation(u);
     if let Some(t) = torus {
         out.order_fraction = Some(t.order_fraction);
         out.thickness = Some(t.thickness);
@@ -232,11 +282,11 @@ pub fn analyze_section(
             out.pattern = SectionPattern::QuasiPeriodic {
                 rotation_number: t.rotation_number,
             };
-            return Ok(out);
+            return out;
         }
     }
     out.pattern = SectionPattern::Irregular;
-    Ok(out)
+    out
 }
 
 /// The smallest period p whose return distance r_k = ‖u_{k+p} − u_k‖ decays over the window:
@@ -330,6 +380,22 @@ fn residue_scatter(u: &[Vec<f64>], p: usize) -> f64 {
         .map(|(k, x)| dist2(x, &cents[k % p]))
         .sum();
     (ss / u.len() as f64).sqrt()
+}
+
+/// RMS distance of the points to their residue-class centroids along each axis.
+fn axis_scatter(u: &[Vec<f64>], p: usize) -> Vec<f64> {
+    let cents = centroids(u, p);
+    let dim = u[0].len();
+    (0..dim)
+        .map(|d| {
+            let ss: f64 = u
+                .iter()
+                .enumerate()
+                .map(|(k, x)| (x[d] - cents[k % p][d]).powi(2))
+                .sum();
+            (ss / u.len() as f64).sqrt()
+        })
+        .collect()
 }
 
 /// Centroids of the residue classes k mod p.

@@ -5,7 +5,7 @@
 //! DIR/series.csv    the sampled series (written while the run goes, by a CsvRecorder)
 //! DIR/summary.json  the RunSummary (serde), with "auto_choice" when kind = "auto" chose
 //! DIR/strobe.csv    cycle,time_s,grain_z_m,box_z_m,grain_v_m_s,box_v_m_s (one row per period)
-//! DIR/replica.csv   cycle,time_s,grain_z_a_m,grain_z_b_m,separation_m (only with run.replica)
+//! DIR/replica.csv   cycle,time_s,{grain_z,grain_v,box_z,box_v}_{a,b},separation_rel (DEM, the two-replica test)
 //! DIR/scene.toml    the scene as resolved from the file and its --set overrides
 //! DIR/snapshots/    DEM particle snapshots (damper.snapshot_interval; relative
 //!                   damper.snapshot_dir values are under DIR)
@@ -221,16 +221,15 @@ pub fn strobe_csv(summary: &RunSummary) -> String {
 /// The text of `replica.csv`, if the summary has a replica test.
 pub fn replica_csv(summary: &RunSummary) -> Option<String> {
     let r = summary.replica.as_ref()?;
-    let mut csv = String::from("cycle,time_s,grain_z_a_m,grain_z_b_m,separation_m\n");
+    let mut csv = String::from(
+        "cycle,time_s,grain_z_a_m,grain_z_b_m,grain_v_a_m_s,grain_v_b_m_s,box_z_a_m,box_z_b_m,box_v_a_m_s,box_v_b_m_s,separation_rel\n",
+    );
     for row in &r.rows {
-        csv.push_str(&format!(
-            "{},{},{},{},{}\n",
-            row.cycle,
-            fmt_num(row.time_s),
-            fmt_num(row.grain_z_a_m),
-            fmt_num(row.grain_z_b_m),
-            fmt_num(row.separation_m)
-        ));
+        csv.push_str(&format!("{},{}", row.cycle, fmt_num(row.time_s)));
+        for d in 0..row.a.len() {
+            csv.push_str(&format!(",{},{}", fmt_num(row.a[d]), fmt_num(row.b[d])));
+        }
+        csv.push_str(&format!(",{}\n", fmt_num(r.separation(row))));
     }
     Some(csv)
 }

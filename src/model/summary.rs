@@ -164,7 +164,7 @@ pub struct RunSummary {
     pub analysis_error: Option<String>,
     /// The DEM two-replica test (`run.replica`), when run; its rows go to `replica.csv`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub replica: Option<crate::dem::replica::ReplicaReport>,
+    pub replica: Option<crate::analysis::replica_test::ReplicaReport>,
 }
 
 /// The nonlinear analysis of a run (`summary.analysis`): the [`AnalysisReport`] itself, typed

@@ -230,13 +230,13 @@ pub fn series_color(i: usize) -> RGBColor {
 }
 
 /// Colour of a dynamical regime: periodic → green, quasi-periodic → blue, chaotic → red,
-/// stochastic → purple, too-short → sand, undetermined or none → grey.
+/// irregular (noise-like) → purple, too-short → sand, undetermined or none → grey.
 pub fn regime_color(regime: Option<Regime>) -> RGBColor {
     match regime {
         Some(Regime::QuasiPeriodic) => RGBColor(86, 140, 233),
         Some(Regime::Periodic) => RGBColor(60, 175, 90),
         Some(Regime::Chaotic) => RGBColor(220, 50, 40),
-        Some(Regime::Stochastic) => RGBColor(150, 90, 180),
+        Some(Regime::Irregular) => RGBColor(150, 90, 180),
         Some(Regime::TooShort) => RGBColor(205, 170, 110),
         Some(Regime::Undetermined) | None => RGBColor(160, 160, 160),
     }

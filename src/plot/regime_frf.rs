@@ -66,6 +66,12 @@ pub struct RegimeFrfFigure<'a> {
     /// The exponent of the model (`model_mle_per_s`, `model_mle_stderr_per_s`; for the impact
     /// model: tangent dynamics of the stroboscopic map).
     pub model: Option<Exponents<'a>>,
+    /// `phase_locked` per point: a chaotic point whose motion follows the forcing is drawn in
+    /// its own shade of the chaotic colour.
+    pub phase_locked: Option<&'a [bool]>,
+    /// The growth rate of the two-replica test's separation (`replica_growth_per_s`; a DEM
+    /// sweep), drawn beside the data exponent.
+    pub replica: Option<Exponents<'a>>,
 }
 
 /// Legend label of the model exponent.
@@ -76,6 +82,12 @@ const DATA_LABEL: &str = "λ data (Kantz)";
 const MODEL_COLOR: RGBColor = RGBColor(0, 0, 0);
 /// Colour of the data exponent (Okabe–Ito vermillion).
 const DATA_COLOR: RGBColor = RGBColor(213, 94, 0);
+/// Legend label of the replica growth rate.
+const REPLICA_LABEL: &str = "replica separation growth";
+/// Colour of the replica growth rate (Okabe–Ito reddish purple).
+const REPLICA_COLOR: RGBColor = RGBColor(204, 121, 167);
+/// Band colour of chaos phase-locked to the forcing: a lighter, orange shade of the chaotic red.
+const LOCKED_CHAOS_COLOR: RGBColor = RGBColor(245, 150, 80);
 /// Colour of the amplitude curve (Okabe–Ito blue).
 const AMP_COLOR: RGBColor = RGBColor(0, 114, 178);
 
@@ -89,11 +101,20 @@ impl RegimeFrfFigure<'_> {
     }
 }
 
+/// Band colour of a point: the regime's, or [`LOCKED_CHAOS_COLOR`] for phase-locked chaos.
+fn band_color(r: Option<Regime>, locked: bool) -> RGBColor {
+    if locked && r == Some(Regime::Chaotic) {
+        LOCKED_CHAOS_COLOR
+    } else {
+        regime_color(r)
+    }
+}
+
 /// Draws the regime bands of sorted frequencies `f` between `y0` and `y1`.
 fn bands<DB: DrawingBackend>(
     chart: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
     f: &[f64],
-    reg: &[Option<Regime>],
+    (reg, locked): (&[Option<Regime>], &[bool]),
     (f_lo, f_hi): (f64, f64),
     (y0, y1): (f64, f64),
     alpha: f64,
@@ -113,7 +134,7 @@ fn bands<DB: DrawingBackend>(
         chart
             .draw_series(std::iter::once(Rectangle::new(
                 [(left, y0), (right, y1)],
-                common::shade(regime_color(*r), alpha).filled(),
+                common::shade(band_color(*r, locked[i]), alpha).filled(),
             )))
             .map_err(draw_err)?;
     }
@@ -141,6 +162,12 @@ impl Figure for RegimeFrfFigure<'_> {
         if let Some(e) = &self.model {
             e.validate(k, "model_mle_per_s", n)?;
         }
+        if let Some(e) = &self.replica {
+            e.validate(k, "replica_growth_per_s", n)?;
+        }
+        if let Some(l) = self.phase_locked {
+            check_len(k, "phase_locked", l.len(), n)?;
+        }
         Ok(())
     }
 
@@ -158,6 +185,10 @@ impl Figure for RegimeFrfFigure<'_> {
         let f: Vec<f64> = idx.iter().map(|&i| self.frequency_hz[i]).collect();
         let z: Vec<f64> = idx.iter().map(|&i| 1e3 * self.amplitude_m[i]).collect();
         let reg: Vec<Option<Regime>> = idx.iter().map(|&i| self.regime[i]).collect();
+        let locked: Vec<bool> = idx
+            .iter()
+            .map(|&i| self.phase_locked.is_some_and(|l| l[i]))
+            .collect();
         let per: Vec<Option<u32>> = idx
             .iter()
             .map(|&i| self.period.and_then(|p| p[i]))
@@ -166,7 +197,8 @@ impl Figure for RegimeFrfFigure<'_> {
         let (_, z_hi) = padded_range([z.as_slice()], 0.08);
         let model = self.points(self.model.as_ref());
         let data = self.points(self.data.as_ref());
-        let has_lambda = !model.is_empty() || !data.is_empty();
+        let replica = self.points(self.replica.as_ref());
+        let has_lambda = !model.is_empty() || !data.is_empty() || !replica.is_empty();
 
         let (plot, panel) = common::with_side_panel(root, title, 0.22, 200)?;
         let (top, bottom) = if has_lambda {
@@ -191,7 +223,14 @@ impl Figure for RegimeFrfFigure<'_> {
             .y_label_area_size(y_area)
             .build_cartesian_2d(f_lo..f_hi, 0.0..z_hi)
             .map_err(draw_err)?;
-        bands(&mut chart, &f, &reg, (f_lo, f_hi), (0.0, z_hi), 0.3)?;
+        bands(
+            &mut chart,
+            &f,
+            (&reg, &locked),
+            (f_lo, f_hi),
+            (0.0, z_hi),
+            0.3,
+        )?;
         let x_desc = if has_lambda { "" } else { "frequency f (Hz)" };
         common::mesh(&mut chart, x_desc, "amplitude Z (mm)")?;
         let pts: Vec<(f64, f64)> = f.iter().copied().zip(z.iter().copied()).collect();
@@ -244,6 +283,7 @@ impl Figure for RegimeFrfFigure<'_> {
             let vals: Vec<f64> = model
                 .iter()
                 .chain(&data)
+                .chain(&replica)
                 .flat_map(|&(_, v, s)| [v - s, v + s])
                 .chain([0.0])
                 .collect();
@@ -255,7 +295,14 @@ impl Figure for RegimeFrfFigure<'_> {
                 .y_label_area_size(y_area)
                 .build_cartesian_2d(f_lo..f_hi, l_lo..l_hi)
                 .map_err(draw_err)?;
-            bands(&mut chart, &f, &reg, (f_lo, f_hi), (l_lo, l_hi), 0.18)?;
+            bands(
+                &mut chart,
+                &f,
+                (&reg, &locked),
+                (f_lo, f_hi),
+                (l_lo, l_hi),
+                0.18,
+            )?;
             common::mesh(&mut chart, "frequency f (Hz)", "Lyapunov exponent λ (1/s)")?;
             chart
                 .draw_series(LineSeries::new(
@@ -270,14 +317,20 @@ impl Figure for RegimeFrfFigure<'_> {
                 .filter(|d| *d > 0.0)
                 .fold(f64::INFINITY, f64::min);
             let dodge = if step.is_finite() { 0.2 * step } else { 0.0 };
-            let both = !model.is_empty() && !data.is_empty();
-            if both {
+            let shown = [&model, &data, &replica]
+                .iter()
+                .filter(|p| !p.is_empty())
+                .count();
+            if shown >= 2 {
                 dodge_hz = dodge;
             }
+            // the model left of the point, the data right of it; the replica rate (a DEM sweep
+            // has no model exponent) on the left
             let (dm, dd) = (-dodge_hz, dodge_hz);
             for (points, color, shift, triangle) in [
                 (&model, MODEL_COLOR, dm, false),
                 (&data, DATA_COLOR, dd, true),
+                (&replica, REPLICA_COLOR, dm, false),
             ] {
                 chart
                     .draw_series(points.iter().filter(|p| p.2 > 0.0).map(|&(x, v, s)| {
@@ -308,6 +361,14 @@ impl Figure for RegimeFrfFigure<'_> {
             let c = common::shade(regime_color(r), 0.55);
             legend.push(LegendEntry::new(regime_label(r), c, LegendMark::Patch));
         }
+        if (0..reg.len()).any(|i| locked[i] && reg[i] == Some(Regime::Chaotic)) {
+            let c = common::shade(LOCKED_CHAOS_COLOR, 0.55);
+            legend.push(LegendEntry::new(
+                "chaotic, phase-locked",
+                c,
+                LegendMark::Patch,
+            ));
+        }
         if any_period {
             legend.push(LegendEntry::note("Pn: period n ≥ 2"));
         }
@@ -331,6 +392,13 @@ impl Figure for RegimeFrfFigure<'_> {
                     DATA_LABEL,
                     DATA_COLOR,
                     LegendMark::TriangleErr(4),
+                ));
+            }
+            if !replica.is_empty() {
+                legend.push(LegendEntry::new(
+                    REPLICA_LABEL,
+                    REPLICA_COLOR,
+                    LegendMark::DotErr(3),
                 ));
             }
             legend.push(LegendEntry::note("bars: ± 1 standard error"));

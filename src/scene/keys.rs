@@ -16,6 +16,8 @@ pub const DAMPER_COUNT: &str = "damper.count";
 pub const DAMPER_RADIUS: &str = "damper.radius";
 /// `damper.box`: DEM container size `[x, y, z]` (m).
 pub const DAMPER_BOX: &str = "damper.box";
+/// `damper.seed`: seed of the DEM bed's radii, packing and lattice jitter (its initial state).
+pub const DAMPER_SEED: &str = "damper.seed";
 /// `damper.gamma_n`: DEM normal damping γ_n (kg s⁻¹ m^-1/2).
 pub const DAMPER_GAMMA_N: &str = "damper.gamma_n";
 /// `damper.gamma_s`: DEM tangential damping γ_s.

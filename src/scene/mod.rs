@@ -146,10 +146,12 @@ impl Scene {
                     .into(),
             });
         }
-        if self.run.replica.is_some() && matches!(self.damper, Damper::None | Damper::Impact(_)) {
+        if let (run::ReplicaChoice::Delta(d), Damper::None | Damper::Impact(_)) =
+            (self.run.replica, &self.damper)
+        {
             return Err(SceneError::invalid(
                 "run.replica",
-                self.run.replica.unwrap_or_default(),
+                d,
                 "the two-replica test is DEM-only (damper.kind = \"dem\"); the impact model \
                  reports its exponent from tangent dynamics instead",
             ));

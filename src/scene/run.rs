@@ -46,18 +46,22 @@ pub struct Run {
     /// decimated to stay below). Default 20000.
     #[serde(default = "default_analysis_max_samples")]
     pub analysis_max_samples: usize,
-    /// DEM two-replica test ([`crate::dem::replica`]): `true` (δ0 = 1e-9 m), a perturbation δ0
-    /// in metres (0 checks determinism), or `false` (default: off). Replica B, every grain
-    /// raised by δ0 when the analysis window starts, runs in lockstep with the run; `pdamp
-    /// simulate` writes `replica.csv` and a `replica` block in `summary.json`. It doubles the
-    /// cost of the analysis window. DEM only (`damper.kind = "dem"`, or `"auto"` when it picks
-    /// the DEM).
+    /// DEM two-replica test ([`crate::dem::replica`]): by default it runs wherever a regime
+    /// verdict is asked for (a DEM run with the nonlinear analysis: `pdamp simulate`, analysed
+    /// sweeps, the chapter-4 study), because the verdict uses it; `false` turns it off (the
+    /// verdict then rests on the section and the data exponent alone), `true` or a
+    /// perturbation δ0 in metres (> 0, below the smallest grain radius; `true` = 1e-9 m) runs
+    /// it always. Replica B, every grain raised by δ0 when the analysis window starts, runs in
+    /// lockstep with the run; `replica.csv` and a `replica` block in `summary.json` report it.
+    /// It doubles the cost of the analysis window. DEM only (`damper.kind = "dem"`, or
+    /// `"auto"` when it picks the DEM).
     #[serde(
         default,
-        skip_serializing_if = "Option::is_none",
-        deserialize_with = "replica_delta"
+        skip_serializing_if = "ReplicaChoice::is_default",
+        deserialize_with = "replica_choice",
+        serialize_with = "write_replica_choice"
     )]
-    pub replica: Option<f64>,
+    pub replica: ReplicaChoice,
     /// DEM energy ledger (2.6.1–2.6.6): `true` (default) books the collision and friction
     /// dissipation, the viscous loss in C and the base work every step, checks the balance
     /// and reports it; `false` skips that bookkeeping (the contact loops then compute no
@@ -69,28 +73,68 @@ pub struct Run {
     pub energy_ledger: bool,
 }
 
+/// The scene key `run.replica`: when the DEM two-replica test runs.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum ReplicaChoice {
+    /// Wherever a regime verdict is asked for (the default; the key left out).
+    #[default]
+    WithVerdict,
+    /// Never (`false`).
+    Off,
+    /// Always, with this perturbation δ0 (m) (`true`: 1e-9 m).
+    Delta(f64),
+}
+
+impl ReplicaChoice {
+    /// The default (the key left out).
+    pub fn is_default(&self) -> bool {
+        *self == ReplicaChoice::WithVerdict
+    }
+
+    /// The perturbation δ0 (m) of a run, when the test runs: `verdict` says whether the run
+    /// is analysed for a regime verdict.
+    pub fn delta_m(&self, verdict: bool) -> Option<f64> {
+        match *self {
+            ReplicaChoice::WithVerdict => verdict.then_some(crate::dem::replica::DEFAULT_DELTA_M),
+            ReplicaChoice::Off => None,
+            ReplicaChoice::Delta(d) => Some(d),
+        }
+    }
+}
+
 /// `run.replica`: `true` → the default δ0, `false` → off, a number → δ0 (m).
-fn replica_delta<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
+fn replica_choice<'de, D: Deserializer<'de>>(d: D) -> Result<ReplicaChoice, D::Error> {
     struct V;
     impl serde::de::Visitor<'_> for V {
-        type Value = Option<f64>;
+        type Value = ReplicaChoice;
         fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
             f.write_str("true, false or a perturbation in metres")
         }
-        fn visit_bool<E: serde::de::Error>(self, v: bool) -> Result<Option<f64>, E> {
-            Ok(v.then_some(crate::dem::replica::DEFAULT_DELTA_M))
+        fn visit_bool<E: serde::de::Error>(self, v: bool) -> Result<ReplicaChoice, E> {
+            Ok(if v {
+                ReplicaChoice::Delta(crate::dem::replica::DEFAULT_DELTA_M)
+            } else {
+                ReplicaChoice::Off
+            })
         }
-        fn visit_f64<E: serde::de::Error>(self, v: f64) -> Result<Option<f64>, E> {
-            Ok(Some(v))
+        fn visit_f64<E: serde::de::Error>(self, v: f64) -> Result<ReplicaChoice, E> {
+            Ok(ReplicaChoice::Delta(v))
         }
-        fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<Option<f64>, E> {
-            Ok(Some(v as f64))
+        fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<ReplicaChoice, E> {
+            Ok(ReplicaChoice::Delta(v as f64))
         }
-        fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<Option<f64>, E> {
-            Ok(Some(v as f64))
+        fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<ReplicaChoice, E> {
+            Ok(ReplicaChoice::Delta(v as f64))
         }
     }
     d.deserialize_any(V)
+}
+
+fn write_replica_choice<S: serde::Serializer>(c: &ReplicaChoice, s: S) -> Result<S::Ok, S::Error> {
+    match *c {
+        ReplicaChoice::WithVerdict | ReplicaChoice::Off => s.serialize_bool(false),
+        ReplicaChoice::Delta(d) => s.serialize_f64(d),
+    }
 }
 
 fn default_steady_fraction() -> f64 {
@@ -125,7 +169,7 @@ impl Run {
             dt_fraction: default_dt_fraction(),
             seed: 0,
             analysis_max_samples: default_analysis_max_samples(),
-            replica: None,
+            replica: ReplicaChoice::WithVerdict,
             energy_ledger: default_energy_ledger(),
         }
     }
@@ -189,12 +233,13 @@ impl Run {
                 "must lie in (0, 1] (fraction of the contact duration)",
             ));
         }
-        if let Some(d) = self.replica {
-            if !(d.is_finite() && (0.0..1e-3).contains(&d)) {
+        if let ReplicaChoice::Delta(d) = self.replica {
+            if !(d.is_finite() && d > 0.0 && d < 1e-3) {
                 return Err(SceneError::invalid(
                     "run.replica",
                     d,
-                    "the replica's perturbation must lie in [0, 1e-3) m (true: 1e-9 m)",
+                    "the replica's perturbation must be finite, > 0 and below the grain radius \
+                     (true: 1e-9 m; false turns the test off)",
                 ));
             }
         }

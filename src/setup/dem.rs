@@ -15,6 +15,7 @@ use crate::error::{SceneError, SimError};
 use crate::model::{BoxDrive, EnergyTotals, RunOptions, RunSummary, RunWindow};
 use crate::observe::{Observer, SnapshotWriter, StrobeCollector, Tee};
 use crate::scene::dem::{ContactKind, DemParams, PackingKind, SnapshotFormat, TangentialKind};
+use crate::scene::run::ReplicaChoice;
 use crate::scene::{Damper, DtSpec, Scene};
 
 /// A resolved DEM scene: the damper, its drive, gravity, the run settings and outputs.
@@ -40,13 +41,25 @@ pub struct DemSetup {
     pub dt_fraction: f64,
     /// Snapshot directory and format, when snapshots are written.
     pub snapshots: Option<(PathBuf, SnapshotFormat)>,
-    /// Perturbation δ0 (m) of the two-replica test, when run.
-    pub replica_m: Option<f64>,
+    /// When the two-replica test runs (`run.replica`); see [`DemSetup::with_verdict`].
+    pub replica: ReplicaChoice,
     /// Book the energy ledger (`run.energy_ledger`).
     pub energy_ledger: bool,
 }
 
 impl DemSetup {
+    /// The setup of a run analysed for a regime verdict: the two-replica test runs unless
+    /// `run.replica = false` (the verdict uses it).
+    pub fn with_verdict(&self) -> DemSetup {
+        DemSetup {
+            replica: match self.replica.delta_m(true) {
+                Some(d) => ReplicaChoice::Delta(d),
+                None => ReplicaChoice::Off,
+            },
+            ..self.clone()
+        }
+    }
+
     /// The engine's run settings for the sampling of `opts`.
     pub fn config(&self, opts: &RunOptions) -> DemRunConfig {
         DemRunConfig {
@@ -114,7 +127,7 @@ pub fn dem_setup(scene: &Scene) -> Result<DemSetup, SceneError> {
                 params.snapshot_format,
             )
         }),
-        replica_m: scene.run.replica,
+        replica: scene.run.replica,
         energy_ledger: scene.run.energy_ledger,
     })
 }
@@ -480,7 +493,7 @@ pub fn simulate(
     }
     let mut fwd = Tee { observers };
     // `run.replica`: replica B perturbed at the start of the analysis window
-    let (s, replica) = match setup.replica_m {
+    let (s, replica) = match setup.replica.delta_m(false) {
         Some(delta_m) => {
             let opts = ReplicaOptions::at_analysis_start(&cfg, delta_m);
             let (s, r) = run_replica(&setup.model, drive, &cfg, &opts, &mut fwd)?;

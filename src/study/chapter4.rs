@@ -35,7 +35,9 @@ use super::pipeline::{
     scene_with, simulate_command, BundledScene, Ctx, FigureRecord, Recorded, SweepResult,
 };
 use super::settings::{Chapter4Settings, DemSettings, Settings};
-use crate::scene::keys::{EXCITATION_FREQUENCY, RUN_DT_FRACTION, RUN_DURATION, RUN_PERIODS};
+use crate::scene::keys::{
+    DAMPER_SEED, EXCITATION_FREQUENCY, RUN_DT_FRACTION, RUN_DURATION, RUN_PERIODS,
+};
 use crate::sweep::SweepPoints;
 
 /// Scene B at Lz = 0.1225 m with softened grains and runs counted in periods
@@ -45,15 +47,19 @@ pub const DEM_CH4: BundledScene = BundledScene {
     text: include_str!("../../data/scenes/thesis_b_ch4.toml"),
 };
 
+/// The packing seed of [`DEM_CH4`] (the scene's default `damper.seed`).
+const DEFAULT_SEED: u64 = 1;
+
 /// Softening, time-step fraction and run length written in [`DEM_CH4`].
 const SCENE_SOFTEN: f64 = 1000.0;
 const SCENE_DT_FRACTION: f64 = 0.02;
 const SCENE_PERIODS: f64 = 100.0;
 
 /// Names of the chapter-4 figures (for `--only`).
-pub const NAMES: [&str; 7] = [
+pub const NAMES: [&str; 8] = [
     "ch4",
     "ch4_regime_frf",
+    "ch4_ensemble",
     "ch4_bifurcation",
     "ch4_impacts",
     "ch4_run_length",
@@ -68,6 +74,17 @@ struct Point {
     amplitude_m: f64,
     regime: Option<Regime>,
     period: Option<f64>,
+    /// The verdict with its qualifiers ("chaotic; phase-locked to the forcing (Λ₁ = 0.985);
+    /// high-dimensional"); empty when not analysed.
+    label: String,
+    phase_locked: bool,
+    locked_fraction: Option<f64>,
+    /// W_n of the tight grouping, else the section's size (relative to the orbit).
+    section_scatter: Option<f64>,
+    chaos_dimension: Option<&'static str>,
+    replica: Option<&'static str>,
+    replica_saturation_rel: Option<f64>,
+    replica_growth_per_s: Option<f64>,
     mle_per_s: Option<f64>,
     mle_stderr_per_s: Option<f64>,
     floor_impacts: f64,
@@ -75,43 +92,57 @@ struct Point {
 }
 
 impl Point {
+    /// Regime and period ("periodic-3", "chaotic"): what the run-length and ensemble checks
+    /// compare (the qualifiers are reported beside it).
     fn verdict(&self) -> String {
         match self.period {
             Some(p) if self.regime == Some(Regime::Periodic) => format!("periodic-{p}"),
             _ => self.regime_str().to_string(),
         }
     }
-}
 
-impl Point {
     /// The regime's name, empty when the point was not analysed (as in `sweep.csv`).
     fn regime_str(&self) -> &'static str {
         self.regime.map_or("", Regime::as_str)
     }
 }
 
-fn points(step: &str, pts: &SweepPoints) -> Result<Vec<Point>, StudyError> {
+fn point(step: &str, dir: &str, p: &crate::sweep::SweepPoint) -> Result<Point, StudyError> {
     let finite = |x: Option<f64>| x.filter(|v| v.is_finite());
-    let extra = |p: &crate::sweep::SweepPoint, key: &str| {
-        p.summary.extra.get(key).copied().ok_or_else(|| {
-            StudyError::step(step, format!("{}: point {}: no `{key}`", pts.dir, p.index))
-        })
-    };
+    let extra =
+        |key: &str| {
+            p.summary.extra.get(key).copied().ok_or_else(|| {
+                StudyError::step(step, format!("{dir}: point {}: no `{key}`", p.index))
+            })
+        };
+    let a = p.summary.analysis.as_ref();
+    let r = p.summary.replica.as_ref();
+    Ok(Point {
+        f_hz: p.summary.frequency_hz,
+        amplitude_m: p.summary.amplitude_m,
+        regime: a.map(|a| a.regime),
+        period: finite(a.and_then(|a| a.period)),
+        label: a.map(|a| a.verdict()).unwrap_or_default(),
+        phase_locked: a.is_some_and(|a| a.phase_locked),
+        locked_fraction: a.and_then(|a| a.phase_lock.map(|l| l.locked_fraction)),
+        section_scatter: a
+            .and_then(|a| a.section.as_ref())
+            .map(|s| s.tight.as_ref().map_or(s.size, |g| g.scatter)),
+        chaos_dimension: a.and_then(|a| a.chaos_dimension.map(|d| d.as_str())),
+        replica: r.map(|r| r.outcome.as_str()),
+        replica_saturation_rel: r.map(|r| r.saturation_rel),
+        replica_growth_per_s: r.and_then(|r| r.growth_rate_per_s().map(|g| g.0)),
+        mle_per_s: finite(a.and_then(|a| a.data_mle_per_s)),
+        mle_stderr_per_s: finite(a.and_then(|a| a.data_mle_stderr_per_s)),
+        floor_impacts: extra("bed_floor_impacts_per_cycle")?,
+        ceiling_impacts: extra("bed_ceiling_impacts_per_cycle")?,
+    })
+}
+
+fn points(step: &str, pts: &SweepPoints) -> Result<Vec<Point>, StudyError> {
     let mut out = pts
         .iter()
-        .map(|p| {
-            let a = p.summary.analysis.as_ref();
-            Ok(Point {
-                f_hz: p.summary.frequency_hz,
-                amplitude_m: p.summary.amplitude_m,
-                regime: a.map(|a| a.regime),
-                period: finite(a.and_then(|a| a.period)),
-                mle_per_s: finite(a.and_then(|a| a.data_mle_per_s)),
-                mle_stderr_per_s: finite(a.and_then(|a| a.data_mle_stderr_per_s)),
-                floor_impacts: extra(p, "bed_floor_impacts_per_cycle")?,
-                ceiling_impacts: extra(p, "bed_ceiling_impacts_per_cycle")?,
-            })
-        })
+        .map(|p| point(step, &pts.dir, p))
         .collect::<Result<Vec<Point>, StudyError>>()?;
     out.sort_by(|a, b| a.f_hz.total_cmp(&b.f_hz));
     Ok(out)
@@ -201,8 +232,35 @@ pub fn all(
         sweep: &base,
         reductions: &reductions,
     };
+    // the ensemble check: every frequency from further initial packings
+    let ensemble =
+        if !c.ensemble_seeds.is_empty() && (want("ch4_ensemble") || want("ch4_regime_frf")) {
+            let seeds = c
+                .ensemble_seeds
+                .iter()
+                .map(|s| s.to_string())
+                .collect::<Vec<_>>()
+                .join(",");
+            let more = ctx.sweep(
+                &format!("{}_seeds", sweep_dir(c, 1.0)),
+                DEM_CH4,
+                &ch4_set(d, c, 1.0),
+                &[
+                    (DAMPER_SEED, seeds),
+                    (EXCITATION_FREQUENCY, frequency_list(&c.frequencies_hz)),
+                ],
+                true,
+            )?;
+            Some(ensemble_check(&pts, &more)?)
+        } else {
+            None
+        };
     if want("ch4_regime_frf") {
-        figures.push(regime_frf(&info, &pts)?);
+        let words = ensemble.as_ref().map(|e| e.words.as_slice());
+        figures.push(regime_frf(&info, &pts, words)?);
+    }
+    if let (true, Some(e)) = (want("ch4_ensemble"), &ensemble) {
+        figures.push(ensemble_figure(&info, e)?);
     }
     if want("ch4_bifurcation") {
         figures.push(bifurcation(&info)?);
@@ -269,16 +327,29 @@ fn opt_cell(v: Option<f64>) -> String {
     v.map(|x| x.to_string()).unwrap_or_default()
 }
 
-fn regime_frf(info: &Info, pts: &[Point]) -> Result<FigureRecord, StudyError> {
+fn regime_frf(
+    info: &Info,
+    pts: &[Point],
+    ensemble: Option<&[(f64, String)]>,
+) -> Result<FigureRecord, StudyError> {
     let name = "ch4_regime_frf";
     let header = [
         "frequency_hz",
         "amplitude_m",
         "regime",
         "period",
+        "verdict",
+        "phase_locked",
+        "locked_fraction",
+        "section_scatter",
+        "chaos_dimension",
+        "replica",
+        "replica_saturation_rel",
+        "replica_growth_per_s",
         "mle_per_s",
         "mle_stderr_per_s",
         "impacts_per_cycle",
+        "ensemble",
     ];
     let rows = pts.iter().map(|p| {
         vec![
@@ -286,9 +357,20 @@ fn regime_frf(info: &Info, pts: &[Point]) -> Result<FigureRecord, StudyError> {
             p.amplitude_m.to_string(),
             p.regime_str().to_string(),
             opt_cell(p.period),
+            p.label.clone(),
+            p.phase_locked.to_string(),
+            opt_cell(p.locked_fraction),
+            opt_cell(p.section_scatter),
+            p.chaos_dimension.unwrap_or_default().to_string(),
+            p.replica.unwrap_or_default().to_string(),
+            opt_cell(p.replica_saturation_rel),
+            opt_cell(p.replica_growth_per_s),
             opt_cell(p.mle_per_s),
             opt_cell(p.mle_stderr_per_s),
             (p.floor_impacts + p.ceiling_impacts).to_string(),
+            ensemble
+                .and_then(|e| e.iter().find(|(f, _)| *f == p.f_hz))
+                .map_or(String::new(), |(_, words)| words.clone()),
         ]
     });
     info.ctx.write_table(name, &header, rows)?;
@@ -297,6 +379,8 @@ fn regime_frf(info: &Info, pts: &[Point]) -> Result<FigureRecord, StudyError> {
     let reg: Vec<Option<Regime>> = pts.iter().map(|p| p.regime).collect();
     let mle: Vec<Option<f64>> = pts.iter().map(|p| p.mle_per_s).collect();
     let se: Vec<Option<f64>> = pts.iter().map(|p| p.mle_stderr_per_s).collect();
+    let locked: Vec<bool> = pts.iter().map(|p| p.phase_locked).collect();
+    let growth: Vec<Option<f64>> = pts.iter().map(|p| p.replica_growth_per_s).collect();
     let period: Vec<Option<u32>> = pts
         .iter()
         .map(|p| p.period.filter(|x| *x >= 1.0).map(|x| x.round() as u32))
@@ -313,15 +397,30 @@ fn regime_frf(info: &Info, pts: &[Point]) -> Result<FigureRecord, StudyError> {
                 stderr_per_s: Some(&se),
             }),
             model: None,
+            phase_locked: Some(&locked),
+            replica: Some(Exponents {
+                per_s: &growth,
+                stderr_per_s: None,
+            }),
         },
     )?;
     Ok(info.record(
         name,
         format!(
             "DEM scene B (N = 250, Lz = 0.1225 m), {} per frequency: primary amplitude Z(f) \
-             coloured by the regime of the grains' centre of mass (exact section first, then \
-             the data Lyapunov exponent of z_cm with its error bar, 1/s).",
-            length_text(info.c, 1.0)
+             coloured by the regime of the grains' centre of mass — periodic-n only where the \
+             exact section is n tight groups (≤ 5 % of the orbit on every axis), chaotic where \
+             it is a cloud and two replicas started 1e-9 m apart separate to the cloud's size \
+             (orange: chaos phase-locked to the forcing, Λ_p ≥ 0.9). Lower panel: the data \
+             Lyapunov exponent of the section with its error bar and the replicas' growth rate \
+             (1/s). Every column, with the section scatter and the replica outcome, is in \
+             {name}.csv{}.",
+            length_text(info.c, 1.0),
+            if ensemble.is_some() {
+                "; `ensemble` gives the verdicts of three initial packings"
+            } else {
+                ""
+            }
         ),
         vec![Command::plot(
             "regime-frf",
@@ -438,6 +537,177 @@ fn impacts(info: &Info, pts: &[Point]) -> Result<FigureRecord, StudyError> {
     ))
 }
 
+/// The verdicts of every start at each frequency.
+struct Ensemble {
+    /// (f, seed, point) of every start, the scene's own seed first.
+    runs: Vec<(f64, u64, Point)>,
+    /// (f, "3 of 3 starts" / "split: chaotic in 2 of 3 starts, periodic-1 in 1").
+    words: Vec<(f64, String)>,
+    /// Seeds in order (the scene's first).
+    seeds: Vec<u64>,
+    /// The sweep of the further starts.
+    sweep: SweepResult,
+}
+
+/// "all 3 starts" or "split: chaotic in 2 of 3 starts, periodic-1 in 1" for the verdicts
+/// (regime and period) of the starts.
+fn ensemble_words(verdicts: &[String]) -> String {
+    let n = verdicts.len();
+    let mut counts: Vec<(String, usize)> = Vec::new();
+    for v in verdicts {
+        match counts.iter_mut().find(|(w, _)| w == v) {
+            Some(c) => c.1 += 1,
+            None => counts.push((v.clone(), 1)),
+        }
+    }
+    counts.sort_by(|a, b| b.1.cmp(&a.1));
+    if counts.len() == 1 {
+        return format!("{} in all {n} starts", counts[0].0);
+    }
+    let parts: Vec<String> = counts
+        .iter()
+        .enumerate()
+        .map(|(i, (w, c))| {
+            if i == 0 {
+                format!("{w} in {c} of {n} starts")
+            } else {
+                format!("{w} in {c}")
+            }
+        })
+        .collect();
+    format!("split: {}", parts.join(", "))
+}
+
+fn ensemble_check(base: &[Point], more: &SweepResult) -> Result<Ensemble, StudyError> {
+    let step = "ch4_ensemble";
+    let mut runs: Vec<(f64, u64, Point)> = base
+        .iter()
+        .map(|p| (p.f_hz, DEFAULT_SEED, p.clone()))
+        .collect();
+    for sp in more.points.iter() {
+        let seed = sp
+            .value(DAMPER_SEED)
+            .filter(|s| *s >= 0.0)
+            .map(|s| s as u64)
+            .ok_or_else(|| StudyError::step(step, format!("point {}: no damper.seed", sp.index)))?;
+        runs.push((
+            sp.summary.frequency_hz,
+            seed,
+            point(step, &more.points.dir, sp)?,
+        ));
+    }
+    runs.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    let mut seeds: Vec<u64> = runs.iter().map(|r| r.1).collect();
+    seeds.sort_unstable();
+    seeds.dedup();
+    let words = base
+        .iter()
+        .map(|p| {
+            let v: Vec<String> = runs
+                .iter()
+                .filter(|r| r.0 == p.f_hz)
+                .map(|r| r.2.verdict())
+                .collect();
+            (p.f_hz, ensemble_words(&v))
+        })
+        .collect();
+    Ok(Ensemble {
+        runs,
+        words,
+        seeds,
+        sweep: more.clone(),
+    })
+}
+
+fn ensemble_figure(info: &Info, e: &Ensemble) -> Result<FigureRecord, StudyError> {
+    let name = "ch4_ensemble";
+    let header = [
+        "frequency_hz",
+        "seed",
+        "amplitude_m",
+        "verdict",
+        "section_scatter",
+        "replica",
+        "replica_saturation_rel",
+        "ensemble",
+    ];
+    let rows = e.runs.iter().map(|(f, seed, p)| {
+        vec![
+            f.to_string(),
+            seed.to_string(),
+            p.amplitude_m.to_string(),
+            p.label.clone(),
+            opt_cell(p.section_scatter),
+            p.replica.unwrap_or_default().to_string(),
+            opt_cell(p.replica_saturation_rel),
+            e.words
+                .iter()
+                .find(|(g, _)| g == f)
+                .map_or(String::new(), |(_, w)| w.clone()),
+        ]
+    });
+    info.ctx.write_table(name, &header, rows)?;
+    let curves: Vec<(String, Vec<f64>, Vec<f64>)> = e
+        .seeds
+        .iter()
+        .map(|&seed| {
+            let (f, z) = e
+                .runs
+                .iter()
+                .filter(|r| r.1 == seed)
+                .map(|r| (r.0, r.2.amplitude_m))
+                .unzip();
+            (format!("packing seed {seed}"), f, z)
+        })
+        .collect();
+    let size = info.ctx.render(
+        name,
+        &LinesFigure {
+            series: curves
+                .iter()
+                .map(|(label, f, z)| Series { label, x: f, y: z })
+                .collect(),
+            x_label: "frequency f (Hz)".into(),
+            y_label: "primary amplitude Z (mm)".into(),
+            y_scale: 1e3,
+            title: "DEM frequency response from three initial packings".into(),
+            kind: "dem-ensemble",
+        },
+    )?;
+    let split: Vec<String> = e
+        .words
+        .iter()
+        .filter(|(_, w)| w.starts_with("split"))
+        .map(|(f, w)| format!("{f} Hz ({w})"))
+        .collect();
+    let mut rec = info.record(
+        name,
+        format!(
+            "Ensemble check: every frequency of the sweep from {} initial packings (damper.seed \
+             {}), {} each; the verdict (regime and period) is the same in every start at {} of \
+             {} frequencies{}. Verdicts per start in {name}.csv.",
+            e.seeds.len(),
+            e.seeds
+                .iter()
+                .map(|s| s.to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+            length_text(info.c, 1.0),
+            e.words.len() - split.len(),
+            e.words.len(),
+            if split.is_empty() {
+                String::new()
+            } else {
+                format!("; split at {}", split.join("; "))
+            }
+        ),
+        vec![],
+        size,
+    );
+    rec.commands.extend(e.sweep.commands.iter().cloned());
+    Ok(rec)
+}
+
 fn run_length(
     info: &Info,
     pts: &[Point],
@@ -541,11 +811,29 @@ struct PanelRun {
 }
 
 impl PanelRun {
+    /// The verdict with its qualifiers.
     fn verdict(&self) -> String {
         self.summary
             .analysis
             .as_ref()
             .map_or_else(|| "not analysed".to_string(), |a| a.verdict())
+    }
+
+    /// The two-replica test's outcome in a few words ("replicas: sensitive, 9.7 % of the
+    /// orbit").
+    fn replica_words(&self) -> String {
+        use crate::analysis::replica_test::ReplicaOutcome as O;
+        match self.summary.replica.as_ref().map(|r| &r.outcome) {
+            Some(O::Sensitive {
+                saturation_rel_orbit,
+            }) => format!(
+                "replicas: sensitive, separating to {:.1} % of the orbit",
+                100.0 * saturation_rel_orbit
+            ),
+            Some(O::Insensitive) => "replicas: insensitive".into(),
+            Some(O::Inconclusive { .. }) => "replicas: inconclusive".into(),
+            None => "no replica test".into(),
+        }
     }
 }
 
@@ -650,8 +938,9 @@ fn panel(info: &Info, r: &PanelRun) -> Result<FigureRecord, StudyError> {
     };
     let impacts = r.summary.impacts_per_cycle;
     let title = format!(
-        "DEM scene B at {f} Hz: {}, {impacts:.2} bed impacts per cycle",
-        r.verdict()
+        "DEM scene B at {f} Hz: {}; {}; {impacts:.2} bed impacts per cycle",
+        r.verdict(),
+        r.replica_words()
     );
     let opts = crate::plot::FigureOptions {
         width: info.ctx.figure.width,
@@ -667,10 +956,11 @@ fn panel(info: &Info, r: &PanelRun) -> Result<FigureRecord, StudyError> {
              (floor, ceiling, band from the lowest to the highest grain, z_cm), the exact \
              stroboscopic section (z_cm, ż_cm) at t = kT over the analysis window \
              ({} points; {name}_section.csv) and the spectrum of z_cm up to 4 f. Verdict: {}; \
-             {impacts:.2} collective impacts per cycle.",
+             {}; {impacts:.2} collective impacts per cycle.",
             length_text(info.c, 1.0),
             sz.len(),
-            r.verdict()
+            r.verdict(),
+            r.replica_words()
         ),
         vec![],
         (opts.width, opts.height),

@@ -38,12 +38,15 @@ struct RegimeColumns {
     mle_se: Vec<Option<f64>>,
     model: Vec<Option<f64>>,
     model_se: Vec<Option<f64>>,
+    /// The verdict with its qualifiers, and whether it is phase-locked (a qualifier).
+    verdict: Vec<String>,
+    phase_locked: Vec<bool>,
 }
 
 /// Frequency, a second column, regime, period and the data and model exponents (with standard
 /// errors) of a sweep, also written to `NAME.csv` (`frequency_hz,<y_header>,regime,period,
-/// mle_per_s,mle_stderr_per_s,model_mle_per_s,model_mle_stderr_per_s`; empty cells: not
-/// estimated) next to the figure.
+/// mle_per_s,mle_stderr_per_s,model_mle_per_s,model_mle_stderr_per_s,verdict,phase_locked`;
+/// empty cells: not estimated) next to the figure.
 fn regime_columns(
     ctx: &Ctx,
     name: &str,
@@ -81,6 +84,20 @@ fn regime_columns(
         mle_se: opt(|a| a.data_mle_stderr_per_s),
         model: opt(|a| a.model_mle_per_s),
         model_se: opt(|a| a.model_mle_stderr_per_s),
+        verdict: pts
+            .iter()
+            .map(|p| {
+                p.summary
+                    .analysis
+                    .as_ref()
+                    .map(|a| a.verdict())
+                    .unwrap_or_default()
+            })
+            .collect(),
+        phase_locked: pts
+            .iter()
+            .map(|p| p.summary.analysis.as_ref().is_some_and(|a| a.phase_locked))
+            .collect(),
         f,
         y,
     };
@@ -94,6 +111,8 @@ fn regime_columns(
         "mle_stderr_per_s",
         "model_mle_per_s",
         "model_mle_stderr_per_s",
+        "verdict",
+        "phase_locked",
     ];
     let rows = (0..c.f.len()).map(|i| {
         vec![
@@ -105,6 +124,8 @@ fn regime_columns(
             cell(c.mle_se[i]),
             cell(c.model[i]),
             cell(c.model_se[i]),
+            c.verdict[i].clone(),
+            c.phase_locked[i].to_string(),
         ]
     });
     ctx.write_table(name, &header, rows)?;
@@ -134,6 +155,8 @@ pub(super) fn regime_frf(
                 per_s: &c.model,
                 stderr_per_s: Some(&c.model_se),
             }),
+            phase_locked: Some(&c.phase_locked),
+            replica: None,
         },
     )?;
     Ok(FigureRecord {

@@ -113,6 +113,20 @@ pub struct Chapter4Settings {
     /// Frequencies (Hz, a subset of `frequencies_hz`) repeated with runs twice as long to
     /// compare verdicts and amplitudes; empty skips the check.
     pub doubling_freqs_hz: Vec<f64>,
+    /// Packing seeds (`damper.seed`) of further initial states at every frequency, beside the
+    /// scene's own (seed 1): the ensemble check of each verdict; empty skips it.
+    pub ensemble_seeds: Vec<u64>,
+}
+
+impl Chapter4Settings {
+    /// With the checks of the verdicts (`pdamp reproduce --ch4-checks`): every frequency from
+    /// two more initial packings (seeds 2 and 3), and the panel frequencies again with runs
+    /// twice as long.
+    pub fn with_checks(mut self) -> Chapter4Settings {
+        self.doubling_freqs_hz = self.panel_freqs_hz.clone();
+        self.ensemble_seeds = vec![2, 3];
+        self
+    }
 }
 
 /// The source's per-frequency panels of chapter 4 (Hz).
@@ -202,6 +216,7 @@ impl Settings {
                         duration_s: Some(196.83),
                         panel_freqs_hz: CH4_PANEL_HZ.to_vec(),
                         doubling_freqs_hz: Vec::new(),
+                        ensemble_seeds: Vec::new(),
                     }),
                 }),
             },
@@ -232,16 +247,17 @@ impl Settings {
                     gamma_n: vec![0.0, 500.0, 3660.0, 10000.0],
                     bed_duration_s: 1.0,
                     chapter4: Some({
-                        // 5–26 Hz step 1 and the panel frequencies between; every point is
-                        // repeated with its run doubled (the run-length check of every verdict
-                        // and every amplitude of the DEM FRF)
+                        // 5–26 Hz step 1 and the panel frequencies between; `--ch4-checks`
+                        // repeats every point with its run doubled and from two more initial
+                        // packings (the run-length and ensemble checks of every verdict)
                         let frequencies_hz = vec![
                             5.0, 5.5, 6.0, 7.0, 7.5, 8.0, 9.0, 10.0, 10.5, 11.0, 12.0, 13.0, 14.0,
                             14.5, 15.0, 16.0, 17.0, 18.0, 19.0, 20.0, 21.0, 22.0, 23.0, 24.0, 25.0,
                             26.0,
                         ];
                         Chapter4Settings {
-                            doubling_freqs_hz: frequencies_hz.clone(),
+                            doubling_freqs_hz: Vec::new(),
+                            ensemble_seeds: Vec::new(),
                             frequencies_hz,
                             periods: 200.0,
                             duration_s: None,

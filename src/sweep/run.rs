@@ -84,6 +84,16 @@ pub fn run_resolved(
             let model = model_exponent_of(estimate.map_err(crate::setup::keyed), &mut s);
             (s, model)
         }
+        // a DEM run analysed for a verdict runs the two-replica test unless turned off
+        Setup::Dem(dem) => {
+            let verdict = Resolved {
+                setup: Setup::Dem(dem.with_verdict()),
+                ..resolved.clone()
+            };
+            let mut s = crate::setup::simulate(&verdict, &mut tee, &run_opts)?;
+            let model = model_exponent(resolved, &mut s);
+            (s, model)
+        }
         _ => {
             let mut s = crate::setup::simulate(resolved, &mut tee, &run_opts)?;
             let model = model_exponent(resolved, &mut s);
@@ -122,6 +132,7 @@ fn analyze_into(
         scales: &scales,
         model_exponent,
         in_box_series: &in_box,
+        replica: summary.replica.as_ref(),
     };
     match analyze_forced(&run, &AnalyzeOptions::default()) {
         Ok(report) => summary.analysis = Some(with_scene_keys(report)),

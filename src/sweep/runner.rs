@@ -401,6 +401,12 @@ fn check_manifest(spec: &SweepSpec, c: Option<&Continuation>, out: &Path) -> Res
     manifest.write(out)
 }
 
+/// The section's scatter quoted beside a verdict: W_n of its tight grouping, else its size
+/// (RMS distance from the centroid), relative to the orbit.
+fn section_scatter(sec: &crate::analysis::section::SectionAnalysis) -> f64 {
+    sec.tight.as_ref().map_or(sec.size, |g| g.scatter)
+}
+
 pub(super) fn run_point(
     scene: &Scene,
     values: &[(String, toml::Value)],
@@ -442,9 +448,36 @@ pub(super) fn run_point(
     // the analysis's typed fields (RunAnalysis); no analysis: empty cells
     let a = s.analysis.as_ref();
     let num = |x: Option<f64>| fmt_opt(x);
+    let r = s.replica.as_ref();
     for (col, v) in [
         ("regime", a.map(|a| a.regime.as_str().to_string())),
         ("period", a.map(|a| num(a.period))),
+        ("verdict", a.map(|a| a.verdict())),
+        ("phase_locked", a.map(|a| a.phase_locked.to_string())),
+        (
+            "locked_fraction",
+            a.map(|a| num(a.phase_lock.map(|l| l.locked_fraction))),
+        ),
+        (
+            "section_scatter",
+            a.map(|a| num(a.section.as_ref().map(section_scatter))),
+        ),
+        (
+            "chaos_dimension",
+            a.map(|a| {
+                a.chaos_dimension
+                    .map_or(String::new(), |d| d.as_str().to_string())
+            }),
+        ),
+        ("replica", r.map(|r| r.outcome.as_str().to_string())),
+        (
+            "replica_saturation_rel",
+            r.map(|r| num(Some(r.saturation_rel))),
+        ),
+        (
+            "replica_growth_per_s",
+            r.map(|r| num(r.growth_rate_per_s().map(|g| g.0))),
+        ),
         ("mle_per_s", a.map(|a| num(a.data_mle_per_s))),
         ("mle_stderr_per_s", a.map(|a| num(a.data_mle_stderr_per_s))),
         ("model_mle_per_s", a.map(|a| num(a.model_mle_per_s))),

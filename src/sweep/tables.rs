@@ -23,11 +23,19 @@ pub(super) const HEAD: [&str; 6] = [
     "energy_viscous_j_per_cycle",
     "energy_impact_j_per_cycle",
 ];
-pub(super) const TAIL: [&str; 9] = [
+pub(super) const TAIL: [&str; 17] = [
     "impacts_per_cycle",
     "energy_balance_relative_error",
     "regime",
     "period",
+    "verdict",
+    "phase_locked",
+    "locked_fraction",
+    "section_scatter",
+    "chaos_dimension",
+    "replica",
+    "replica_saturation_rel",
+    "replica_growth_per_s",
     "mle_per_s",
     "mle_stderr_per_s",
     "model_mle_per_s",

@@ -6,8 +6,11 @@
 //! - [`lorenz`]: Lorenz flow (10, 28, 8/3), λ₁ = 0.90563 per time unit.
 //! - [`roessler`]: Rössler flow (0.2, 0.2, 5.7), λ₁ = 0.0714 per time unit.
 //! - [`bouncing_ball`]: ball on a vibrating table, period-1 thresholds in Γ.
+//! - [`forced_ring`]: a driven damped oscillator kicked by a ring of chaotic maps (regime
+//!   verdicts of a collective motion stirred by a high-dimensional chaotic subsystem).
 
 pub mod bouncing_ball;
+pub mod forced_ring;
 pub mod henon;
 pub mod logistic;
 pub mod lorenz;

@@ -22,7 +22,7 @@ pub fn relative_error(x: f64, reference: f64) -> Option<f64> {
 /// Regime verdict and maximal Lyapunov exponent of a steady grain series.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Dynamics {
-    /// Regime name (`periodic`, `quasi-periodic`, `chaotic`, `stochastic`, `undetermined`),
+    /// Regime name (`periodic`, `quasi-periodic`, `chaotic`, `irregular`, `undetermined`),
     /// or `n/a` when the analysis could not run.
     pub regime: String,
     /// Period in forcing periods when periodic.

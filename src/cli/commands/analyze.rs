@@ -14,7 +14,7 @@ const LONG_HELP: &str =
 nearest neighbours (dimension m), Kantz's exponent with an automatically found scaling
 region, the stroboscopic section (with --forcing-hz) and the Gottwald–Melbourne 0–1 test,
 then classifies the regime: periodic (with its period), quasi-periodic, chaotic,
-stochastic or undetermined. Feed it the steady state (drop transients with -x or by
+irregular (noise-like) or undetermined. Feed it the steady state (drop transients with -x or by
 trimming the file).
 
 With --json: one JSON object with `lag`, `embedding_dim`, `mle_per_sample`, `mle_per_time`
@@ -30,7 +30,7 @@ Without --json: a readable report.";
 /// nearest neighbours (dimension m), Kantz's exponent with an automatically found scaling
 /// region, the stroboscopic section (with --forcing-hz) and the Gottwald–Melbourne 0–1 test,
 /// then classifies the regime: periodic (with its period), quasi-periodic, chaotic,
-/// stochastic or undetermined. Feed it the steady state (drop transients with -x or by
+/// irregular (noise-like) or undetermined. Feed it the steady state (drop transients with -x or by
 /// trimming the file).
 ///
 /// With --json: one JSON object with `lag`, `embedding_dim`, `mle_per_sample`, `mle_per_time`

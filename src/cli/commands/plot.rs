@@ -456,6 +456,20 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             let period = period_column(&col("period")?);
             let (m, ms) = (col("mle_per_s")?, col("mle_stderr_per_s")?);
             let (mm, mms) = (col("model_mle_per_s")?, col("model_mle_stderr_per_s")?);
+            let growth = col("replica_growth_per_s")?;
+            let no_stderr = None;
+            // `phase_locked` (sweeps since issue 39): true / false / empty
+            let locked: Option<Vec<bool>> = if first.has("phase_locked") {
+                Some(
+                    first
+                        .str_column("phase_locked")?
+                        .iter()
+                        .map(|c| c.trim() == "true")
+                        .collect(),
+                )
+            } else {
+                None
+            };
             let fig = RegimeFrfFigure {
                 frequency_hz: &f,
                 amplitude_m: &z,
@@ -463,6 +477,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 period: period.as_deref(),
                 data: exponents(&m, &ms),
                 model: exponents(&mm, &mms),
+                phase_locked: locked.as_deref(),
+                replica: exponents(&growth, &no_stderr),
             };
             draw(&fig, out, &opts)
         }

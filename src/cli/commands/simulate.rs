@@ -128,19 +128,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .unwrap_or_else(|| "n/a (kinematic box)".into()),
     );
     if let Some(r) = &summary.replica {
-        let verdict = match &r.verdict {
-            pdamp::dem::ReplicaVerdict::StaysInNoiseBand => "stays in the noise band".into(),
-            pdamp::dem::ReplicaVerdict::SeparatesToAttractor {
-                growth_per_s,
-                stderr_per_s,
-            } => format!(
-                "separates to the attractor's size, growth {growth_per_s:.3} ± {stderr_per_s:.3} 1/s"
-            ),
-            pdamp::dem::ReplicaVerdict::Inconclusive { why } => format!("inconclusive: {why}"),
-        };
         println!(
-            "replica (δ0 = {:e} m, {} strobes): {verdict}; saturated separation {:.3e} m, noise band {:.3e} m, attractor size {:.3e} m",
-            r.delta0_m, r.strobes, r.saturation_m, r.noise_band_m, r.attractor_size_m
+            "replica (δ0 = {:e} m, {} strobes): {}",
+            r.delta0_m,
+            r.strobes,
+            r.describe()
         );
     }
     println!("wrote {}", args.out.display());

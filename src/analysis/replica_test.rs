@@ -1,0 +1,540 @@
+//! The two-replica sensitivity test of a simulated forced system: does a tiny perturbation of
+//! the state grow until the two copies are as far apart as two independent states of the
+//! stroboscopic section, and how large is that sensitive part against the orbit?
+//!
+//! The simulator runs two copies in lockstep: replica A (the run itself) and replica B, a copy
+//! of A perturbed by δ0 when the analysis window starts. At every forcing period t_k = kT both
+//! section states are recorded: s = (z_cm, ż_cm, z_box, ż_box) for a granular bed, (x, ẋ) for a
+//! one-degree-of-freedom oscillator. This module turns those strobes into the outcome; it knows
+//! no simulator.
+//!
+//! # Formula
+//! Every axis d is divided by the orbit's extent E_d (the range of that coordinate along A's
+//! continuous trajectory over the window), so that all figures below are fractions of the
+//! orbit, comparable between position and velocity:
+//! - separation of the replicas d_k = max_d |s_A,k,d − s_B,k,d| / E_d (the worst axis);
+//! - independent separation D: what d_k reaches once the replicas are independent states of
+//!   the section *at the same phase of the forcing cycle*. With D_q = median over pairs
+//!   i < j, i ≡ j (mod q), of A's strobes in the last third of max_d |s_A,i,d − s_A,j,d| / E_d,
+//!   D = min over q ≤ 8 (each residue class holding ≥ 4 strobes) of D_q. For a cloud every
+//!   D_q is the cloud's spread; for a period-n orbit with scatter D_n is the groups' own
+//!   spread — two replicas locked to the same cycle sit in the same group, so they can only
+//!   become independent *within* it (comparing with the spread across groups would call a
+//!   fully decorrelated period-3 bed "not yet separated");
+//! - saturation d_sat = median of d_k over the last third; trend d_sat / median of the middle
+//!   third (well above 1: still growing);
+//! - macroscopic offset M = max_d |mean_A − mean_B| / E_d over the last third, in units of D:
+//!   two copies of one attractor have the same mean up to D √(6/n); an offset of D or more
+//!   means the beds ended in different states (one compacted, coexisting attractors);
+//! - growth rate λ: least squares of ln d_k on t_k from the first strobe with d_k ≥ 10 δ0/E_z
+//!   up to (excluding) the first one reaching 0.3 d_sat, with its standard error; and the
+//!   two-point initial rate ln(d_1 E_z / δ0) / (t_1 − t_p).
+//!
+//! # Outcome
+//! - **sensitive**: D/2 ≤ d_sat ≤ 2 D: the perturbation grew to the separation of independent
+//!   states; the size of that sensitive part against the orbit is d_sat (and D);
+//! - **insensitive**: d_sat ≤ max(10⁻² D, 10⁻⁶): the separation stays orders of magnitude
+//!   below the section's spread (or the orbit's size when the section is a point);
+//! - **inconclusive**: fewer than [`MIN_STROBES`] strobes, different macroscopic states
+//!   (M ≥ 1 or d_sat > 2 D: never called chaos), or a separation still between the two scales.
+//!
+//! # Units
+//! δ0 in m (on z), times in s, rates in 1/s; separations and D relative to the orbit (–).
+//!
+//! # Pitfalls
+//! The test says whether the motion is sensitive, not whether it is chaotic: a granular bed is
+//! always sensitive at the grain scale (collisions of spheres diverge at tens to hundreds per
+//! second); what separates a periodic bed from a chaotic one is whether d_sat is small against
+//! the orbit. The regime classifier ([`crate::analysis::regime::classify_forced`]) combines
+//! the two.
+
+use serde::{Deserialize, Serialize};
+
+/// Fewest strobes after the perturbation for an outcome.
+pub const MIN_STROBES: usize = 30;
+/// d_sat ≥ this × D: the replicas separated to the separation of independent states.
+pub const SEPARATED_FACTOR: f64 = 0.5;
+/// d_sat > this × D: the replicas ended in different states.
+pub const DIFFERENT_STATES_FACTOR: f64 = 2.0;
+/// d_sat ≤ this × D (or ≤ [`INSENSITIVE_FLOOR`]): the separation stays orders of magnitude
+/// below the section's spread.
+pub const INSENSITIVE_FACTOR: f64 = 1e-2;
+/// d_sat ≤ this fraction of the orbit is insensitive whatever D (a section that is one point).
+pub const INSENSITIVE_FLOOR: f64 = 1e-6;
+/// Number of section axes recorded (z_cm, ż_cm, z_box, ż_box; unused axes are 0).
+pub const AXES: usize = 4;
+
+/// One strobe of the two replicas (a row of `replica.csv`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ReplicaRow {
+    /// Forcing period index k (t = k T).
+    pub cycle: u64,
+    /// Time t_k = k T (s).
+    pub time_s: f64,
+    /// Replica A's section state at t_k (SI units per axis).
+    pub a: [f64; AXES],
+    /// Replica B's section state at t_k.
+    pub b: [f64; AXES],
+}
+
+/// Least-squares fit of ln d_k against t_k over the growth phase.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct GrowthFit {
+    /// Growth rate λ (1/s).
+    pub per_s: f64,
+    /// Standard error of λ (1/s).
+    pub stderr_per_s: f64,
+    /// λ T: growth per forcing period (–).
+    pub per_period: f64,
+    /// Strobes in the fit.
+    pub points: usize,
+    /// First fitted time (s).
+    pub from_s: f64,
+    /// Last fitted time (s).
+    pub to_s: f64,
+}
+
+/// What the separation did.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum ReplicaOutcome {
+    /// The separation grew to that of independent states of the section.
+    Sensitive {
+        /// d_sat: the sensitive part's size as a fraction of the orbit (worst axis).
+        saturation_rel_orbit: f64,
+    },
+    /// The separation stays orders of magnitude below the section's spread.
+    Insensitive,
+    /// Neither, and why.
+    Inconclusive {
+        /// What is missing or in between.
+        why: String,
+    },
+}
+
+impl ReplicaOutcome {
+    /// `sensitive`, `insensitive` or `inconclusive` (the `replica` column of `sweep.csv`).
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            ReplicaOutcome::Sensitive { .. } => "sensitive",
+            ReplicaOutcome::Insensitive => "insensitive",
+            ReplicaOutcome::Inconclusive { .. } => "inconclusive",
+        }
+    }
+}
+
+/// The two-replica report (`summary.json` block `replica`; the rows go to `replica.csv`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ReplicaReport {
+    /// Perturbation δ0 (m, on the first axis).
+    pub delta0_m: f64,
+    /// Time at which B was perturbed (s).
+    pub perturbed_at_s: f64,
+    /// Strobes after the perturbation.
+    pub strobes: usize,
+    /// Orbit extents E_d of A over the window (SI units per axis; 0: the axis is unused).
+    pub orbit_extent: [f64; AXES],
+    /// d_1: separation at the first strobe, relative to the orbit.
+    pub first_separation_rel: f64,
+    /// ln(d_1 E_z / δ0) / (t_1 − t_p): growth over the first strobe interval (1/s).
+    pub initial_growth_per_s: Option<f64>,
+    /// Largest d_k (relative to the orbit).
+    pub max_separation_rel: f64,
+    /// D: median separation of two independent states of A's section at the same phase of the
+    /// cycle (relative).
+    pub independent_separation_rel: f64,
+    /// d_sat: median d_k over the last third (relative).
+    pub saturation_rel: f64,
+    /// d_sat / median d_k over the middle third.
+    pub saturation_trend: f64,
+    /// d_sat / D.
+    pub saturation_over_independent: f64,
+    /// M: largest offset of the replicas' mean section states over the last third, / D.
+    pub mean_offset_over_independent: f64,
+    /// Growth of ln d_k over the growth phase (none: fewer than 3 strobes in it).
+    pub growth: Option<GrowthFit>,
+    /// The outcome.
+    pub outcome: ReplicaOutcome,
+    /// Per-strobe rows (`replica.csv`).
+    #[serde(skip)]
+    pub rows: Vec<ReplicaRow>,
+}
+
+impl ReplicaReport {
+    /// The separation d_k of a row relative to the orbit (worst axis).
+    pub fn separation(&self, row: &ReplicaRow) -> f64 {
+        separation(&row.a, &row.b, &self.orbit_extent)
+    }
+
+    /// The growth rate the verdict quotes: the fit when there is one, else the initial rate
+    /// (1/s); with its standard error when fitted.
+    pub fn growth_rate_per_s(&self) -> Option<(f64, Option<f64>)> {
+        match self.growth {
+            Some(g) => Some((g.per_s, Some(g.stderr_per_s))),
+            None => self.initial_growth_per_s.map(|r| (r, None)),
+        }
+    }
+
+    /// One line for humans: the outcome with its sizes and rate.
+    pub fn describe(&self) -> String {
+        let rate = match self.growth_rate_per_s() {
+            Some((r, Some(se))) => format!(", growth {r:.3} ± {se:.3} 1/s"),
+            Some((r, None)) => format!(", initial growth {r:.3} 1/s"),
+            None => String::new(),
+        };
+        match &self.outcome {
+            ReplicaOutcome::Sensitive {
+                saturation_rel_orbit,
+            } => format!(
+                "sensitive: the replicas separate to {:.2} % of the orbit, as two independent section states ({:.2} %){rate}",
+                100.0 * saturation_rel_orbit,
+                100.0 * self.independent_separation_rel
+            ),
+            ReplicaOutcome::Insensitive => format!(
+                "insensitive: the separation stays at {:.1e} of the orbit, orders of magnitude below the section's spread ({:.1e})",
+                self.saturation_rel, self.independent_separation_rel
+            ),
+            ReplicaOutcome::Inconclusive { why } => format!("inconclusive: {why}"),
+        }
+    }
+}
+
+/// max_d |a_d − b_d| / E_d over the axes with E_d > 0.
+fn separation(a: &[f64; AXES], b: &[f64; AXES], extent: &[f64; AXES]) -> f64 {
+    (0..AXES)
+        .filter(|&d| extent[d] > 0.0)
+        .map(|d| (a[d] - b[d]).abs() / extent[d])
+        .fold(0.0, f64::max)
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    if v.is_empty() {
+        return f64::NAN;
+    }
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+/// Largest residue period q tried for the same-phase separation D.
+const MAX_PHASES: usize = 8;
+
+/// D: the smallest over q of the median separation of pairs of states at the same residue
+/// k mod q (module docs).
+fn independent_separation(states: &[[f64; AXES]], extent: &[f64; AXES]) -> f64 {
+    let n = states.len();
+    (1..=MAX_PHASES.min(n / 4).max(1))
+        .map(|q| {
+            let mut d = Vec::with_capacity(n * n / (2 * q));
+            for (i, a) in states.iter().enumerate() {
+                d.extend(
+                    states[i + 1..]
+                        .iter()
+                        .enumerate()
+                        .filter(|(j, _)| (j + 1) % q == 0)
+                        .map(|(_, b)| separation(a, b, extent)),
+                );
+            }
+            median(&mut d)
+        })
+        .fold(f64::NAN, f64::min)
+}
+
+/// Largest per-axis offset of the two sets' means, relative to the orbit.
+fn mean_offset(a: &[[f64; AXES]], b: &[[f64; AXES]], extent: &[f64; AXES]) -> f64 {
+    let n = a.len().max(1) as f64;
+    (0..AXES)
+        .filter(|&d| extent[d] > 0.0)
+        .map(|d| {
+            let ma = a.iter().map(|s| s[d]).sum::<f64>() / n;
+            let mb = b.iter().map(|s| s[d]).sum::<f64>() / n;
+            (ma - mb).abs() / extent[d]
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Slope of ln d against t from the first d ≥ `lower` up to (excluding) the first d ≥ `upper`.
+fn growth_fit(t: &[f64], d: &[f64], lower: f64, upper: f64, period_s: f64) -> Option<GrowthFit> {
+    if !(upper >= std::f64::consts::E * lower) {
+        return None; // less than one e-fold between the bounds
+    }
+    let k0 = d.iter().position(|&x| x >= lower)?;
+    let k1 = d[k0..]
+        .iter()
+        .position(|&x| x >= upper)
+        .map_or(d.len(), |i| k0 + i);
+    let pts: Vec<(f64, f64)> = (k0..k1)
+        .filter(|&k| d[k] > 0.0)
+        .map(|k| (t[k], d[k].ln()))
+        .collect();
+    let n = pts.len();
+    if n < 3 {
+        return None;
+    }
+    let nf = n as f64;
+    let tm = pts.iter().map(|p| p.0).sum::<f64>() / nf;
+    let ym = pts.iter().map(|p| p.1).sum::<f64>() / nf;
+    let sxx: f64 = pts.iter().map(|p| (p.0 - tm).powi(2)).sum();
+    let sxy: f64 = pts.iter().map(|p| (p.0 - tm) * (p.1 - ym)).sum();
+    let slope = sxy / sxx;
+    let ssr: f64 = pts
+        .iter()
+        .map(|p| (p.1 - ym - slope * (p.0 - tm)).powi(2))
+        .sum();
+    Some(GrowthFit {
+        per_s: slope,
+        stderr_per_s: (ssr / (nf - 2.0) / sxx).sqrt(),
+        per_period: slope * period_s,
+        points: n,
+        from_s: pts[0].0,
+        to_s: pts[n - 1].0,
+    })
+}
+
+/// The report of two replicas' strobes (`rows` in time order) after a perturbation of
+/// `delta0_m` (m, on axis 0) at `perturbed_at_s` (s), forcing `frequency_hz` (Hz), with the
+/// orbit extents `orbit_extent` of replica A over the window (see the module docs).
+pub fn report(
+    delta0_m: f64,
+    perturbed_at_s: f64,
+    frequency_hz: f64,
+    orbit_extent: [f64; AXES],
+    rows: Vec<ReplicaRow>,
+) -> ReplicaReport {
+    let n = rows.len();
+    let d: Vec<f64> = rows
+        .iter()
+        .map(|r| separation(&r.a, &r.b, &orbit_extent))
+        .collect();
+    let t: Vec<f64> = rows.iter().map(|r| r.time_s).collect();
+    let third = n / 3;
+    let tail_a: Vec<[f64; AXES]> = rows[n - third..].iter().map(|r| r.a).collect();
+    let tail_b: Vec<[f64; AXES]> = rows[n - third..].iter().map(|r| r.b).collect();
+    let indep = independent_separation(&tail_a, &orbit_extent);
+    let sat = median(&mut d[n - third..].to_vec());
+    let trend = sat / median(&mut d[third..n - third].to_vec());
+    let offset = mean_offset(&tail_a, &tail_b, &orbit_extent) / indep;
+    let delta_rel = if orbit_extent[0] > 0.0 {
+        delta0_m / orbit_extent[0]
+    } else {
+        f64::NAN
+    };
+    let growth = growth_fit(&t, &d, 10.0 * delta_rel, 0.3 * sat, 1.0 / frequency_hz);
+    let initial_growth_per_s = rows
+        .first()
+        .filter(|r| delta0_m > 0.0 && d[0] > 0.0 && r.time_s > perturbed_at_s)
+        .map(|r| (d[0] / delta_rel).ln() / (r.time_s - perturbed_at_s));
+    let outcome = outcome(n, sat, indep, offset);
+    ReplicaReport {
+        delta0_m,
+        perturbed_at_s,
+        strobes: n,
+        orbit_extent,
+        first_separation_rel: d.first().copied().unwrap_or(f64::NAN),
+        initial_growth_per_s,
+        max_separation_rel: d.iter().copied().fold(f64::NAN, f64::max),
+        independent_separation_rel: indep,
+        saturation_rel: sat,
+        saturation_trend: trend,
+        saturation_over_independent: sat / indep,
+        mean_offset_over_independent: offset,
+        growth,
+        outcome,
+        rows,
+    }
+}
+
+/// The outcome rules of the module docs.
+fn outcome(n: usize, sat: f64, indep: f64, offset: f64) -> ReplicaOutcome {
+    let inconclusive = |why: String| ReplicaOutcome::Inconclusive { why };
+    if n < MIN_STROBES {
+        return inconclusive(format!(
+            "{n} strobes after the perturbation; the test needs ≥ {MIN_STROBES}"
+        ));
+    }
+    if !(sat.is_finite() && indep.is_finite()) {
+        return inconclusive("a separation is not finite".into());
+    }
+    if sat <= (INSENSITIVE_FACTOR * indep).max(INSENSITIVE_FLOOR) {
+        return ReplicaOutcome::Insensitive;
+    }
+    if offset >= 1.0 || sat > DIFFERENT_STATES_FACTOR * indep {
+        return inconclusive(format!(
+            "the replicas ended in different macroscopic states: their mean section states \
+             differ by {offset:.2} × the spread of one replica's section (D = {:.2} % of the \
+             orbit; saturated separation {:.2} %) — one bed rearranged (e.g. compacted) or two \
+             states coexist; not chaos",
+            100.0 * indep,
+            100.0 * sat
+        ));
+    }
+    if sat >= SEPARATED_FACTOR * indep {
+        return ReplicaOutcome::Sensitive {
+            saturation_rel_orbit: sat,
+        };
+    }
+    inconclusive(format!(
+        "the separation saturates at {:.2e} of the orbit, between {INSENSITIVE_FACTOR} and \
+         {SEPARATED_FACTOR} × the separation of independent states ({:.2e}): run longer",
+        sat, indep
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{RngExt, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    fn gauss(rng: &mut ChaCha8Rng) -> f64 {
+        let u: f64 = rng.random::<f64>().max(1e-300);
+        let v: f64 = rng.random();
+        (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
+    }
+
+    fn rows_of(za: &[f64], zb: &[f64], f: f64) -> Vec<ReplicaRow> {
+        za.iter()
+            .zip(zb)
+            .enumerate()
+            .map(|(k, (&a, &b))| ReplicaRow {
+                cycle: k as u64 + 1,
+                time_s: (k + 1) as f64 / f,
+                a: [a, 0.0, 0.0, 0.0],
+                b: [b, 0.0, 0.0, 0.0],
+            })
+            .collect()
+    }
+
+    const EXTENT: [f64; AXES] = [1e-2, 0.0, 0.0, 0.0];
+
+    #[test]
+    fn small_noise_about_a_fixed_point_is_sensitive_but_small() {
+        // two independent noise draws of sd 1 % of the orbit about one point once the
+        // separation, growing e-fold per period from 1e-9 m, reaches them
+        let (f, sigma) = (14.5, 1e-4);
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        let za: Vec<f64> = (0..300).map(|_| 0.05 + sigma * gauss(&mut rng)).collect();
+        let zb: Vec<f64> = za
+            .iter()
+            .enumerate()
+            .map(|(k, &a)| {
+                let d = 1e-9 * (k as f64).exp();
+                if d < sigma {
+                    a + d
+                } else {
+                    0.05 + sigma * gauss(&mut rng)
+                }
+            })
+            .collect();
+        let r = report(1e-9, 0.0, f, EXTENT, rows_of(&za, &zb, f));
+        let ReplicaOutcome::Sensitive {
+            saturation_rel_orbit,
+        } = r.outcome
+        else {
+            panic!("{r:?}");
+        };
+        // two draws of sd σ differ by a median 0.954 σ; σ = 1 % of the extent
+        assert!(
+            (0.007..0.013).contains(&saturation_rel_orbit),
+            "{saturation_rel_orbit}"
+        );
+        let g = r.growth.expect("growth phase");
+        assert!((g.per_period - 1.0).abs() < 0.1, "{g:?}");
+    }
+
+    #[test]
+    fn chaotic_map_separates_with_its_exponent() {
+        // logistic map r = 4: λ = ln 2 per iteration; B starts 1e-9 (relative) away
+        let f = 10.0;
+        let (mut a, mut b) = (0.3f64, 0.3 + 1e-9);
+        let (mut za, mut zb) = (Vec::new(), Vec::new());
+        for _ in 0..300 {
+            a = 4.0 * a * (1.0 - a);
+            b = 4.0 * b * (1.0 - b);
+            za.push(1e-2 * a);
+            zb.push(1e-2 * b);
+        }
+        let r = report(1e-11, 0.0, f, EXTENT, rows_of(&za, &zb, f));
+        let ReplicaOutcome::Sensitive {
+            saturation_rel_orbit,
+        } = r.outcome
+        else {
+            panic!("{r:?}");
+        };
+        assert!(saturation_rel_orbit > 0.2, "{r:?}");
+        let g = r.growth.expect("growth");
+        assert!((g.per_period - 2f64.ln()).abs() < 0.1, "{g:?}");
+    }
+
+    #[test]
+    fn a_stable_orbit_is_insensitive() {
+        // the perturbation decays by e per period about a period-2 orbit
+        let f = 10.0;
+        let za: Vec<f64> = (0..200).map(|k| [0.01, 0.02][k % 2]).collect();
+        let zb: Vec<f64> = za
+            .iter()
+            .enumerate()
+            .map(|(k, &a)| a + 1e-9 * (-(k as f64)).exp())
+            .collect();
+        let r = report(1e-9, 0.0, f, EXTENT, rows_of(&za, &zb, f));
+        assert_eq!(r.outcome, ReplicaOutcome::Insensitive, "{r:?}");
+    }
+
+    #[test]
+    fn a_step_in_one_replica_is_not_chaos() {
+        // A compacts by 20 σ at two thirds of the window, B does not
+        let (f, sigma) = (7.5, 2e-5);
+        let mut rng = ChaCha8Rng::seed_from_u64(4);
+        let za: Vec<f64> = (0..120)
+            .map(|k| 0.026 - if k > 70 { 20.0 * sigma } else { 0.0 } + sigma * gauss(&mut rng))
+            .collect();
+        let zb: Vec<f64> = (0..120).map(|_| 0.026 + sigma * gauss(&mut rng)).collect();
+        let r = report(1e-9, 0.0, f, EXTENT, rows_of(&za, &zb, f));
+        let ReplicaOutcome::Inconclusive { why } = &r.outcome else {
+            panic!("{r:?}");
+        };
+        assert!(why.contains("different macroscopic states"), "{why}");
+    }
+
+    #[test]
+    fn too_few_strobes_is_inconclusive() {
+        let z = [0.05; 10];
+        let r = report(1e-9, 0.0, 10.0, EXTENT, rows_of(&z, &z, 10.0));
+        assert!(matches!(r.outcome, ReplicaOutcome::Inconclusive { .. }));
+    }
+
+    #[test]
+    fn a_period_three_orbit_separates_within_its_groups() {
+        // A and B visit the same three points (up to half the orbit apart) cyclically, each
+        // with an independent scatter of 1 % of the orbit: they are independent within a group
+        let f = 13.0;
+        let mut rng = ChaCha8Rng::seed_from_u64(5);
+        let centres = [0.01, 0.015, 0.012];
+        let za: Vec<f64> = (0..150)
+            .map(|k| centres[k % 3] + 1e-4 * gauss(&mut rng))
+            .collect();
+        let zb: Vec<f64> = (0..150)
+            .map(|k| centres[k % 3] + 1e-4 * gauss(&mut rng))
+            .collect();
+        let r = report(1e-9, 0.0, f, EXTENT, rows_of(&za, &zb, f));
+        assert!(
+            matches!(r.outcome, ReplicaOutcome::Sensitive { .. }),
+            "{}",
+            r.describe()
+        );
+        // D is the groups' spread (≈ 1.1 σ), not the spread across groups (≈ 0.3)
+        assert!(r.independent_separation_rel < 0.03, "{r:?}");
+    }
+
+    #[test]
+    fn the_worst_axis_decides() {
+        // positions coincide, velocities differ by half the velocity extent
+        let a = [0.0, 1.0, 0.0, 0.0];
+        let b = [0.0, 1.5, 0.0, 0.0];
+        assert_eq!(separation(&a, &b, &[1.0, 1.0, 0.0, 0.0]), 0.5);
+    }
+}
