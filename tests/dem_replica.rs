@@ -261,3 +261,45 @@ fn period_one_with_granular_noise_is_sensitive_only_within_its_cluster() {
         r.describe()
     );
 }
+
+#[test]
+fn the_test_runs_by_default_wherever_a_verdict_is_asked_for() {
+    let run = |extra: &[&str]| {
+        let dir = scratch::tempdir().unwrap();
+        let mut args = vec![
+            "simulate",
+            SCENE,
+            "--out",
+            dir.path().to_str().unwrap(),
+            "--set",
+            "excitation.frequency=14.5",
+            "--set",
+            "run.duration=0.8",
+            "--set",
+            "run.sample_interval=1e-3",
+        ];
+        args.extend_from_slice(extra);
+        let out = Command::new(env!("CARGO_BIN_EXE_pdamp"))
+            .args(&args)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let summary: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(dir.path().join("summary.json")).unwrap(),
+        )
+        .unwrap();
+        (
+            dir.path().join("replica.csv").exists(),
+            summary.get("replica").is_some_and(|r| !r.is_null()),
+        )
+    };
+    // analysed (the default): the verdict's replica test ran
+    assert_eq!(run(&[]), (true, true));
+    // no verdict asked for: no replica; turned off: none either
+    assert_eq!(run(&["--no-analysis"]), (false, false));
+    assert_eq!(run(&["--set", "run.replica=false"]), (false, false));
+}

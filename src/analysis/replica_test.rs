@@ -259,8 +259,9 @@ fn mean_offset(a: &[[f64; AXES]], b: &[[f64; AXES]], extent: &[f64; AXES]) -> f6
 
 /// Slope of ln d against t from the first d ≥ `lower` up to (excluding) the first d ≥ `upper`.
 fn growth_fit(t: &[f64], d: &[f64], lower: f64, upper: f64, period_s: f64) -> Option<GrowthFit> {
-    if !(upper >= std::f64::consts::E * lower) {
-        return None; // less than one e-fold between the bounds
+    // less than one e-fold between the bounds (or a bound not a number)
+    if upper.is_nan() || lower.is_nan() || upper < std::f64::consts::E * lower {
+        return None;
     }
     let k0 = d.iter().position(|&x| x >= lower)?;
     let k1 = d[k0..]

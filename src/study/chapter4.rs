@@ -560,7 +560,7 @@ fn ensemble_words(verdicts: &[String]) -> String {
             None => counts.push((v.clone(), 1)),
         }
     }
-    counts.sort_by(|a, b| b.1.cmp(&a.1));
+    counts.sort_by_key(|c| std::cmp::Reverse(c.1));
     if counts.len() == 1 {
         return format!("{} in all {n} starts", counts[0].0);
     }

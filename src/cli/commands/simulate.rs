@@ -26,7 +26,8 @@ pub struct Args {
     /// (`--set run.dt=`) removes a key.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
-    /// Skip the nonlinear analysis of the steady-state grain series (faster).
+    /// Skip the nonlinear analysis of the steady-state grain series (faster; for the DEM also
+    /// the two-replica test that the verdict uses, which costs the analysis window once more).
     #[arg(long)]
     pub no_analysis: bool,
     /// Largest output (bytes) the run may write; a larger estimate is refused before the

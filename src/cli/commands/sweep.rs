@@ -31,6 +31,11 @@ pub struct SweepDef {
         long,
         long_help = "Skip the nonlinear analysis of each point (faster; regime columns stay \
 empty).\n\n\
+For the DEM the analysis includes the two-replica test (run.replica, on by default with a \
+verdict): a perturbed copy of the bed is stepped through the analysis window, which costs that \
+window once more (+60 % for data/scenes/thesis_b_ch4.toml, whose last 60 % is analysed; \
+run.replica = false leaves it out and the verdict then rests on the section and the data \
+exponent).\n\n\
 Sample grid of a point of the event-driven model (damper none or impact): without the \
 analysis, the model is evaluated only at its events (impacts, sticking, detachment), at its \
 segment ends (1/16 of the fastest time scale) and once per forcing period T over the analysis \
