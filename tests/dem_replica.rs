@@ -111,25 +111,19 @@ fn a_perturbation_beyond_the_grain_radius_is_refused_by_the_engine() {
     assert!(err.contains("smallest grain radius"), "{err}");
 }
 
-#[test]
-fn replica_a_is_the_run_through_simulate() {
-    let dir = scratch::tempdir().unwrap();
+/// `pdamp simulate` of the softened scene at 14.5 Hz for 0.8 s into `dir`, with `extra`
+/// arguments; panics unless it succeeds.
+fn simulate_short(dir: &std::path::Path, extra: &[&str]) {
     let out = Command::new(env!("CARGO_BIN_EXE_pdamp"))
+        .args(["simulate", SCENE, "--out", dir.to_str().unwrap()])
         .args([
-            "simulate",
-            SCENE,
-            "--out",
-            dir.path().to_str().unwrap(),
-            "--no-analysis",
             "--set",
             "excitation.frequency=14.5",
             "--set",
             "run.duration=0.8",
-            "--set",
-            "run.sample_interval=1e-3",
-            "--set",
-            "run.replica=1e-9",
         ])
+        .args(["--set", "run.sample_interval=1e-3"])
+        .args(extra)
         .output()
         .unwrap();
     assert!(
@@ -137,6 +131,12 @@ fn replica_a_is_the_run_through_simulate() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
+}
+
+#[test]
+fn replica_a_is_the_run_through_simulate() {
+    let dir = scratch::tempdir().unwrap();
+    simulate_short(dir.path(), &["--no-analysis", "--set", "run.replica=1e-9"]);
     let (head, rows) = csv_rows(&std::fs::read_to_string(dir.path().join("replica.csv")).unwrap());
     assert_eq!(
         head,
@@ -266,28 +266,7 @@ fn period_one_with_granular_noise_is_sensitive_only_within_its_cluster() {
 fn the_test_runs_by_default_wherever_a_verdict_is_asked_for() {
     let run = |extra: &[&str]| {
         let dir = scratch::tempdir().unwrap();
-        let mut args = vec![
-            "simulate",
-            SCENE,
-            "--out",
-            dir.path().to_str().unwrap(),
-            "--set",
-            "excitation.frequency=14.5",
-            "--set",
-            "run.duration=0.8",
-            "--set",
-            "run.sample_interval=1e-3",
-        ];
-        args.extend_from_slice(extra);
-        let out = Command::new(env!("CARGO_BIN_EXE_pdamp"))
-            .args(&args)
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        simulate_short(dir.path(), extra);
         let summary: serde_json::Value = serde_json::from_str(
             &std::fs::read_to_string(dir.path().join("summary.json")).unwrap(),
         )

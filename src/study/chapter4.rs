@@ -268,8 +268,8 @@ pub fn all(
     if want("ch4_impacts") {
         figures.push(impacts(&info, &pts)?);
     }
-    if want("ch4_run_length") && !c.doubling_freqs_hz.is_empty() {
-        let long = sweep(2.0, &c.doubling_freqs_hz)?;
+    if want("ch4_run_length") && !c.check_freqs_hz.is_empty() {
+        let long = sweep(2.0, &c.check_freqs_hz)?;
         let long_pts = points("ch4_run_length", &long.points)?;
         figures.push(run_length(&info, &pts, &long, &long_pts)?);
     }
@@ -333,24 +333,16 @@ fn regime_frf(
     ensemble: Option<&[(f64, String)]>,
 ) -> Result<FigureRecord, StudyError> {
     let name = "ch4_regime_frf";
-    let header = [
-        "frequency_hz",
-        "amplitude_m",
-        "regime",
-        "period",
-        "verdict",
-        "phase_locked",
-        "locked_fraction",
-        "section_scatter",
-        "chaos_dimension",
-        "replica",
-        "replica_saturation_rel",
-        "replica_growth_per_s",
-        "mle_per_s",
-        "mle_stderr_per_s",
-        "impacts_per_cycle",
-        "ensemble",
-    ];
+    let header: Vec<&str> = ["frequency_hz", "amplitude_m", "regime", "period"]
+        .into_iter()
+        .chain(crate::sweep::VERDICT_COLUMNS)
+        .chain([
+            "mle_per_s",
+            "mle_stderr_per_s",
+            "impacts_per_cycle",
+            "ensemble",
+        ])
+        .collect();
     let rows = pts.iter().map(|p| {
         vec![
             p.f_hz.to_string(),
@@ -580,8 +572,10 @@ fn ensemble_words(verdicts: &[String]) -> String {
 
 fn ensemble_check(base: &[Point], more: &SweepResult) -> Result<Ensemble, StudyError> {
     let step = "ch4_ensemble";
+    let checked = |f: f64| more.points.iter().any(|q| q.summary.frequency_hz == f);
     let mut runs: Vec<(f64, u64, Point)> = base
         .iter()
+        .filter(|p| checked(p.f_hz))
         .map(|p| (p.f_hz, DEFAULT_SEED, p.clone()))
         .collect();
     for sp in more.points.iter() {
@@ -602,6 +596,7 @@ fn ensemble_check(base: &[Point], more: &SweepResult) -> Result<Ensemble, StudyE
     seeds.dedup();
     let words = base
         .iter()
+        .filter(|p| more.points.iter().any(|q| q.summary.frequency_hz == p.f_hz))
         .map(|p| {
             let v: Vec<String> = runs
                 .iter()
@@ -683,7 +678,7 @@ fn ensemble_figure(info: &Info, e: &Ensemble) -> Result<FigureRecord, StudyError
     let mut rec = info.record(
         name,
         format!(
-            "Ensemble check: every frequency of the sweep from {} initial packings (damper.seed \
+            "Ensemble check: the source's example frequencies from {} initial packings (damper.seed \
              {}), {} each; the verdict (regime and period) is the same in every start at {} of \
              {} frequencies{}. Verdicts per start in {name}.csv.",
             e.seeds.len(),

@@ -110,20 +110,21 @@ pub struct Chapter4Settings {
     pub duration_s: Option<f64>,
     /// Frequencies of the per-frequency panels and reconstructions (Hz; Figs. 4.2–4.7).
     pub panel_freqs_hz: Vec<f64>,
-    /// Frequencies (Hz, a subset of `frequencies_hz`) repeated with runs twice as long to
-    /// compare verdicts and amplitudes; empty skips the check.
-    pub doubling_freqs_hz: Vec<f64>,
-    /// Packing seeds (`damper.seed`) of further initial states at every frequency, beside the
-    /// scene's own (seed 1): the ensemble check of each verdict; empty skips it.
+    /// Frequencies (Hz, a subset of `frequencies_hz`) of the checks of the verdicts: repeated
+    /// with runs twice as long (`ch4_run_length`) and from the `ensemble_seeds` packings
+    /// (`ch4_ensemble`); empty skips both.
+    pub check_freqs_hz: Vec<f64>,
+    /// Packing seeds (`damper.seed`) of further initial states at the check frequencies,
+    /// beside the scene's own (seed 1): the ensemble check; empty skips it.
     pub ensemble_seeds: Vec<u64>,
 }
 
 impl Chapter4Settings {
-    /// With the checks of the verdicts (`pdamp reproduce --ch4-checks`): every frequency from
-    /// two more initial packings (seeds 2 and 3), and the panel frequencies again with runs
-    /// twice as long.
+    /// With the checks of the verdicts (`pdamp reproduce --ch4-checks`): the panel frequencies
+    /// (the source's examples) again with runs twice as long and from two more initial
+    /// packings (seeds 2 and 3).
     pub fn with_checks(mut self) -> Chapter4Settings {
-        self.doubling_freqs_hz = self.panel_freqs_hz.clone();
+        self.check_freqs_hz = self.panel_freqs_hz.clone();
         self.ensemble_seeds = vec![2, 3];
         self
     }
@@ -215,7 +216,7 @@ impl Settings {
                         periods: 100.0,
                         duration_s: Some(196.83),
                         panel_freqs_hz: CH4_PANEL_HZ.to_vec(),
-                        doubling_freqs_hz: Vec::new(),
+                        check_freqs_hz: Vec::new(),
                         ensemble_seeds: Vec::new(),
                     }),
                 }),
@@ -256,7 +257,7 @@ impl Settings {
                             26.0,
                         ];
                         Chapter4Settings {
-                            doubling_freqs_hz: Vec::new(),
+                            check_freqs_hz: Vec::new(),
                             ensemble_seeds: Vec::new(),
                             frequencies_hz,
                             periods: 200.0,

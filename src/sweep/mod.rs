@@ -22,5 +22,5 @@ pub use points::{SweepPoint, SweepPoints};
 pub use run::{run_scene, run_with_analysis};
 pub use runner::{run_shard, run_shard_with, run_sweep, SweepReport, SweepSpec};
 pub use shard::Shard;
-pub use tables::{merge, MergeReport};
+pub use tables::{merge, MergeReport, VERDICT_COLUMNS};
 pub use vary::{grid, Vary};

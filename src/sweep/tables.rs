@@ -23,11 +23,11 @@ pub(super) const HEAD: [&str; 6] = [
     "energy_viscous_j_per_cycle",
     "energy_impact_j_per_cycle",
 ];
-pub(super) const TAIL: [&str; 17] = [
-    "impacts_per_cycle",
-    "energy_balance_relative_error",
-    "regime",
-    "period",
+/// The verdict's words and evidence after `regime` and `period` (issue 39): the verdict with its
+/// qualifiers, the phase lock, the section's scatter, the chaos dimension and the two-replica
+/// test's outcome, saturation (fraction of the orbit) and growth rate (1/s). The chapter-4
+/// table shares them.
+pub const VERDICT_COLUMNS: [&str; 8] = [
     "verdict",
     "phase_locked",
     "locked_fraction",
@@ -36,6 +36,20 @@ pub(super) const TAIL: [&str; 17] = [
     "replica",
     "replica_saturation_rel",
     "replica_growth_per_s",
+];
+pub(super) const TAIL: [&str; 17] = [
+    "impacts_per_cycle",
+    "energy_balance_relative_error",
+    "regime",
+    "period",
+    VERDICT_COLUMNS[0],
+    VERDICT_COLUMNS[1],
+    VERDICT_COLUMNS[2],
+    VERDICT_COLUMNS[3],
+    VERDICT_COLUMNS[4],
+    VERDICT_COLUMNS[5],
+    VERDICT_COLUMNS[6],
+    VERDICT_COLUMNS[7],
     "mle_per_s",
     "mle_stderr_per_s",
     "model_mle_per_s",

@@ -36,10 +36,10 @@ pub struct Args {
     /// Leave out the DEM figures (impact-model figures only).
     #[arg(long)]
     pub no_dem: bool,
-    /// Check the chapter-4 verdicts: every frequency from two more initial packings
-    /// (`ch4_ensemble`: the verdicts of three starts, "split" where they differ) and the panel
-    /// frequencies with their runs doubled (`ch4_run_length`). About 3.5 times the
-    /// chapter-4 study's cost.
+    /// Check the chapter-4 verdicts at the source's example frequencies (the panels): from two
+    /// more initial packings (`ch4_ensemble`: the verdicts of three starts, "split" where they
+    /// differ) and with the runs doubled (`ch4_run_length`). About 2.5 times the chapter-4
+    /// study's cost.
     #[arg(long)]
     pub ch4_checks: bool,
     /// Width of every figure (pixels).
