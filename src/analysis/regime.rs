@@ -717,81 +717,99 @@ fn by_model(e: &ForcedEvidence<'_>, m: Exponent) -> Verdict {
 fn by_replica(e: &ForcedEvidence<'_>, r: &ReplicaReport) -> Verdict {
     let sec = e.section;
     let exact = matches!(sec.pattern, SectionPattern::Periodic { noisy: false, .. });
-    let tight = |g: &Grouping, what: &str| {
-        Verdict::new(
-            Regime::Periodic,
-            Some(g.period as f64),
-            format!(
-                "the exact section is {} tight group(s) visited cyclically (scatter {:.2} % of the orbit, worst axis {:.2} %); two replicas {what}",
-                g.period,
-                100.0 * g.scatter,
-                100.0 * g.axis_scatter.iter().copied().fold(0.0, f64::max),
-            ),
-        )
-    };
-    match &r.outcome {
-        ReplicaOutcome::Inconclusive { why } => match sec.pattern {
-            SectionPattern::Periodic { period, noisy } if exact => {
-                periodic_from_section(sec, period, noisy)
-            }
-            _ => Verdict::new(
-                Regime::Undetermined,
-                None,
-                format!(
-                    "the two-replica test is inconclusive ({why}); the section alone is {}",
-                    section_words(sec)
-                ),
-            ),
-        },
-        ReplicaOutcome::Insensitive => match (sec.pattern, &sec.tight) {
-            (SectionPattern::Periodic { period, noisy }, _) if exact => {
-                periodic_from_section(sec, period, noisy)
-            }
-            (_, Some(g)) => tight(g, "stay together (insensitive)"),
-            (SectionPattern::QuasiPeriodic { rotation_number }, None) => {
-                quasi_periodic(rotation_number, "; two replicas stay together (insensitive)")
-            }
-            _ => Verdict::new(
-                Regime::Undetermined,
-                None,
-                format!(
-                    "the section is {} but two replicas do not separate (saturation {:.1e} of the orbit): a long transient or a period above the maximum",
-                    section_words(sec),
-                    r.saturation_rel
-                ),
-            ),
-        },
-        ReplicaOutcome::Sensitive {
-            saturation_rel_orbit,
-        } => {
-            let sens = format!(
-                "separate to {:.2} % of the orbit{} — sensitive, but only within the groups",
-                100.0 * saturation_rel_orbit,
-                rate_words(r)
-            );
-            match (sec.pattern, &sec.tight) {
-                (_, Some(g)) => tight(g, &sens),
-                (SectionPattern::QuasiPeriodic { rotation_number }, None) => quasi_periodic(
-                    rotation_number,
-                    &format!(
-                        "; two replicas separate to {:.2} % of the orbit (sensitive within the curve's thickness)",
-                        100.0 * saturation_rel_orbit
-                    ),
-                ),
-                _ => Verdict::new(
-                    Regime::Chaotic,
-                    None,
-                    format!(
-                        "the exact section is a cloud (size {:.1} % of the orbit, worst axis scatter {:.1} %) and two replicas started 1e-9 apart separate to {:.1} % of the orbit, as two independent states of the section{}",
-                        100.0 * sec.size,
-                        worst_axis_pct(sec),
-                        100.0 * saturation_rel_orbit,
-                        rate_words(r)
-                    ),
-                ),
-            }
+    // n groups visited cyclically: the replicas are judged at the same phase of the cycle
+    let phased = sec.tight.as_ref().map(|g| (g, r.at_period(g.period)));
+    if let Some((g, r)) = &phased {
+        if exact || r.saturation_rel <= TIGHT_MAX || r.outcome == ReplicaOutcome::Insensitive {
+            return tight_groups(g, r);
         }
     }
+    let r = phased.as_ref().map_or(r, |(_, r)| r);
+    match (&r.outcome, sec.pattern) {
+        (_, SectionPattern::Periodic { period, noisy }) if exact => {
+            periodic_from_section(sec, period, noisy)
+        }
+        (ReplicaOutcome::Inconclusive { why }, _) => Verdict::new(
+            Regime::Undetermined,
+            None,
+            format!(
+                "the two-replica test is inconclusive ({why}); the section alone is {}",
+                section_words(sec)
+            ),
+        ),
+        (ReplicaOutcome::Insensitive, SectionPattern::QuasiPeriodic { rotation_number }) => {
+            quasi_periodic(rotation_number, "; two replicas stay together (insensitive)")
+        }
+        (ReplicaOutcome::Insensitive, _) => Verdict::new(
+            Regime::Undetermined,
+            None,
+            format!(
+                "the section is {} but two replicas do not separate (saturation {:.1e} of the orbit): a long transient or a period above the maximum",
+                section_words(sec),
+                r.saturation_rel
+            ),
+        ),
+        (
+            ReplicaOutcome::Sensitive {
+                saturation_rel_orbit,
+            },
+            SectionPattern::QuasiPeriodic { rotation_number },
+        ) => quasi_periodic(
+            rotation_number,
+            &format!(
+                "; two replicas separate to {:.2} % of the orbit (sensitive within the curve's thickness)",
+                100.0 * saturation_rel_orbit
+            ),
+        ),
+        (
+            ReplicaOutcome::Sensitive {
+                saturation_rel_orbit,
+            },
+            _,
+        ) => Verdict::new(
+            Regime::Chaotic,
+            None,
+            format!(
+                "the exact section is a cloud (size {:.1} % of the orbit, worst axis scatter {:.1} %) and two replicas started 1e-9 apart separate to {:.1} % of the orbit, as two independent states of the section{}",
+                100.0 * sec.size,
+                worst_axis_pct(sec),
+                100.0 * saturation_rel_orbit,
+                rate_words(r)
+            ),
+        ),
+    }
+}
+
+/// The bound on a tight group's scatter and on a sensitive part called small: 5 % of the
+/// orbit ([`crate::analysis::section::SectionOptions::noise_tol`]'s default).
+const TIGHT_MAX: f64 = 0.05;
+
+/// Periodic-n from n tight groups, with what the replicas did (judged at the same phase).
+fn tight_groups(g: &Grouping, r: &ReplicaReport) -> Verdict {
+    let what = match &r.outcome {
+        ReplicaOutcome::Insensitive => "stay together (insensitive)".to_string(),
+        ReplicaOutcome::Sensitive {
+            saturation_rel_orbit,
+        } => format!(
+            "separate to {:.2} % of the orbit{}, as two independent states of one group — sensitive, but only within the groups",
+            100.0 * saturation_rel_orbit,
+            rate_words(r)
+        ),
+        ReplicaOutcome::Inconclusive { why } => format!(
+            "stay within {:.2} % of the orbit ({why})",
+            100.0 * r.saturation_rel
+        ),
+    };
+    Verdict::new(
+        Regime::Periodic,
+        Some(g.period as f64),
+        format!(
+            "the exact section is {} tight group(s) visited cyclically (scatter {:.2} % of the orbit, worst axis {:.2} %); two replicas {what}",
+            g.period,
+            100.0 * g.scatter,
+            100.0 * g.axis_scatter.iter().copied().fold(0.0, f64::max),
+        ),
+    )
 }
 
 fn rate_words(r: &ReplicaReport) -> String {

@@ -14,13 +14,13 @@
 //! orbit, comparable between position and velocity:
 //! - separation of the replicas d_k = max_d |s_A,k,d − s_B,k,d| / E_d (the worst axis);
 //! - independent separation D: what d_k reaches once the replicas are independent states of
-//!   the section *at the same phase of the forcing cycle*. With D_q = median over pairs
-//!   i < j, i ≡ j (mod q), of A's strobes in the last third of max_d |s_A,i,d − s_A,j,d| / E_d,
-//!   D = min over q ≤ 8 (each residue class holding ≥ 4 strobes) of D_q. For a cloud every
-//!   D_q is the cloud's spread; for a period-n orbit with scatter D_n is the groups' own
-//!   spread — two replicas locked to the same cycle sit in the same group, so they can only
-//!   become independent *within* it (comparing with the spread across groups would call a
-//!   fully decorrelated period-3 bed "not yet separated");
+//!   the section *at the same phase of the cycle*. With D_q = median over pairs i < j,
+//!   i ≡ j (mod q), of A's strobes in the last third of max_d |s_A,i,d − s_A,j,d| / E_d
+//!   (q = 1 … 8), D = D_1 (the whole section) as the simulator reports it, and D = D_n when
+//!   the regime classifier finds the section to be n tight groups ([`ReplicaReport::at_period`]):
+//!   two replicas locked to the same period-n cycle sit in the same group, so they can only
+//!   become independent *within* it — comparing with the spread across groups would call a
+//!   fully decorrelated period-3 bed "not yet separated";
 //! - saturation d_sat = median of d_k over the last third; trend d_sat / median of the middle
 //!   third (well above 1: still growing);
 //! - macroscopic offset M = max_d |mean_A − mean_B| / E_d over the last third, in units of D:
@@ -140,9 +140,23 @@ pub struct ReplicaReport {
     pub initial_growth_per_s: Option<f64>,
     /// Largest d_k (relative to the orbit).
     pub max_separation_rel: f64,
-    /// D: median separation of two independent states of A's section at the same phase of the
-    /// cycle (relative).
+    /// D: median separation of two independent states of A's section at the same phase of a
+    /// `phase_period`-cycle (relative): D_q of `independent_by_period`.
     pub independent_separation_rel: f64,
+    /// D_q for q = 1 ..= 8: pairs of A's states k ≡ k' (mod q) in the last third (relative).
+    #[serde(default)]
+    pub independent_by_period: Vec<f64>,
+    /// The period q whose same-phase separation D is (1 from the simulator: the whole
+    /// section; the regime classifier re-judges with the section's tight period n, because two
+    /// replicas locked to a period-n cycle can only become independent within its groups).
+    #[serde(default = "one")]
+    pub phase_period: usize,
+    /// Largest offset of the replicas' mean section states over the last third (relative).
+    #[serde(default)]
+    pub mean_offset_rel: f64,
+    /// Why the test could not run to its end (replica B non-finite, the run too short), when so.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub failure: Option<String>,
     /// d_sat: median d_k over the last third (relative).
     pub saturation_rel: f64,
     /// d_sat / median d_k over the middle third.
@@ -160,7 +174,34 @@ pub struct ReplicaReport {
     pub rows: Vec<ReplicaRow>,
 }
 
+fn one() -> usize {
+    1
+}
+
 impl ReplicaReport {
+    /// The report judged against the same-phase separation D_q of a period-q cycle (the
+    /// section's tight period; module docs), or `self` unchanged when D_q was not measured.
+    pub fn at_period(&self, q: usize) -> ReplicaReport {
+        let Some(&indep) = self.independent_by_period.get(q.wrapping_sub(1)) else {
+            return self.clone();
+        };
+        let mut r = self.clone();
+        r.phase_period = q;
+        r.independent_separation_rel = indep;
+        r.saturation_over_independent = r.saturation_rel / indep;
+        r.mean_offset_over_independent = r.mean_offset_rel / indep;
+        r.outcome = match &r.failure {
+            Some(why) => ReplicaOutcome::Inconclusive { why: why.clone() },
+            None => outcome(
+                r.strobes,
+                r.saturation_rel,
+                indep,
+                r.mean_offset_over_independent,
+            ),
+        };
+        r
+    }
+
     /// The separation d_k of a row relative to the orbit (worst axis).
     pub fn separation(&self, row: &ReplicaRow) -> f64 {
         separation(&row.a, &row.b, &self.orbit_extent)
@@ -220,12 +261,12 @@ fn median(v: &mut [f64]) -> f64 {
     }
 }
 
-/// Largest residue period q tried for the same-phase separation D.
-const MAX_PHASES: usize = 8;
+/// Largest residue period q of the same-phase separations D_q.
+pub const MAX_PHASES: usize = 8;
 
-/// D: the smallest over q of the median separation of pairs of states at the same residue
-/// k mod q (module docs).
-fn independent_separation(states: &[[f64; AXES]], extent: &[f64; AXES]) -> f64 {
+/// D_q for q = 1 ..= min([`MAX_PHASES`], n/4): the median separation of pairs of states at the
+/// same residue k mod q (module docs).
+fn independent_by_period(states: &[[f64; AXES]], extent: &[f64; AXES]) -> Vec<f64> {
     let n = states.len();
     (1..=MAX_PHASES.min(n / 4).max(1))
         .map(|q| {
@@ -241,7 +282,7 @@ fn independent_separation(states: &[[f64; AXES]], extent: &[f64; AXES]) -> f64 {
             }
             median(&mut d)
         })
-        .fold(f64::NAN, f64::min)
+        .collect()
 }
 
 /// Largest per-axis offset of the two sets' means, relative to the orbit.
@@ -315,10 +356,12 @@ pub fn report(
     let third = n / 3;
     let tail_a: Vec<[f64; AXES]> = rows[n - third..].iter().map(|r| r.a).collect();
     let tail_b: Vec<[f64; AXES]> = rows[n - third..].iter().map(|r| r.b).collect();
-    let indep = independent_separation(&tail_a, &orbit_extent);
+    let by_period = independent_by_period(&tail_a, &orbit_extent);
+    let indep = by_period[0];
     let sat = median(&mut d[n - third..].to_vec());
     let trend = sat / median(&mut d[third..n - third].to_vec());
-    let offset = mean_offset(&tail_a, &tail_b, &orbit_extent) / indep;
+    let offset_rel = mean_offset(&tail_a, &tail_b, &orbit_extent);
+    let offset = offset_rel / indep;
     let delta_rel = if orbit_extent[0] > 0.0 {
         delta0_m / orbit_extent[0]
     } else {
@@ -339,6 +382,10 @@ pub fn report(
         initial_growth_per_s,
         max_separation_rel: d.iter().copied().fold(f64::NAN, f64::max),
         independent_separation_rel: indep,
+        independent_by_period: by_period,
+        phase_period: 1,
+        mean_offset_rel: offset_rel,
+        failure: None,
         saturation_rel: sat,
         saturation_trend: trend,
         saturation_over_independent: sat / indep,
@@ -521,14 +568,24 @@ mod tests {
         let zb: Vec<f64> = (0..150)
             .map(|k| centres[k % 3] + 1e-4 * gauss(&mut rng))
             .collect();
-        let r = report(1e-9, 0.0, f, EXTENT, rows_of(&za, &zb, f));
+        let whole = report(1e-9, 0.0, f, EXTENT, rows_of(&za, &zb, f));
+        // against the whole section (D₁ ≈ 0.3: across the groups) the replicas look far from
+        // separated; against the same phase of the 3-cycle (D₃ ≈ 1.1 σ) they are independent
+        assert!(
+            matches!(whole.outcome, ReplicaOutcome::Inconclusive { .. }),
+            "{}",
+            whole.describe()
+        );
+        let r = whole.at_period(3);
         assert!(
             matches!(r.outcome, ReplicaOutcome::Sensitive { .. }),
             "{}",
             r.describe()
         );
-        // D is the groups' spread (≈ 1.1 σ), not the spread across groups (≈ 0.3)
         assert!(r.independent_separation_rel < 0.03, "{r:?}");
+        assert_eq!(r.phase_period, 3);
+        // a period beyond those measured leaves the report as it was
+        assert_eq!(whole.at_period(99), whole);
     }
 
     #[test]

@@ -179,15 +179,16 @@ impl ReplicaTracker {
             extent,
             self.rows,
         );
-        if let Some(why) = self.failure {
-            r.outcome = ReplicaOutcome::Inconclusive { why };
-        } else if self.perturbed_at_s.is_none() {
-            r.outcome = ReplicaOutcome::Inconclusive {
-                why: format!(
+        r.failure = self.failure.or_else(|| {
+            self.perturbed_at_s.is_none().then(|| {
+                format!(
                     "the run ended before the perturbation time {} s",
                     self.opts.perturb_at_s
-                ),
-            };
+                )
+            })
+        });
+        if let Some(why) = &r.failure {
+            r.outcome = ReplicaOutcome::Inconclusive { why: why.clone() };
         }
         r
     }

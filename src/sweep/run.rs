@@ -135,7 +135,15 @@ fn analyze_into(
         replica: summary.replica.as_ref(),
     };
     match analyze_forced(&run, &AnalyzeOptions::default()) {
-        Ok(report) => summary.analysis = Some(with_scene_keys(report)),
+        Ok(report) => {
+            // the replica test as the verdict judged it: at the same phase of the section's
+            // cycle when the section is n tight groups
+            let tight = report.section.as_ref().and_then(|s| s.tight.as_ref());
+            if let (Some(g), Some(r)) = (tight, summary.replica.as_mut()) {
+                *r = r.at_period(g.period);
+            }
+            summary.analysis = Some(with_scene_keys(report));
+        }
         Err(e) => summary.analysis_error = Some(e.to_string()),
     }
 }
