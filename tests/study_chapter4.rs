@@ -33,6 +33,7 @@ fn reduced_chapter4_study_writes_every_figure_and_counts_two_impacts_at_14_5_hz(
         periods: 12.0,
         duration_s: None,
         panel_freqs_hz: vec![14.5],
+        doubling_freqs_hz: vec![5.5, 14.5],
         check_freqs_hz: vec![5.5, 14.5],
         ensemble_seeds: vec![2],
     };

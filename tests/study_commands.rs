@@ -174,6 +174,7 @@ fn chapter4_commands_parse() {
         periods: 12.0,
         duration_s: None,
         panel_freqs_hz: vec![14.5],
+        doubling_freqs_hz: vec![],
         check_freqs_hz: vec![],
         ensemble_seeds: vec![],
     };

@@ -232,29 +232,31 @@ pub fn all(
         sweep: &base,
         reductions: &reductions,
     };
-    // the ensemble check: every frequency from further initial packings
-    let ensemble =
-        if !c.ensemble_seeds.is_empty() && (want("ch4_ensemble") || want("ch4_regime_frf")) {
-            let seeds = c
-                .ensemble_seeds
-                .iter()
-                .map(|s| s.to_string())
-                .collect::<Vec<_>>()
-                .join(",");
-            let more = ctx.sweep(
-                &format!("{}_seeds", sweep_dir(c, 1.0)),
-                DEM_CH4,
-                &ch4_set(d, c, 1.0),
-                &[
-                    (DAMPER_SEED, seeds),
-                    (EXCITATION_FREQUENCY, frequency_list(&c.frequencies_hz)),
-                ],
-                true,
-            )?;
-            Some(ensemble_check(&pts, &more)?)
-        } else {
-            None
-        };
+    // the ensemble check: the check frequencies from further initial packings
+    let ensemble = if !c.ensemble_seeds.is_empty()
+        && !c.check_freqs_hz.is_empty()
+        && (want("ch4_ensemble") || want("ch4_regime_frf"))
+    {
+        let seeds = c
+            .ensemble_seeds
+            .iter()
+            .map(|s| s.to_string())
+            .collect::<Vec<_>>()
+            .join(",");
+        let more = ctx.sweep(
+            &format!("{}_seeds", sweep_dir(c, 1.0)),
+            DEM_CH4,
+            &ch4_set(d, c, 1.0),
+            &[
+                (DAMPER_SEED, seeds),
+                (EXCITATION_FREQUENCY, frequency_list(&c.check_freqs_hz)),
+            ],
+            true,
+        )?;
+        Some(ensemble_check(&pts, &more)?)
+    } else {
+        None
+    };
     if want("ch4_regime_frf") {
         let words = ensemble.as_ref().map(|e| e.words.as_slice());
         figures.push(regime_frf(&info, &pts, words)?);
@@ -268,8 +270,8 @@ pub fn all(
     if want("ch4_impacts") {
         figures.push(impacts(&info, &pts)?);
     }
-    if want("ch4_run_length") && !c.check_freqs_hz.is_empty() {
-        let long = sweep(2.0, &c.check_freqs_hz)?;
+    if want("ch4_run_length") && !c.doubling_freqs_hz.is_empty() {
+        let long = sweep(2.0, &c.doubling_freqs_hz)?;
         let long_pts = points("ch4_run_length", &long.points)?;
         figures.push(run_length(&info, &pts, &long, &long_pts)?);
     }

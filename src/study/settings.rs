@@ -110,9 +110,11 @@ pub struct Chapter4Settings {
     pub duration_s: Option<f64>,
     /// Frequencies of the per-frequency panels and reconstructions (Hz; Figs. 4.2–4.7).
     pub panel_freqs_hz: Vec<f64>,
-    /// Frequencies (Hz, a subset of `frequencies_hz`) of the checks of the verdicts: repeated
-    /// with runs twice as long (`ch4_run_length`) and from the `ensemble_seeds` packings
-    /// (`ch4_ensemble`); empty skips both.
+    /// Frequencies (Hz, a subset of `frequencies_hz`) repeated with runs twice as long
+    /// (`ch4_run_length`); empty skips the check.
+    pub doubling_freqs_hz: Vec<f64>,
+    /// Frequencies (Hz, a subset of `frequencies_hz`) repeated from the `ensemble_seeds`
+    /// packings (`ch4_ensemble`); empty skips the check.
     pub check_freqs_hz: Vec<f64>,
     /// Packing seeds (`damper.seed`) of further initial states at the check frequencies,
     /// beside the scene's own (seed 1): the ensemble check; empty skips it.
@@ -121,10 +123,15 @@ pub struct Chapter4Settings {
 
 impl Chapter4Settings {
     /// With the checks of the verdicts (`pdamp reproduce --ch4-checks`): the panel frequencies
-    /// (the source's examples) again with runs twice as long and from two more initial
-    /// packings (seeds 2 and 3).
+    /// (the source's examples) from two more initial packings (seeds 2 and 3), and the source's
+    /// examples of its chaotic zone I, periodic window and chaotic zone II (13, 14.5 and 21 Hz)
+    /// with runs twice as long.
     pub fn with_checks(mut self) -> Chapter4Settings {
         self.check_freqs_hz = self.panel_freqs_hz.clone();
+        self.doubling_freqs_hz = [13.0, 14.5, 21.0]
+            .into_iter()
+            .filter(|f| self.frequencies_hz.contains(f))
+            .collect();
         self.ensemble_seeds = vec![2, 3];
         self
     }
@@ -216,6 +223,7 @@ impl Settings {
                         periods: 100.0,
                         duration_s: Some(196.83),
                         panel_freqs_hz: CH4_PANEL_HZ.to_vec(),
+                        doubling_freqs_hz: Vec::new(),
                         check_freqs_hz: Vec::new(),
                         ensemble_seeds: Vec::new(),
                     }),
@@ -257,6 +265,7 @@ impl Settings {
                             26.0,
                         ];
                         Chapter4Settings {
+                            doubling_freqs_hz: Vec::new(),
                             check_freqs_hz: Vec::new(),
                             ensemble_seeds: Vec::new(),
                             frequencies_hz,
