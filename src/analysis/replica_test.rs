@@ -208,11 +208,18 @@ impl ReplicaReport {
     }
 
     /// The growth rate the verdict quotes: the fit when there is one, else the initial rate
-    /// (1/s); with its standard error when fitted.
+    /// (1/s) when the first strobe interval shows at least one e-fold of growth (d_1 ≥ e δ0;
+    /// a first strobe a few steps after the perturbation shows none, and its two-point rate
+    /// means nothing); with its standard error when fitted.
     pub fn growth_rate_per_s(&self) -> Option<(f64, Option<f64>)> {
         match self.growth {
             Some(g) => Some((g.per_s, Some(g.stderr_per_s))),
-            None => self.initial_growth_per_s.map(|r| (r, None)),
+            None => {
+                let grown = self.first_separation_rel * self.orbit_extent[0] / self.delta0_m;
+                self.initial_growth_per_s
+                    .filter(|_| grown >= std::f64::consts::E)
+                    .map(|r| (r, None))
+            }
         }
     }
 
