@@ -195,8 +195,9 @@ pub struct AnalysisReport {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub phase_lock: Option<PhaseLock>,
     /// Qualifier of the verdict: the motion follows the forcing (Λ_p ≥ 0.9) although the
-    /// verdict is not periodic, e.g. "chaotic, phase-locked to the forcing".
-    #[serde(default)]
+    /// verdict is not periodic, e.g. "chaotic; phase-locked to the forcing" (left out of the
+    /// JSON when false).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub phase_locked: bool,
     /// Qualifier of a chaotic or irregular verdict: low- or high-dimensional section
     /// ([`crate::analysis::section_dimension`]).
