@@ -180,33 +180,45 @@ pub fn analyze_section(
     opts: &SectionOptions,
 ) -> Result<SectionAnalysis, AnalysisError> {
     let u = normalise(points, scales)?;
-    let mut out = pattern(&u, opts);
+    // W_p for p = 1 ..= max_p, once: the pattern and the tight grouping both judge them
     let max_p = opts.max_period.max(1).min(u.len() / 4);
-    if !matches!(out.pattern, SectionPattern::TooShort { .. }) && max_p >= 1 {
+    let w: Vec<f64> = if u.len() >= opts.min_points.max(8) {
+        (1..=max_p).map(|p| residue_scatter(&u, p)).collect()
+    } else {
+        Vec::new()
+    };
+    let mut out = pattern(&u, &w, opts);
+    if !matches!(out.pattern, SectionPattern::TooShort { .. }) {
         out.axis_scatter = axis_scatter(&u, out.best_period);
-        let w: Vec<f64> = (1..=max_p).map(|p| residue_scatter(&u, p)).collect();
-        // W_p² of n points in p groups of pure scatter is biased low by the factor (1 − p/n)
-        // (p fitted centroids): compare periods on the corrected W_p / √(1 − p/n), or a long
-        // period would always look "better" than the true one
-        let n = u.len() as f64;
-        let corrected = |p: usize| w[p - 1] / (1.0 - p as f64 / n).sqrt();
-        let best = (1..=max_p).map(corrected).fold(f64::INFINITY, f64::min);
-        out.tight = (1..=max_p)
-            .find(|&p| {
-                let wp = w[p - 1];
-                wp <= opts.noise_tol && corrected(p) <= 1.5 * best && groups_separated(&u, p, wp)
-            })
-            .map(|p| Grouping {
-                period: p,
-                scatter: w[p - 1],
-                axis_scatter: axis_scatter(&u, p),
-            });
+        out.tight = tight_grouping(&u, &w, opts.noise_tol);
     }
     Ok(out)
 }
 
-/// The pattern of normalised section points (the rules of the module docs).
-fn pattern(u: &[Vec<f64>], opts: &SectionOptions) -> SectionAnalysis {
+/// The smallest period whose groups are tight ([`SectionAnalysis::tight`]), from the
+/// residue scatters `w[p − 1]` = W_p.
+fn tight_grouping(u: &[Vec<f64>], w: &[f64], noise_tol: f64) -> Option<Grouping> {
+    // W_p² of n points in p groups of pure scatter is biased low by the factor (1 − p/n)
+    // (p fitted centroids): compare periods on the corrected W_p / √(1 − p/n), or a long
+    // period would always look "better" than the true one
+    let n = u.len() as f64;
+    let corrected = |p: usize| w[p - 1] / (1.0 - p as f64 / n).sqrt();
+    let best = (1..=w.len()).map(corrected).fold(f64::INFINITY, f64::min);
+    (1..=w.len())
+        .find(|&p| {
+            let wp = w[p - 1];
+            wp <= noise_tol && corrected(p) <= 1.5 * best && groups_separated(u, p, wp)
+        })
+        .map(|p| Grouping {
+            period: p,
+            scatter: w[p - 1],
+            axis_scatter: axis_scatter(u, p),
+        })
+}
+
+/// The pattern of normalised section points (the rules of the module docs), given their
+/// residue scatters `w[p − 1]` = W_p (empty when there are too few points).
+fn pattern(u: &[Vec<f64>], w: &[f64], opts: &SectionOptions) -> SectionAnalysis {
     let n = u.len();
     let needed = opts.min_points.max(8);
     let mut out = SectionAnalysis {
@@ -226,9 +238,8 @@ fn pattern(u: &[Vec<f64>], opts: &SectionOptions) -> SectionAnalysis {
         out.scatter = 0.0;
         return out;
     }
-    out.size = residue_scatter(u, 1);
-    let max_p = opts.max_period.max(1).min(n / 4);
-    let w: Vec<f64> = (1..=max_p).map(|p| residue_scatter(u, p)).collect();
+    out.size = w[0];
+    let max_p = w.len();
     let (best_i, &best_w) = w
         .iter()
         .enumerate()
