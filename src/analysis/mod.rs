@@ -29,6 +29,7 @@ pub(crate) mod point_tree;
 pub mod prediction_error;
 pub mod recurrence;
 pub mod regime;
+pub mod regime_forced;
 pub mod replica_test;
 pub mod return_map_lyapunov;
 pub mod rosenstein;
