@@ -36,6 +36,7 @@ fn reduced_chapter4_study_writes_every_figure_and_counts_two_impacts_at_14_5_hz(
         doubling_freqs_hz: vec![5.5, 14.5],
         check_freqs_hz: vec![5.5, 14.5],
         ensemble_seeds: vec![2],
+        recipe_freqs_hz: vec![5.5, 14.5],
     };
     let figures = chapter4::all(&ctx, &s, &d, &c, &|_| true).unwrap().figures;
     let names: Vec<&str> = figures.iter().map(|f| f.name.as_str()).collect();
@@ -47,6 +48,7 @@ fn reduced_chapter4_study_writes_every_figure_and_counts_two_impacts_at_14_5_hz(
             "ch4_bifurcation",
             "ch4_impacts",
             "ch4_run_length",
+            "ch4_checks",
             "ch4_panel_f14.5",
             "ch4_reconstruction"
         ]
@@ -84,6 +86,24 @@ fn reduced_chapter4_study_writes_every_figure_and_counts_two_impacts_at_14_5_hz(
             .all(|w| w.ends_with("in all 2 starts") || w.starts_with("split: ")),
         "{words:?}"
     );
+    // the checks: one row per frequency, every comparison filled
+    let checks = Table::read(&dir.path().join("ch4_checks.csv")).unwrap();
+    assert_eq!(checks.f64_column("frequency_hz").unwrap(), [5.5, 14.5]);
+    for col in [
+        "ensemble",
+        "same_doubled",
+        "same_soft_scene",
+        "verdict_soft_scene",
+    ] {
+        let v = checks.str_column(col).unwrap();
+        assert!(v.iter().all(|w| !w.is_empty()), "{col}: {v:?}");
+    }
+    let same = checks.str_column("same_soft_scene").unwrap();
+    assert!(
+        same.iter().all(|w| *w == "true" || *w == "false"),
+        "{same:?}"
+    );
+    assert!(dir.path().join("data/dem_soft_p12/sweep.json").is_file());
     // the regime table carries the qualifiers and the replica outcome (12 periods: too short
     // for a verdict, but the columns are there)
     let frf = Table::read(&dir.path().join("ch4_regime_frf.csv")).unwrap();

@@ -177,6 +177,7 @@ fn chapter4_commands_parse() {
         doubling_freqs_hz: vec![],
         check_freqs_hz: vec![],
         ensemble_seeds: vec![],
+        recipe_freqs_hz: vec![],
     };
     let figures = pdamp::study::chapter4::all(&ctx, &s, &d, &c, &|_| true)
         .unwrap()

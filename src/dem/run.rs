@@ -581,9 +581,12 @@ fn drive_steps(
             aside += c0.elapsed().as_secs_f64();
         }
     }
-    let wall_s = (wall0.elapsed().as_secs_f64() - aside).max(1e-9);
+    let total = wall0.elapsed().as_secs_f64();
+    let wall_s = (total - aside).max(1e-9);
+    // the stepping's share of the thread's CPU time: `aside` is wall time, which a loaded
+    // machine stretches, so it is removed as a fraction of the wall time, not subtracted
     let cpu_s = match (cpu0, thread_cpu_time_s()) {
-        (Some(a), Some(b)) if b - a - aside > 0.05 => Some(b - a - aside),
+        (Some(a), Some(b)) if b - a > 0.05 => Some((b - a) * wall_s / total.max(1e-9)),
         _ => None,
     };
     obs.finish()?;

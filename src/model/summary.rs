@@ -151,7 +151,8 @@ pub struct RunSummary {
     pub events_total: u64,
     /// Model-specific extra values, flattened into the JSON (e.g. DEM's
     /// `energy_friction_j_per_cycle`).
-    #[serde(flatten)]
+    /// Not-a-number values are written as JSON `null` and read back as absent.
+    #[serde(flatten, deserialize_with = "extra_without_nulls")]
     pub extra: BTreeMap<String, f64>,
     /// Stroboscopic samples of the steady state (written to strobe.csv, not to the JSON).
     #[serde(skip)]
@@ -171,6 +172,16 @@ pub struct RunSummary {
 /// both ways (the sweep tables, the study and the figures read its fields, checked at compile
 /// time; a `summary.json` or `points/<i>.json` reads back into the same report).
 pub type RunAnalysis = AnalysisReport;
+
+/// Reads [`RunSummary::extra`], leaving out the entries written as `null` (a value that was not
+/// a number, e.g. a CPU time that could not be measured).
+fn extra_without_nulls<'de, D>(d: D) -> Result<BTreeMap<String, f64>, D::Error>
+where
+    D: serde::Deserializer<'de>,
+{
+    let m = BTreeMap::<String, Option<f64>>::deserialize(d)?;
+    Ok(m.into_iter().filter_map(|(k, v)| Some((k, v?))).collect())
+}
 
 #[cfg(test)]
 mod tests {
@@ -208,5 +219,22 @@ mod tests {
         assert_eq!(a.poincare_shape.as_deref(), Some("points"));
         assert_eq!(a.verdict(), "periodic-2");
         assert_eq!(serde_json::to_value(&a).unwrap(), v);
+    }
+
+    #[test]
+    fn a_null_extra_value_reads_back_as_absent() {
+        // a committed sweep point with its CPU-time figure written as null (not measurable
+        // on a loaded machine): the summary reads, without that key
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/figures/data/dem_ch4_p200/points/0.json"
+        );
+        let point: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+        let mut v = point["summary"].clone();
+        v["particle_steps_per_cpu_s"] = serde_json::Value::Null;
+        let s: RunSummary = serde_json::from_value(v).unwrap();
+        assert!(!s.extra.contains_key("particle_steps_per_cpu_s"));
+        assert!(s.extra["bed_floor_impacts_per_cycle"].is_finite());
     }
 }

@@ -6,7 +6,9 @@
 //! - `ch4_bifurcation`: z_cm strobed once per period (the exact section) versus f;
 //! - `ch4_impacts`: collective bed–floor and bed–ceiling impacts per cycle versus f
 //!   ([`crate::dem::bed_impacts`]), so that "two impacts per period" can be read off;
-//! - `ch4_run_length`: the panel frequencies again with every run twice as long, verdict by
+//! - `ch4_checks` (with `--ch4-checks`): every frequency from three starts, doubled, and with
+//!   the other shipped softened scene, verdict by verdict ([`checks`]);
+//! - `ch4_run_length`: the check frequencies again with every run twice as long, verdict by
 //!   verdict and amplitude by amplitude (the quick mode's run length is only trusted where
 //!   doubling it changes nothing);
 //! - `ch4_panel_f<f>` (Figs. 4.2–4.6): bed band between floor and ceiling, the section and the
@@ -29,14 +31,17 @@ use crate::plot::spectrum::SpectrumFigure;
 use crate::plot::Series;
 use rayon::prelude::*;
 
+mod checks;
 mod ensemble;
 
+use checks::{checks_figure, Checks};
 use ensemble::{ensemble_check, ensemble_figure};
 
 use super::command::Command;
 use super::dem_figures::softened_steel_set;
 use super::pipeline::{
     scene_with, simulate_command, BundledScene, Ctx, FigureRecord, Recorded, SweepResult,
+    DEM_B_SOFT,
 };
 use super::settings::{Chapter4Settings, DemSettings, Settings};
 use crate::scene::keys::{
@@ -60,10 +65,11 @@ const SCENE_DT_FRACTION: f64 = 0.02;
 const SCENE_PERIODS: f64 = 100.0;
 
 /// Names of the chapter-4 figures (for `--only`).
-pub const NAMES: [&str; 8] = [
+pub const NAMES: [&str; 9] = [
     "ch4",
     "ch4_regime_frf",
     "ch4_ensemble",
+    "ch4_checks",
     "ch4_bifurcation",
     "ch4_impacts",
     "ch4_run_length",
@@ -180,11 +186,27 @@ fn length_text(c: &Chapter4Settings, factor: f64) -> String {
     }
 }
 
-fn sweep_dir(c: &Chapter4Settings, factor: f64) -> String {
+/// The run length in a directory name ("p200" or "d196.83").
+fn length_dir(c: &Chapter4Settings, factor: f64) -> String {
     match c.duration_s {
-        Some(s) => format!("dem_ch4_d{}", factor * s),
-        None => format!("dem_ch4_p{}", factor * c.periods),
+        Some(s) => format!("d{}", factor * s),
+        None => format!("p{}", factor * c.periods),
     }
+}
+
+fn sweep_dir(c: &Chapter4Settings, factor: f64) -> String {
+    format!("dem_ch4_{}", length_dir(c, factor))
+}
+
+/// `--set` of the other shipped softened scene (`thesis_b_soft.toml`) at the mode's run
+/// length: the chapter-4 scene's material and time step settings, and the run length always
+/// written (that scene counts its runs in seconds).
+fn other_scene_set(d: &DemSettings, c: &Chapter4Settings) -> Vec<(&'static str, String)> {
+    let mut set = ch4_set(d, c, 1.0);
+    if c.duration_s.is_none() && !set.iter().any(|(k, _)| *k == RUN_PERIODS) {
+        set.push((RUN_PERIODS, c.periods.to_string()));
+    }
+    set
 }
 
 fn frequency_list(freqs: &[f64]) -> String {
@@ -237,9 +259,10 @@ pub fn all(
         reductions: &reductions,
     };
     // the ensemble check: the check frequencies from further initial packings
+    let checks = want("ch4_checks");
     let ensemble = if !c.ensemble_seeds.is_empty()
         && !c.check_freqs_hz.is_empty()
-        && (want("ch4_ensemble") || want("ch4_regime_frf"))
+        && (want("ch4_ensemble") || want("ch4_regime_frf") || checks)
     {
         let seeds = c
             .ensemble_seeds
@@ -274,10 +297,36 @@ pub fn all(
     if want("ch4_impacts") {
         figures.push(impacts(&info, &pts)?);
     }
-    if want("ch4_run_length") && !c.doubling_freqs_hz.is_empty() {
+    let long = if !c.doubling_freqs_hz.is_empty() && (want("ch4_run_length") || checks) {
         let long = sweep(2.0, &c.doubling_freqs_hz)?;
         let long_pts = points("ch4_run_length", &long.points)?;
-        figures.push(run_length(&info, &pts, &long, &long_pts)?);
+        if want("ch4_run_length") {
+            figures.push(run_length(&info, &pts, &long, &long_pts)?);
+        }
+        Some((long, long_pts))
+    } else {
+        None
+    };
+    if let (true, Some(e), Some((long, long_pts))) = (checks, &ensemble, &long) {
+        if !c.recipe_freqs_hz.is_empty() {
+            let other = ctx.sweep(
+                &format!("dem_soft_{}", length_dir(c, 1.0)),
+                DEM_B_SOFT,
+                &other_scene_set(d, c),
+                &[(EXCITATION_FREQUENCY, frequency_list(&c.recipe_freqs_hz))],
+                true,
+            )?;
+            let other_pts = points("ch4_checks", &other.points)?;
+            let ch = Checks {
+                base: &pts,
+                starts: &e.runs,
+                ensemble_words: &e.words,
+                doubled: long_pts,
+                other_scene: &other_pts,
+                sweeps: [long, &other],
+            };
+            figures.push(checks_figure(&info, &ch)?);
+        }
     }
     if want("ch4_panels") || want("ch4_reconstruction") {
         // one DEM run per panel, in parallel (each run is single-threaded and deterministic)

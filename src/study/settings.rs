@@ -119,19 +119,20 @@ pub struct Chapter4Settings {
     /// Packing seeds (`damper.seed`) of further initial states at the check frequencies,
     /// beside the scene's own (seed 1): the ensemble check; empty skips it.
     pub ensemble_seeds: Vec<u64>,
+    /// Frequencies (Hz, a subset of `frequencies_hz`) run with the other shipped softened
+    /// scene (`thesis_b_soft.toml`, the same bed with other analysis windows) for `ch4_checks`;
+    /// empty skips it.
+    pub recipe_freqs_hz: Vec<f64>,
 }
 
 impl Chapter4Settings {
-    /// With the checks of the verdicts (`pdamp reproduce --ch4-checks`): the panel frequencies
-    /// (the source's examples) from two more initial packings (seeds 2 and 3), and the source's
-    /// examples of its chaotic zone I, periodic window and chaotic zone II (13, 14.5 and 21 Hz)
-    /// with runs twice as long.
+    /// With the checks of the verdicts (`pdamp reproduce --ch4-checks`), at every frequency of
+    /// the sweep: two more initial packings (seeds 2 and 3), runs twice as long, and the other
+    /// shipped softened scene (`thesis_b_soft.toml`).
     pub fn with_checks(mut self) -> Chapter4Settings {
-        self.check_freqs_hz = self.panel_freqs_hz.clone();
-        self.doubling_freqs_hz = [13.0, 14.5, 21.0]
-            .into_iter()
-            .filter(|f| self.frequencies_hz.contains(f))
-            .collect();
+        self.check_freqs_hz = self.frequencies_hz.clone();
+        self.doubling_freqs_hz = self.frequencies_hz.clone();
+        self.recipe_freqs_hz = self.frequencies_hz.clone();
         self.ensemble_seeds = vec![2, 3];
         self
     }
@@ -226,6 +227,7 @@ impl Settings {
                         doubling_freqs_hz: Vec::new(),
                         check_freqs_hz: Vec::new(),
                         ensemble_seeds: Vec::new(),
+                        recipe_freqs_hz: Vec::new(),
                     }),
                 }),
             },
@@ -268,6 +270,7 @@ impl Settings {
                             doubling_freqs_hz: Vec::new(),
                             check_freqs_hz: Vec::new(),
                             ensemble_seeds: Vec::new(),
+                            recipe_freqs_hz: Vec::new(),
                             frequencies_hz,
                             periods: 200.0,
                             duration_s: None,

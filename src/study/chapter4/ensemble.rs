@@ -12,7 +12,7 @@ use crate::study::pipeline::{FigureRecord, SweepResult};
 /// The verdicts of every start at each frequency.
 pub(super) struct Ensemble {
     /// (f, seed, point) of every start, the scene's own seed first.
-    runs: Vec<(f64, u64, Point)>,
+    pub(super) runs: Vec<(f64, u64, Point)>,
     /// (f, "3 of 3 starts" / "split: chaotic in 2 of 3 starts, periodic-1 in 1").
     pub(super) words: Vec<(f64, String)>,
     /// Seeds in order (the scene's first).
