@@ -132,3 +132,29 @@ fn killed_sweep_resumes_to_the_same_files() {
         read(&reference.join("strobe.csv"))
     );
 }
+
+#[test]
+fn points_of_another_physics_revision_are_not_mixed_in() {
+    let dir = scratch::tempdir().unwrap();
+    let scene = dir.path().join("s.toml");
+    std::fs::write(&scene, SCENE).unwrap();
+    let out = dir.path().join("out");
+    let vary = "excitation.frequency=2:6:2";
+    assert!(sweep(&scene, &out, "2", vary).status.success());
+    // each point says which physics made it
+    let p1 = out.join("points/1.json");
+    let text = String::from_utf8(read(&p1)).unwrap();
+    let revision = format!("\"physics\": {}", pdamp::model::PHYSICS_REVISION);
+    assert!(text.contains(&revision), "{text}");
+    // one point from a binary with other physics, and another lost: the resume refuses
+    std::fs::write(&p1, text.replace(&revision, "\"physics\": 999")).unwrap();
+    std::fs::remove_file(out.join("points/2.json")).unwrap();
+    let again = sweep(&scene, &out, "2", vary);
+    assert!(!again.status.success());
+    let err = String::from_utf8_lossy(&again.stderr);
+    assert!(
+        err.contains("physics revision 999") && err.contains("points/1.json"),
+        "{err}"
+    );
+    assert!(!out.join("points/2.json").exists(), "nothing computed");
+}

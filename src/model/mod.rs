@@ -5,5 +5,13 @@
 pub mod primary;
 pub mod summary;
 
+/// Revision of the simulators' physics: which trajectories this build computes. Every stored
+/// sweep point carries the revision that made it (`points/<i>.json`, field `physics`; points
+/// written before the field existed are revision 1), and a sweep refuses to resume over points
+/// of another revision rather than mix two physics in one table. Raise it with any change that
+/// moves a trajectory's bits — `tests/cached_points_reproduce.rs` recomputes committed points
+/// and says when that happened.
+pub const PHYSICS_REVISION: u32 = 1;
+
 pub use primary::{base_motion, Anchor, BoxDrive, PrimarySystem, Sdof};
 pub use summary::{EnergyTotals, RunAnalysis, RunOptions, RunSummary, RunWindow, StrobePoint};

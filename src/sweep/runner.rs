@@ -48,6 +48,9 @@ pub struct SweepReport {
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub(super) struct PointRecord {
     pub(super) point: usize,
+    /// The [`crate::model::PHYSICS_REVISION`] of the binary that computed it.
+    #[serde(default = "first_revision")]
+    pub(super) physics: u32,
     /// (key, value) of the varied keys.
     pub(super) values: Vec<(String, String)>,
     /// Column name → formatted cell.
@@ -56,6 +59,11 @@ pub(super) struct PointRecord {
     pub(super) strobe: Vec<String>,
     /// The full run summary.
     pub(super) summary: serde_json::Value,
+}
+
+/// Points written before they carried their physics revision: revision 1.
+fn first_revision() -> u32 {
+    1
 }
 
 /// Identity of a sweep, stored in `DIR/sweep.json` so that a rerun resumes only the same sweep.
@@ -269,6 +277,7 @@ pub fn run_shard_with(
         .copied()
         .filter(|&i| read_record(&point_path(out, i), i).is_none())
         .collect();
+    check_physics(out, mine.iter().copied().filter(|i| !pending.contains(i)))?;
     let skipped = mine.len() - pending.len();
     let keys: Vec<String> = spec.varies.iter().map(|v| v.key.clone()).collect();
     let label = (!shard.is_whole()).then(|| shard.label());
@@ -401,6 +410,27 @@ fn check_manifest(spec: &SweepSpec, c: Option<&Continuation>, out: &Path) -> Res
     manifest.write(out)
 }
 
+/// Refuses to resume over finished points computed with another physics revision.
+fn check_physics(out: &Path, done: impl Iterator<Item = usize>) -> Result<(), SimError> {
+    let stale: Vec<(usize, u32)> = done
+        .filter_map(|i| read_record(&point_path(out, i), i).map(|r| (i, r.physics)))
+        .filter(|(_, p)| *p != crate::model::PHYSICS_REVISION)
+        .collect();
+    match stale.first() {
+        None => Ok(()),
+        Some((i, p)) => Err(SimError::Output(format!(
+            "{}: {} finished point(s) (first: points/{i}.json) were computed with physics \
+             revision {p}, this binary computes revision {}: their trajectories may differ, \
+             so they are not mixed into one table; delete {} to recompute them, or choose \
+             another --out directory",
+            out.display(),
+            stale.len(),
+            crate::model::PHYSICS_REVISION,
+            out.join("points").display()
+        ))),
+    }
+}
+
 /// The section's scatter quoted beside a verdict: W_n of its tight grouping, else its size
 /// (RMS distance from the centroid), relative to the orbit.
 fn section_scatter(sec: &crate::analysis::section::SectionAnalysis) -> f64 {
@@ -415,6 +445,40 @@ pub(super) fn run_point(
     points_dir: &Path,
 ) -> Result<PointRecord, SimError> {
     let s = run_in_point_dir(scene, &points_dir.join(i.to_string()), analyze)?;
+    let cells = cells_of(&s);
+    // the same text as format!("{},{},…", cycle, fmt_num(…), …), written into one buffer
+    let strobe = s
+        .strobe
+        .iter()
+        .map(|p| {
+            use std::fmt::Write;
+            let mut row = String::with_capacity(96);
+            let _ = write!(row, "{}", p.cycle);
+            for x in [p.grain_z_m, p.box_z_m, p.grain_v_m_s, p.box_v_m_s] {
+                row.push(',');
+                push_num(&mut row, x);
+            }
+            row
+        })
+        .collect();
+    let summary = serde_json::to_value(&s).map_err(|e| SimError::Output(e.to_string()))?;
+    Ok(PointRecord {
+        point: i,
+        physics: crate::model::PHYSICS_REVISION,
+        values: values
+            .iter()
+            .map(|(k, v)| (k.clone(), value_str(v)))
+            .collect(),
+        cells,
+        strobe,
+        summary,
+    })
+}
+
+/// The formatted cells of a point (`sweep.csv` and `timings.csv` columns) from its typed
+/// summary: also used to refresh the cells of a stored point whose derived values (e.g. the
+/// replica's growth rate) are computed by a newer rule than the one that wrote it.
+pub(super) fn cells_of(s: &RunSummary) -> BTreeMap<String, String> {
     let mut cells = BTreeMap::new();
     cells.insert("frequency_hz".to_string(), fmt_num(s.frequency_hz));
     cells.insert("amplitude_m".to_string(), fmt_opt(Some(s.amplitude_m)));
@@ -492,32 +556,7 @@ pub(super) fn run_point(
     ] {
         cells.insert(col.to_string(), v.unwrap_or_default());
     }
-    // the same text as format!("{},{},…", cycle, fmt_num(…), …), written into one buffer
-    let strobe = s
-        .strobe
-        .iter()
-        .map(|p| {
-            use std::fmt::Write;
-            let mut row = String::with_capacity(96);
-            let _ = write!(row, "{}", p.cycle);
-            for x in [p.grain_z_m, p.box_z_m, p.grain_v_m_s, p.box_v_m_s] {
-                row.push(',');
-                push_num(&mut row, x);
-            }
-            row
-        })
-        .collect();
-    let summary = serde_json::to_value(&s).map_err(|e| SimError::Output(e.to_string()))?;
-    Ok(PointRecord {
-        point: i,
-        values: values
-            .iter()
-            .map(|(k, v)| (k.clone(), value_str(v)))
-            .collect(),
-        cells,
-        strobe,
-        summary,
-    })
+    cells
 }
 
 /// Runs one point; its own files (DEM snapshots) go under `dir` = `OUT/points/<i>/`, marked

@@ -79,11 +79,19 @@ pub(super) fn point_path(dir: &Path, i: usize) -> PathBuf {
 }
 
 /// The point record of `path`, if it is a complete record of point `i`.
+///
+/// The cells are re-derived from the stored typed summary (the source of truth), so that a
+/// point written under an earlier rule for a derived value shows today's; a summary that no
+/// longer reads keeps its stored cells.
 pub(super) fn read_record(path: &Path, i: usize) -> Option<PointRecord> {
     let text = std::fs::read_to_string(path).ok()?;
-    serde_json::from_str::<PointRecord>(&text)
+    let mut rec = serde_json::from_str::<PointRecord>(&text)
         .ok()
-        .filter(|r| r.point == i)
+        .filter(|r| r.point == i)?;
+    if let Ok(s) = serde_json::from_value::<crate::model::RunSummary>(rec.summary.clone()) {
+        rec.cells = super::runner::cells_of(&s);
+    }
+    Some(rec)
 }
 
 // ---------------------------------------------------------------- stream log
@@ -252,6 +260,19 @@ pub(super) fn write_tables(
             let _ = std::fs::remove_file(&strobe.tmp);
             return Err(out_err(path, "not a complete record of this point"));
         };
+        if rec.physics != crate::model::PHYSICS_REVISION {
+            let _ = std::fs::remove_file(&strobe.tmp);
+            return Err(out_err(
+                path,
+                format!(
+                    "computed with physics revision {}, this binary computes revision {}: \
+                     not mixed into one table (recompute it, or merge with the binary that \
+                     made it)",
+                    rec.physics,
+                    crate::model::PHYSICS_REVISION
+                ),
+            ));
+        }
         strobe.write(&strobe_rows(&rec))?;
         let values = rec.values.into_iter().map(|(_, v)| v).collect();
         rows.push((*i, values, rec.cells));
@@ -486,6 +507,7 @@ mod tests {
         let mut log = StreamLog::open(&path, &keys).unwrap();
         let rec = PointRecord {
             point: 5,
+            physics: 1,
             values: vec![("k".into(), "3".into())],
             cells: BTreeMap::new(),
             strobe: vec![],
