@@ -7,21 +7,31 @@
 //! no faster than AVX2 on the development machine, so it has no variant.)
 
 /// The widest instruction set this processor offers to the pdamp loops.
+///
+/// A value is a proof: [`Simd::Avx2`] carries a [`HasAvx2`], which only [`Simd::detect`] can
+/// make, after asking the processor — so safe code holding any `Simd` may run the kernels it
+/// names.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Simd {
     /// The target's baseline (SSE2 on x86-64).
     Baseline,
-    /// AVX2 (256-bit vectors).
+    /// AVX2 (256-bit vectors), which this processor has.
     #[cfg(target_arch = "x86_64")]
-    Avx2,
+    Avx2(HasAvx2),
 }
+
+/// The processor running this program has AVX2 (made only by [`Simd::detect`]; the private
+/// field keeps every other code from making one).
+#[cfg(target_arch = "x86_64")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct HasAvx2(());
 
 impl Simd {
     /// The widest set the processor running this program has.
     pub fn detect() -> Self {
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx2") {
-            return Simd::Avx2;
+            return Simd::Avx2(HasAvx2(()));
         }
         Simd::Baseline
     }
@@ -31,7 +41,7 @@ impl Simd {
         match Simd::detect() {
             Simd::Baseline => vec![Simd::Baseline],
             #[cfg(target_arch = "x86_64")]
-            Simd::Avx2 => vec![Simd::Baseline, Simd::Avx2],
+            avx2 @ Simd::Avx2(_) => vec![Simd::Baseline, avx2],
         }
     }
 }

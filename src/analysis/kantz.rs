@@ -757,8 +757,8 @@ fn accumulate_squared_differences(a: &[f64], b: &[f64], g: &mut [f64], count: bo
 fn reference_rms(job: &Job, i: usize, sc: &mut Scratch, simd: Simd) {
     match simd {
         #[cfg(target_arch = "x86_64")]
-        // SAFETY: `Simd::Avx2` is only constructed after `is_x86_feature_detected!("avx2")`.
-        Simd::Avx2 => unsafe { reference_rms_avx2(job, i, sc) },
+        // SAFETY: a `Simd::Avx2` carries the proof (`HasAvx2`) that this processor has AVX2.
+        Simd::Avx2(_) => unsafe { reference_rms_avx2(job, i, sc) },
         Simd::Baseline => reference_rms_impl(job, i, sc),
     }
 }
@@ -926,8 +926,8 @@ fn finish_reference(
 ) {
     match simd {
         #[cfg(target_arch = "x86_64")]
-        // SAFETY: `Simd::Avx2` is only constructed after `is_x86_feature_detected!("avx2")`.
-        Simd::Avx2 => unsafe { finish_reference_avx2(job, sc, products, totals) },
+        // SAFETY: a `Simd::Avx2` carries the proof (`HasAvx2`) that this processor has AVX2.
+        Simd::Avx2(_) => unsafe { finish_reference_avx2(job, sc, products, totals) },
         Simd::Baseline => finish_reference_impl(job, sc, products, totals),
     }
 }

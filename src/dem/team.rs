@@ -147,7 +147,7 @@ impl Team {
     /// have finished.
     ///
     /// # Panics
-    /// When the job panicked on a worker thread.
+    /// When the job panicked on any thread (after every thread has finished with it).
     pub fn run(&self, job: &Job<'_>) {
         if self.workers.is_empty() {
             job(0);
@@ -164,9 +164,15 @@ impl Team {
         for (t, _) in &self.workers {
             t.unpark();
         }
-        job(0);
+        // the leader's share may panic (an index out of bounds): the workers still run the
+        // job, so wait for them before unwinding out of the job's lifetime
+        let leader = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| job(0)));
         wait_until(|| s.pending.load(Ordering::Acquire) == 0, false);
-        if s.panicked.swap(false, Ordering::Relaxed) {
+        let worker_panicked = s.panicked.swap(false, Ordering::Relaxed);
+        if let Err(payload) = leader {
+            std::panic::resume_unwind(payload);
+        }
+        if worker_panicked {
             panic!("a DEM team thread panicked");
         }
     }
@@ -329,24 +335,36 @@ impl<T: Copy> View<'_, T> {
     }
 }
 
-/// A mutable slice handed out in disjoint pieces to the units of a phase.
-pub struct Parts<T> {
+/// A mutable slice handed out in disjoint pieces to the units of a phase. It holds the slice's
+/// mutable borrow for its whole life (`'a`), so the slice can neither be read, moved nor
+/// dropped behind its back:
+///
+/// ```compile_fail
+/// use pdamp::dem::team::Parts;
+/// let mut v = vec![1.0f64; 4];
+/// let parts = Parts::new(&mut v);
+/// drop(v); // error: `v` is still borrowed by `parts`
+/// let _ = parts.view().at(0);
+/// ```
+pub struct Parts<'a, T> {
     ptr: *mut T,
     len: usize,
+    _borrow: std::marker::PhantomData<&'a mut [T]>,
 }
 
 // SAFETY: `Parts` only gives out pieces through the unsafe `get`, whose callers guarantee
 // that concurrently used pieces are disjoint; T itself is Send.
-unsafe impl<T: Send> Sync for Parts<T> {}
+unsafe impl<T: Send> Sync for Parts<'_, T> {}
 // SAFETY: as above.
-unsafe impl<T: Send> Send for Parts<T> {}
+unsafe impl<T: Send> Send for Parts<'_, T> {}
 
-impl<T> Parts<T> {
-    /// The pieces of `s` (borrowed mutably for as long as the `Parts` lives).
-    pub fn new(s: &mut [T]) -> Parts<T> {
+impl<'a, T> Parts<'a, T> {
+    /// The pieces of `s`, which stays borrowed mutably for as long as the `Parts` lives.
+    pub fn new(s: &'a mut [T]) -> Parts<'a, T> {
         Parts {
             ptr: s.as_mut_ptr(),
             len: s.len(),
+            _borrow: std::marker::PhantomData,
         }
     }
 
@@ -362,8 +380,9 @@ impl<T> Parts<T> {
     /// Elements `r` (clamped to the slice).
     ///
     /// # Safety
-    /// Pieces in use at the same time must not overlap, and the slice given to
-    /// [`Parts::new`] must outlive them.
+    /// Pieces in use at the same time must not overlap, and no piece may be used while a
+    /// [`View`] of the same elements is read (the borrow checker keeps the slice itself alive
+    /// and untouched).
     #[allow(clippy::mut_from_ref)]
     pub unsafe fn get(&self, r: Range<usize>) -> &mut [T] {
         let (a, b) = (r.start.min(self.len), r.end.min(self.len));
@@ -403,6 +422,31 @@ mod tests {
             }
             assert_eq!(total, [2000, 2000, 2000, 2000, 4000, 4000, 4000, 4000]);
         }
+    }
+
+    #[test]
+    fn a_panic_in_the_leaders_share_waits_for_the_workers() {
+        // the job borrows `done` from this frame: `run` may unwind out of it only after every
+        // worker has finished with the job
+        let team = Team::new(3).unwrap();
+        let done = AtomicUsize::new(0);
+        let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            team.run(&|t| {
+                if t == 0 {
+                    panic!("the leader's share");
+                }
+                std::thread::sleep(Duration::from_millis(20));
+                done.fetch_add(1, Ordering::SeqCst);
+            })
+        }));
+        assert!(r.is_err());
+        assert_eq!(done.load(Ordering::SeqCst), 2, "both workers finished first");
+        // and the team still works
+        let again = AtomicUsize::new(0);
+        team.run(&|_| {
+            again.fetch_add(1, Ordering::SeqCst);
+        });
+        assert_eq!(again.load(Ordering::SeqCst), 3);
     }
 
     #[test]

@@ -1880,10 +1880,10 @@ fn pair_chunk<N: NormalKernel, T: TangentialKernel, const SCATTER: bool, const L
     c: PairChunk,
 ) -> [f64; 3] {
     match ctx.simd {
-        // SAFETY: `Simd::Avx2` comes from `Simd::detect`/`available`, which checked that the
-        // processor has AVX2.
+        // SAFETY: a `Simd::Avx2` carries the proof (`HasAvx2`, made only by `Simd::detect`)
+        // that the processor has AVX2.
         #[cfg(target_arch = "x86_64")]
-        Simd::Avx2 => unsafe { pair_chunk_avx2::<N, T, SCATTER, LEDGER>(ctx, c) },
+        Simd::Avx2(_) => unsafe { pair_chunk_avx2::<N, T, SCATTER, LEDGER>(ctx, c) },
         Simd::Baseline => pair_chunk_impl::<F64x8, N, T, SCATTER, LEDGER>(ctx, c),
     }
 }
@@ -1916,7 +1916,7 @@ struct CrossSide<'a> {
     coef: &'a [ContactCoefficients],
     /// Per cross pair, its (collision, friction) power (W): written, with the ledger, by the
     /// block of the pair's i (0 when not in contact).
-    power: &'a Parts<[f64; 2]>,
+    power: &'a Parts<'a, [f64; 2]>,
     force: &'a mut [[f64; 3]],
     torque: &'a mut [[f64; 3]],
 }
@@ -1934,12 +1934,17 @@ unsafe fn cross_side<N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
     match ctx.simd {
         // SAFETY: as in `pair_chunk`; the rest is the caller's promise.
         #[cfg(target_arch = "x86_64")]
-        Simd::Avx2 => unsafe { cross_side_avx2::<N, T, LEDGER>(ctx, s) },
+        Simd::Avx2(_) => unsafe { cross_side_avx2::<N, T, LEDGER>(ctx, s) },
         // SAFETY: the caller's promise.
         Simd::Baseline => unsafe { cross_side_impl::<F64x8, N, T, LEDGER>(ctx, s) },
     }
 }
 
+/// [`cross_side_impl`] compiled with AVX2.
+///
+/// # Safety
+/// The processor must have AVX2 (a [`Simd::Avx2`] in hand proves it), and the caller keeps the
+/// promise of [`cross_side`].
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 unsafe fn cross_side_avx2<N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
@@ -2083,7 +2088,7 @@ fn grain_chunk<N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
     match ctx.simd {
         // SAFETY: as in `pair_chunk`.
         #[cfg(target_arch = "x86_64")]
-        Simd::Avx2 => unsafe { grain_chunk_avx2::<N, T, LEDGER>(ctx, c) },
+        Simd::Avx2(_) => unsafe { grain_chunk_avx2::<N, T, LEDGER>(ctx, c) },
         Simd::Baseline => grain_chunk_impl::<F64x8, N, T, LEDGER>(ctx, c),
     }
 }
@@ -2115,11 +2120,11 @@ fn wall_overlaps(ctx: &GrainCtx, i: usize) -> [f64; 6] {
 /// The grain arrays and constants of the step's first half kick and drift (2.2.4–2.2.5),
 /// applied grain range by grain range.
 struct Drift<'a> {
-    pos: Parts<[f64; 3]>,
-    vel: Parts<[f64; 3]>,
-    vel_pred: Parts<[f64; 3]>,
-    omega: Parts<[f64; 3]>,
-    omega_pred: Parts<[f64; 3]>,
+    pos: Parts<'a, [f64; 3]>,
+    vel: Parts<'a, [f64; 3]>,
+    vel_pred: Parts<'a, [f64; 3]>,
+    omega: Parts<'a, [f64; 3]>,
+    omega_pred: Parts<'a, [f64; 3]>,
     inv_mass: &'a [f64],
     inv_inertia: &'a [f64],
     /// Centres at the last neighbour build (m); empty when not tracked.
@@ -2140,7 +2145,7 @@ impl<'a> Drift<'a> {
     /// masses and inertias `inv`, the centres at the last neighbour build `reference` (not
     /// tracked unless one per grain), the time step and rotation flag `(dt, rotations)`.
     fn new(
-        kin: [&mut [[f64; 3]]; 5],
+        kin: [&'a mut [[f64; 3]]; 5],
         (inv_mass, inv_inertia): (&'a [f64], &'a [f64]),
         reference: &'a [[f64; 3]],
         (dt, rotations): (f64, bool),
