@@ -1,5 +1,5 @@
-//! `pdamp mutual`, `pdamp fnn --tisean` and `pdamp lyap-k --tisean` against the outputs of the
-//! real TISEAN 3.0.1 (`tests/golden/tisean/`, provenance in `tests/golden/README.md`): every
+//! `pdamp mutual`, `pdamp fnn --tisean`, `pdamp lyap-k --tisean` and `pdamp nrlazy --tisean`
+//! against the outputs of the real TISEAN 3.0.1 (`tests/golden/tisean/`, provenance in `tests/golden/README.md`): every
 //! row, to TISEAN's print precision (`%e`: 7 significant digits), with the same options.
 //!
 //! A value `g` printed by TISEAN stands for the interval `g ± ½·10^(e−6)` (e its decimal
@@ -255,17 +255,102 @@ fn lyap_k_henon_equals_tisean() {
     );
 }
 
+fn nrlazy_file(series: &str, opts: &[&str], laz_file: &str) -> f64 {
+    let path = golden(series);
+    let mut args = vec!["nrlazy", path.to_str().unwrap(), "--tisean"];
+    args.extend_from_slice(opts);
+    let ours: Vec<f64> = pdamp(&args)
+        .lines()
+        .map(|l| l.trim().parse().unwrap())
+        .collect();
+    let want = tisean_rows(&std::fs::read_to_string(golden(laz_file)).unwrap());
+    assert_eq!(ours.len(), want.len(), "{laz_file}: number of samples");
+    let mut score = Score::default();
+    for (i, (o, w)) in ours.iter().zip(&want).enumerate() {
+        score.add(&format!("{laz_file} sample {i}"), *o, &w[0]);
+    }
+    score.report(laz_file);
+    score.0
+}
+
+#[test]
+fn nrlazy_lorenz_equals_tisean() {
+    // TISEAN: nrlazy lorenz_x_n10000.dat -m1,7 -v0.2 -i1 (and -i3)
+    nrlazy_file(
+        "lorenz_x_n10000.dat",
+        &["-m1,7", "--radius-sd", "0.2", "-i1"],
+        "lorenz_x_n10000.m7_v0.2_i1.laz",
+    );
+    nrlazy_file(
+        "lorenz_x_n10000.dat",
+        &["-m1,7", "--radius-sd", "0.2", "-i3"],
+        "lorenz_x_n10000.m7_v0.2_i3.laz",
+    );
+}
+
+#[test]
+fn nrlazy_henon_and_sine_equal_tisean() {
+    nrlazy_file(
+        "henon_x_n20000.txt",
+        &["-m1,5", "-r0.05", "-i2"],
+        "henon_x_n20000.m5_r0.05_i2.laz",
+    );
+    nrlazy_file(
+        "noisy_sine_n8000.txt",
+        &["-m1,3", "-d9", "--radius-sd", "0.3", "-i2"],
+        "noisy_sine_n8000.m3_d9_v0.3_i2.laz",
+    );
+}
+
+/// The comparison can fail: pdamp's default (middle coordinate, ends unchanged) is not
+/// TISEAN's nrlazy and must be told apart from it on the first sample.
+#[test]
+fn nrlazy_default_is_not_tisean() {
+    let path = golden("lorenz_x_n10000.dat");
+    let out = pdamp(&[
+        "nrlazy",
+        path.to_str().unwrap(),
+        "-m7",
+        "--radius-sd",
+        "0.2",
+    ]);
+    let first: f64 = out.lines().next().unwrap().parse().unwrap();
+    let want =
+        tisean_rows(&std::fs::read_to_string(golden("lorenz_x_n10000.m7_v0.2_i1.laz")).unwrap());
+    let g: f64 = want[0][0].parse().unwrap();
+    assert!((first - g).abs() > 0.2, "pdamp {first}, TISEAN {g}");
+    // TISEAN's -v (radius in standard deviations) and -V are refused, not misread
+    for flag in ["-v0.2", "-V0"] {
+        let o = Command::new(env!("CARGO_BIN_EXE_pdamp"))
+            .args(["nrlazy", path.to_str().unwrap(), "-m1,7", flag])
+            .output()
+            .unwrap();
+        assert!(!o.status.success(), "{flag} accepted");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(flag), "{flag}: {err}");
+    }
+}
+
 #[test]
 fn outputs_do_not_depend_on_thread_count() {
     let lorenz = golden("lorenz_x_n10000.dat");
     let lorenz = lorenz.to_str().unwrap();
-    let runs: [&[&str]; 2] = [
+    let runs: [&[&str]; 3] = [
         &[
             "fnn", lorenz, "--tisean", "-m1", "-M1,8", "-d17", "-f10", "-t100",
         ],
         &[
             "lyap-k", lorenz, "--tisean", "-m2", "-M6", "-d17", "-r0.05", "-R0.5", "-#4", "-s300",
             "-t100",
+        ],
+        &[
+            "nrlazy",
+            lorenz,
+            "--tisean",
+            "-m1,7",
+            "--radius-sd",
+            "0.2",
+            "-i2",
         ],
     ];
     for args in runs {

@@ -1,6 +1,7 @@
 //! Schreiber's simple nonlinear noise reduction (locally constant projection; Schreiber 1993,
-//! TISEAN `lazy` and `nrlazy`): each delay vector's middle coordinate is replaced by its
-//! average over the vector's ε-neighbourhood in delay space.
+//! TISEAN `lazy` and `nrlazy`): each delay vector's middle coordinate (by default; every
+//! coordinate as TISEAN `nrlazy`) is replaced by its average over the vector's
+//! ε-neighbourhood in delay space.
 
 use rayon::prelude::*;
 use serde::Serialize;
@@ -77,13 +78,31 @@ pub struct NoiseReduction {
 ///
 /// # Formula
 /// Delay vectors `v_n = (x_n, x_{n−τ}, …, x_{n−(m−1)τ})`, n = (m−1)τ..N−1; neighbourhood
-/// `U_n = { j : ‖v_j − v_n‖_∞ ≤ ε }` (n included). With `c = ⌊(m−1)/2⌋`, the middle coordinate
-/// is replaced by its neighbourhood average, `x'_{n−cτ} = (1/|U_n|) Σ_{j∈U_n} x_{j−cτ}`
-/// (Schreiber 1993, eq. (2); not in SPEC). All corrections of a pass are computed from the
-/// same input and applied together; the first `cτ` and last `(m−1−c)τ` samples are not the
-/// middle of any vector and stay unchanged. With [`Correction::AllCoordinates`] every
-/// coordinate k is averaged likewise and each sample becomes the mean of the corrections of
-/// all vectors that contain it (TISEAN `nrlazy`).
+/// `U_n = { j : ‖v_j − v_n‖_∞ ≤ ε }` (n itself included, j over the same range, no Theiler
+/// window). All corrections of a pass are computed from the same input and applied together;
+/// ε is fixed before the first pass.
+///
+/// - [`Correction::Middle`] (the default; Schreiber 1993, eq. (2), TISEAN `lazy`): with
+///   `c = ⌊(m−1)/2⌋` the middle coordinate is replaced by its neighbourhood average,
+///   `x'_{n−cτ} = (1/|U_n|) Σ_{j∈U_n} x_{j−cτ}`; the first `cτ` and last `(m−1−c)τ` samples are
+///   the middle of no vector and stay unchanged.
+/// - [`Correction::AllCoordinates`] (TISEAN 3.0.1 `nrlazy`, `pdamp nrlazy --tisean`): every
+///   coordinate k = 0..m−1 of every vector gets its neighbourhood average
+///   `a_{n,k} = (1/|U_n|) Σ_{j∈U_n} x_{j−kτ}`, and each sample becomes the mean of the proposals
+///   of all vectors containing it, `x'_i = mean{ a_{n,k} : n − kτ = i }` — the ends included
+///   (sample 0 only from the vector n = (m−1)τ, k = m−1). Equal to TISEAN's output to its print
+///   precision (`tests/golden_tisean.rs`): TISEAN rescales the data to [0, 1] and tests
+///   `|Δ| ≤ ε/(max − min)` on a 512 × 512 box grid over the first and last coordinates, which
+///   is the same neighbourhood; its `-v f` is `ε = f·σ` with σ the population standard deviation
+///   (`sqrt(mean(x²) − mean(x)²)`), as `epsilon_sd` here; its `-r` is ε in data units; no flag
+///   gives ε = (max − min)/1000.
+///
+/// This differs from the middle correction on every sample: on
+/// `tests/golden/tisean/lorenz_x_n10000.dat`, m = 7, ε = 0.2σ, one pass, TISEAN `nrlazy` gives
+/// −4.1279, −4.0909, −4.0605 for the first samples, which the middle correction leaves at
+/// their input values −4.4085, −4.3123, −4.2399; inside the series the two differ by up to 0.28
+/// (median 0.023). The middle correction is kept as the default since it is Schreiber's method
+/// and moves each sample by one neighbourhood average, not by a mean of m of them.
 ///
 /// # Units
 /// ε and the output in data units; m, τ in samples.
