@@ -21,7 +21,8 @@
 #   /tmp/pdamp-vs-tisean), SKIP_TISEAN_ABOVE (skip TISEAN's lyap_k and d2 above this N, when
 #   their ~N² run time is too long; their ratio is then not printed; TISEAN's surrogates is
 #   always skipped above 100 000, the most its Fortran arrays hold),
-#   REPEAT (runs of each command, default 1; the table then shows medians).
+#   REPEAT (runs of each command, default 1; the table then shows medians), PDAMP (a pdamp
+#   binary to time instead of building target/release/pdamp).
 # Order per (program, N), repeated REPEAT times (alternating): TISEAN, pdamp on 2 threads, pdamp
 # on 1 thread (RAYON_NUM_THREADS=1, taskset -c 0 if available). Load (uptime) is printed before
 # each round: on a shared machine compare CPU seconds (user+sys), which the load disturbs much
@@ -92,8 +93,11 @@ fi
 echo "TISEAN built in $TB from $SRC"
 
 # --- pdamp and the series -------------------------------------------------------------------
-(cd "$ROOT" && cargo build --release --quiet --bin pdamp --example gen_series)
-PDAMP="$ROOT/target/release/pdamp"
+(cd "$ROOT" && cargo build --release --quiet --example gen_series)
+if [[ -z "${PDAMP:-}" ]]; then
+  (cd "$ROOT" && cargo build --release --quiet --bin pdamp)
+  PDAMP="$ROOT/target/release/pdamp"
+fi
 GEN="$ROOT/target/release/examples/gen_series"
 for n in $LENGTHS; do
   if [[ ! -s "$WORK/lorenz_x_n$n.dat" ]]; then
