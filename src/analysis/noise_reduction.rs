@@ -108,7 +108,9 @@ pub struct NoiseReduction {
 ///
 /// # Parameters
 /// [`NoiseReductionOptions`]: m = 5, τ = 1, ε = (max − min)/1000, one pass, middle
-/// coordinate. Neighbours come from a box-assisted grid (TISEAN's method), O(N·|U|).
+/// coordinate. Neighbours come from a box-assisted grid as in TISEAN, but with cells of ε/4
+/// (a query scans a strip of 2.25ε instead of 3ε per axis) and the vectors stored by cell, one
+/// array per coordinate, tested in lanes without branches; O(N·|U|).
 ///
 /// # Errors
 /// [`AnalysisError::BadParameter`] for m = 0, τ = 0, iterations = 0 or ε ≤ 0;
