@@ -1,11 +1,11 @@
 //! Schreiber's simple nonlinear noise reduction (locally constant projection; Schreiber 1993,
-//! TISEAN `lazy` and `nrlazy`): each delay vector's middle coordinate is replaced by its
-//! average over the vector's ε-neighbourhood in delay space.
+//! TISEAN `lazy` and `nrlazy`): each delay vector's middle coordinate (by default; every
+//! coordinate as TISEAN `nrlazy`) is replaced by its average over the vector's
+//! ε-neighbourhood in delay space.
 
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::analysis::box_grid::BoxGrid;
 use crate::analysis::{min_max, standard_deviation, validate_series};
 use crate::error::AnalysisError;
 
@@ -77,20 +77,40 @@ pub struct NoiseReduction {
 ///
 /// # Formula
 /// Delay vectors `v_n = (x_n, x_{n−τ}, …, x_{n−(m−1)τ})`, n = (m−1)τ..N−1; neighbourhood
-/// `U_n = { j : ‖v_j − v_n‖_∞ ≤ ε }` (n included). With `c = ⌊(m−1)/2⌋`, the middle coordinate
-/// is replaced by its neighbourhood average, `x'_{n−cτ} = (1/|U_n|) Σ_{j∈U_n} x_{j−cτ}`
-/// (Schreiber 1993, eq. (2); not in SPEC). All corrections of a pass are computed from the
-/// same input and applied together; the first `cτ` and last `(m−1−c)τ` samples are not the
-/// middle of any vector and stay unchanged. With [`Correction::AllCoordinates`] every
-/// coordinate k is averaged likewise and each sample becomes the mean of the corrections of
-/// all vectors that contain it (TISEAN `nrlazy`).
+/// `U_n = { j : ‖v_j − v_n‖_∞ ≤ ε }` (n itself included, j over the same range, no Theiler
+/// window). All corrections of a pass are computed from the same input and applied together;
+/// ε is fixed before the first pass.
+///
+/// - [`Correction::Middle`] (the default; Schreiber 1993, eq. (2), TISEAN `lazy`): with
+///   `c = ⌊(m−1)/2⌋` the middle coordinate is replaced by its neighbourhood average,
+///   `x'_{n−cτ} = (1/|U_n|) Σ_{j∈U_n} x_{j−cτ}`; the first `cτ` and last `(m−1−c)τ` samples are
+///   the middle of no vector and stay unchanged.
+/// - [`Correction::AllCoordinates`] (TISEAN 3.0.1 `nrlazy`, `pdamp nrlazy --tisean`): every
+///   coordinate k = 0..m−1 of every vector gets its neighbourhood average
+///   `a_{n,k} = (1/|U_n|) Σ_{j∈U_n} x_{j−kτ}`, and each sample becomes the mean of the proposals
+///   of all vectors containing it, `x'_i = mean{ a_{n,k} : n − kτ = i }` — the ends included
+///   (sample 0 only from the vector n = (m−1)τ, k = m−1). Equal to TISEAN's output to its print
+///   precision (`tests/golden_tisean.rs`): TISEAN rescales the data to [0, 1] and tests
+///   `|Δ| ≤ ε/(max − min)` on a 512 × 512 box grid over the first and last coordinates, which
+///   is the same neighbourhood; its `-v f` is `ε = f·σ` with σ the population standard deviation
+///   (`sqrt(mean(x²) − mean(x)²)`), as `epsilon_sd` here; its `-r` is ε in data units; no flag
+///   gives ε = (max − min)/1000.
+///
+/// This differs from the middle correction on every sample: on
+/// `tests/golden/tisean/lorenz_x_n10000.dat`, m = 7, ε = 0.2σ, one pass, TISEAN `nrlazy` gives
+/// −4.1279, −4.0909, −4.0605 for the first samples, which the middle correction leaves at
+/// their input values −4.4085, −4.3123, −4.2399; inside the series the two differ by up to 0.28
+/// (median 0.023). The middle correction is kept as the default since it is Schreiber's method
+/// and moves each sample by one neighbourhood average, not by a mean of m of them.
 ///
 /// # Units
 /// ε and the output in data units; m, τ in samples.
 ///
 /// # Parameters
 /// [`NoiseReductionOptions`]: m = 5, τ = 1, ε = (max − min)/1000, one pass, middle
-/// coordinate. Neighbours come from a box-assisted grid (TISEAN's method), O(N·|U|).
+/// coordinate. Neighbours come from a box-assisted grid as in TISEAN, but with cells of ε/4
+/// (a query scans a strip of 2.25ε instead of 3ε per axis) and the vectors stored by cell, one
+/// array per coordinate, tested in lanes without branches; O(N·|U|).
 ///
 /// # Errors
 /// [`AnalysisError::BadParameter`] for m = 0, τ = 0, iterations = 0 or ε ≤ 0;
@@ -152,15 +172,47 @@ pub fn nonlinear_noise_reduction(
         ));
     }
     let n = x.len();
+    let m = opts.dim;
     let mut cur = x.to_vec();
+    let mut next = vec![0.0; n];
     let mut rms_correction = Vec::with_capacity(opts.iterations);
     let mut mean_neighbors = 0.0;
+    // per pass: the m neighbourhood averages of every vector (row n − span), its neighbour count
+    let mut props = vec![0.0; (n - span) * m];
+    let mut counts = vec![0u32; n - span];
+    let mut table = CellTable::default();
     for _ in 0..opts.iterations {
-        let grid = BoxGrid::new(&cur, opts.dim, opts.delay, eps, span..n);
-        let (next, mean_k) = match opts.correction {
-            Correction::Middle => pass_middle(&cur, &grid, opts, span),
-            Correction::AllCoordinates => pass_all(&cur, &grid, opts, span),
-        };
+        table.build(&cur, m, opts.delay, eps, span);
+        neighbourhood_means(&cur, &table, span, &mut props, &mut counts);
+        next.copy_from_slice(&cur);
+        match opts.correction {
+            Correction::Middle => {
+                let c = (m - 1) / 2;
+                for (i, p) in props.chunks_exact(m).enumerate() {
+                    next[span + i - c * opts.delay] = p[c];
+                }
+            }
+            Correction::AllCoordinates => {
+                // x'_i = mean of the proposals a_{v,k} with v − kτ = i, summed in v order
+                // (TISEAN's order); samples in no vector keep their value
+                let mut sum = vec![0.0; n];
+                let mut hits = vec![0u32; n];
+                for (i, p) in props.chunks_exact(m).enumerate() {
+                    let v = span + i;
+                    for (k, &a) in p.iter().enumerate() {
+                        sum[v - k * opts.delay] += a;
+                        hits[v - k * opts.delay] += 1;
+                    }
+                }
+                for ((o, &s), &h) in next.iter_mut().zip(&sum).zip(&hits) {
+                    if h > 0 {
+                        *o = s / f64::from(h);
+                    }
+                }
+            }
+        }
+        let total: u64 = counts.iter().map(|&k| u64::from(k)).sum();
+        mean_neighbors = total as f64 / counts.len() as f64;
         let rms = (cur
             .iter()
             .zip(&next)
@@ -169,8 +221,7 @@ pub fn nonlinear_noise_reduction(
             / n as f64)
             .sqrt();
         rms_correction.push(rms);
-        mean_neighbors = mean_k;
-        cur = next;
+        std::mem::swap(&mut cur, &mut next);
     }
     Ok(NoiseReduction {
         values: cur,
@@ -180,75 +231,260 @@ pub fn nonlinear_noise_reduction(
     })
 }
 
-/// One pass correcting the middle coordinate; returns the new series and the mean
-/// neighbourhood size.
-fn pass_middle(
-    x: &[f64],
-    grid: &BoxGrid,
-    opts: &NoiseReductionOptions,
-    span: usize,
-) -> (Vec<f64>, f64) {
-    let off = (opts.dim - 1) / 2 * opts.delay;
-    let corr: Vec<(f64, usize)> = (span..x.len())
-        .into_par_iter()
-        .map(|v| {
-            let (mut s, mut k) = (0.0, 0usize);
-            grid.for_each_neighbor(x, v, |j| {
-                s += x[j - off];
-                k += 1;
-            });
-            (s / k as f64, k)
-        })
-        .collect();
-    let mut out = x.to_vec();
-    let mut total = 0usize;
-    for (i, &(c, k)) in corr.iter().enumerate() {
-        out[span + i - off] = c;
-        total += k;
-    }
-    (out, total as f64 / corr.len() as f64)
+/// Cells per ε along each grid axis: a query scans 2·SUB + 1 cells per axis, a strip of
+/// (2 + 1/SUB)·ε instead of TISEAN's 3ε (fewer candidates, same neighbours).
+const SUB: i64 = 4;
+/// Most cells of a grid (4 M u32 offsets = 16 MB); above, fewer cells per ε are used.
+const MAX_CELLS: usize = 1 << 22;
+/// Lanes of the neighbour kernel (AVX2 holds 4 f64; two vectors per lane group).
+const LANES: usize = 8;
+/// Delay vectors per parallel task (fixed: the output does not depend on the thread count).
+const CHUNK: usize = 512;
+
+/// Delay vectors `v_n` (n = span..N−1) filed by the cells of their first and last coordinates,
+/// `⌊(x_n − min)·SUB/ε⌋` and `⌊(x_{n−(m−1)τ} − min)·SUB/ε⌋`, and stored in cell order
+/// (row-major), one array per coordinate: the cells a query scans are `2·SUB + 1` contiguous
+/// runs of slots, read in lanes without branches.
+#[derive(Debug, Default)]
+struct CellTable {
+    m: usize,
+    delay: usize,
+    eps: f64,
+    /// Cells per data unit (SUB/ε or 1/ε).
+    inv: f64,
+    /// Cells a query scans on each side of its own.
+    reach: i64,
+    lo: f64,
+    rows: usize,
+    cols: usize,
+    /// The grid is folded (cell indices modulo rows and cols).
+    wrapped: bool,
+    /// Slots of cell c: `start[c]..start[c + 1]`.
+    start: Vec<u32>,
+    /// Coordinate k of slot s at `coords[k * len + s]`.
+    coords: Vec<f64>,
+    len: usize,
 }
 
-/// One pass correcting every coordinate (TISEAN `nrlazy`).
-fn pass_all(
-    x: &[f64],
-    grid: &BoxGrid,
-    opts: &NoiseReductionOptions,
-    span: usize,
-) -> (Vec<f64>, f64) {
-    let m = opts.dim;
-    let corr: Vec<(Vec<f64>, usize)> = (span..x.len())
-        .into_par_iter()
-        .map(|v| {
-            let mut s = vec![0.0; m];
-            let mut k = 0usize;
-            grid.for_each_neighbor(x, v, |j| {
-                for (c, sc) in s.iter_mut().enumerate() {
-                    *sc += x[j - c * opts.delay];
-                }
-                k += 1;
-            });
-            s.iter_mut().for_each(|sc| *sc /= k as f64);
-            (s, k)
-        })
-        .collect();
-    let mut sum = vec![0.0; x.len()];
-    let mut count = vec![0u32; x.len()];
-    let mut total = 0usize;
-    for (i, (s, k)) in corr.iter().enumerate() {
-        let v = span + i;
-        for (c, &sc) in s.iter().enumerate() {
-            sum[v - c * opts.delay] += sc;
-            count[v - c * opts.delay] += 1;
+impl CellTable {
+    fn build(&mut self, x: &[f64], m: usize, delay: usize, eps: f64, span: usize) {
+        let (lo, hi) = min_max(x);
+        let mut reach = SUB;
+        let mut inv = SUB as f64 / eps;
+        let mut side = ((hi - lo) * inv).floor() as usize + 1;
+        while reach > 1 && side.saturating_mul(side) > MAX_CELLS {
+            reach -= 1;
+            inv = reach as f64 / eps;
+            side = ((hi - lo) * inv).floor() as usize + 1;
         }
-        total += k;
+        // a tiny ε over a wide range: fold the grid onto MAX_CELLS cells (wrapped cells only
+        // add candidates that the distance test rejects)
+        let wrapped = side.saturating_mul(side) > MAX_CELLS;
+        let (rows, cols) = if wrapped {
+            let s = MAX_CELLS.isqrt();
+            (s, s)
+        } else {
+            (side, side)
+        };
+        let len = x.len() - span;
+        self.m = m;
+        self.delay = delay;
+        self.wrapped = wrapped;
+        self.eps = eps;
+        self.inv = inv;
+        self.reach = reach;
+        self.lo = lo;
+        self.rows = rows;
+        self.cols = cols;
+        self.len = len;
+        let back = (m - 1) * delay;
+        let cell = |v: usize| -> usize {
+            let i = (((x[v] - lo) * inv) as usize) % rows;
+            let j = (((x[v - back] - lo) * inv) as usize) % cols;
+            i * cols + j
+        };
+        // counting sort of the vectors by cell
+        self.start.clear();
+        self.start.resize(rows * cols + 1, 0);
+        for v in span..x.len() {
+            self.start[cell(v) + 1] += 1;
+        }
+        for c in 0..rows * cols {
+            self.start[c + 1] += self.start[c];
+        }
+        let mut fill: Vec<u32> = self.start[..rows * cols].to_vec();
+        self.coords.clear();
+        self.coords.resize(m * len, 0.0);
+        for v in span..x.len() {
+            let c = cell(v);
+            let s = fill[c] as usize;
+            fill[c] += 1;
+            for k in 0..m {
+                self.coords[k * len + s] = x[v - k * delay];
+            }
+        }
     }
-    let out = x
-        .iter()
-        .zip(sum.iter().zip(&count))
-        .map(|(&xi, (&s, &c))| if c > 0 { s / c as f64 } else { xi })
-        .collect();
-    (out, total as f64 / corr.len() as f64)
+
+    /// Slot ranges of the cells within reach of the vector `q` (first and last coordinates),
+    /// each row's cells being contiguous; calls `f(lo, hi)` per row.
+    #[inline]
+    fn runs(&self, first: f64, last: f64, mut f: impl FnMut(usize, usize)) {
+        let ci = ((first - self.lo) * self.inv) as i64;
+        let cj = ((last - self.lo) * self.inv) as i64;
+        let wrapped = self.wrapped;
+        for di in -self.reach..=self.reach {
+            let i = ci + di;
+            if !wrapped && (i < 0 || i >= self.rows as i64) {
+                continue;
+            }
+            let i = i.rem_euclid(self.rows as i64) as usize;
+            let (j0, j1) = (cj - self.reach, cj + self.reach);
+            if !wrapped {
+                let j0 = j0.max(0) as usize;
+                let j1 = (j1.min(self.cols as i64 - 1)) as usize;
+                f(
+                    self.start[i * self.cols + j0] as usize,
+                    self.start[i * self.cols + j1 + 1] as usize,
+                );
+            } else {
+                for j in j0..=j1 {
+                    let j = j.rem_euclid(self.cols as i64) as usize;
+                    f(
+                        self.start[i * self.cols + j] as usize,
+                        self.start[i * self.cols + j + 1] as usize,
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// For every delay vector v (row v − span of `props`, m values): the averages over its
+/// ε-neighbourhood of each coordinate, and the neighbourhood's size in `counts`.
+fn neighbourhood_means(
+    x: &[f64],
+    table: &CellTable,
+    span: usize,
+    props: &mut [f64],
+    counts: &mut [u32],
+) {
+    let m = table.m;
+    let simd = Simd::detect();
+    props
+        .par_chunks_mut(CHUNK * m)
+        .zip(counts.par_chunks_mut(CHUNK))
+        .enumerate()
+        .for_each(|(c, (props, counts))| {
+            // per-task scratch: the query vector and the lane accumulators
+            let mut q = vec![0.0; m];
+            let mut acc = vec![0.0; m * LANES];
+            for (r, (p, k)) in props.chunks_exact_mut(m).zip(counts.iter_mut()).enumerate() {
+                let v = span + c * CHUNK + r;
+                for (kk, qk) in q.iter_mut().enumerate() {
+                    *qk = x[v - kk * table.delay];
+                }
+                acc.iter_mut().for_each(|a| *a = 0.0);
+                let mut count = 0u64;
+                table.runs(q[0], q[m - 1], |lo, hi| {
+                    count += simd.scan(table, &q, lo, hi, &mut acc);
+                });
+                for (kk, pk) in p.iter_mut().enumerate() {
+                    let s: f64 = acc[kk * LANES..(kk + 1) * LANES].iter().sum();
+                    *pk = s / count as f64;
+                }
+                *k = count as u32;
+            }
+        });
+}
+
+#[derive(Debug, Clone, Copy)]
+enum Simd {
+    #[cfg(target_arch = "x86_64")]
+    Avx2,
+    Baseline,
+}
+
+impl Simd {
+    fn detect() -> Self {
+        #[cfg(target_arch = "x86_64")]
+        if std::is_x86_feature_detected!("avx2") {
+            return Simd::Avx2;
+        }
+        Simd::Baseline
+    }
+
+    /// Adds to `acc` (m × LANES) the coordinates of the slots lo..hi within ε of `q`; returns
+    /// how many there were.
+    #[inline]
+    fn scan(self, t: &CellTable, q: &[f64], lo: usize, hi: usize, acc: &mut [f64]) -> u64 {
+        match self {
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: `Simd::Avx2` is only constructed after `is_x86_feature_detected!("avx2")`.
+            Simd::Avx2 => unsafe { scan_avx2(t, q, lo, hi, acc) },
+            Simd::Baseline => scan_impl(t, q, lo, hi, acc),
+        }
+    }
+}
+
+/// [`scan_impl`] compiled for AVX2 (no FMA: the same sums as the baseline build).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn scan_avx2(t: &CellTable, q: &[f64], lo: usize, hi: usize, acc: &mut [f64]) -> u64 {
+    scan_impl(t, q, lo, hi, acc)
+}
+
+/// Branch-free neighbour test and sums over lanes of LANES slots: a slot's weight is 1 when
+/// every coordinate is within ε (maximum norm, ≤ as TISEAN), else 0; each lane sums its own
+/// slots (a fixed order, whatever the thread count).
+#[inline(always)]
+fn scan_impl(t: &CellTable, q: &[f64], lo: usize, hi: usize, acc: &mut [f64]) -> u64 {
+    let (m, len, eps) = (t.m, t.len, t.eps);
+    let mut count = 0u64;
+    let mut s = lo;
+    let mut w = [0.0f64; LANES];
+    while s < hi {
+        let n = (hi - s).min(LANES);
+        // weights: all coordinates within ε
+        w.iter_mut().for_each(|v| *v = 1.0);
+        for (k, &qk) in q.iter().enumerate() {
+            let c = &t.coords[k * len + s..k * len + s + n];
+            for (wl, &cl) in w.iter_mut().zip(c) {
+                if (cl - qk).abs() > eps {
+                    *wl = 0.0;
+                }
+            }
+        }
+        for wl in &mut w[n..] {
+            *wl = 0.0;
+        }
+        if n == LANES {
+            let mut hit = 0.0;
+            for &wl in &w {
+                hit += wl;
+            }
+            if hit > 0.0 {
+                count += hit as u64;
+                for k in 0..m {
+                    let c = &t.coords[k * len + s..k * len + s + LANES];
+                    let a = &mut acc[k * LANES..(k + 1) * LANES];
+                    for l in 0..LANES {
+                        a[l] += w[l] * c[l];
+                    }
+                }
+            }
+        } else {
+            for l in 0..n {
+                if w[l] > 0.0 {
+                    count += 1;
+                    for k in 0..m {
+                        acc[k * LANES + l] += t.coords[k * len + s + l];
+                    }
+                }
+            }
+        }
+        s += n;
+    }
+    count
 }
 
 #[cfg(test)]

@@ -3,16 +3,16 @@
 //! nearest neighbour (outside the Theiler window), followed forward in time.
 //!
 //! # Algorithm
-//! One kiddo 6 kd-tree (squared Euclidean) over the candidate delay vectors gives each
-//! reference's exact nearest neighbour; the Theiler window is applied by asking for 4, 16,
-//! 64, … neighbours until one lies outside it (TISEAN grows a box radius from `-r` by 10 %
-//! per round until every reference has a neighbour: the same neighbour). References are
+//! A kd-tree (squared Euclidean, median splits, leaves of 16) over the candidate delay vectors
+//! gives each reference's exact nearest neighbour outside the Theiler window in one pruned
+//! descent that skips the window's points (TISEAN grows a box radius from `-r` by 10 % per
+//! round until every reference has a neighbour: the same neighbour); the previous
+//! reference's neighbour, one step on, seeds the search. References are
 //! processed in fixed chunks in parallel and summed in chunk order (thread-count
-//! independent). Cost O(N log N + N · steps · m).
+//! independent); within a chunk the logarithms of the squared distances are summed as running
+//! products (mantissa and binary exponent), one logarithm per Δn and chunk. Cost
+//! O(N log N + N · steps · m).
 
-use std::num::NonZero;
-
-use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use rayon::prelude::*;
 
 use crate::analysis::kantz::{fit_scaling_region, ScalingOptions, SlopeFit};
@@ -193,18 +193,29 @@ fn run<const K: usize>(s: &[f64], o: &RosensteinOptions, eps0: f64) -> Result<Su
     let pts: Vec<[f64; K]> = (0..n_cand)
         .map(|i| std::array::from_fn(|k| s[i + k * tau]))
         .collect();
-    let tree: ImmutableKdTree<f64, K> = ImmutableKdTree::new_from_slice(&pts)
-        .map_err(|e| AnalysisError::NoResult(format!("kd-tree construction failed: {e:?}")))?;
+    let tree = ExclusionTree::new(&pts);
     let len = o.steps + 1;
     let eps0_2 = eps0 * eps0;
     let parts: Vec<Sums> = (0..n_ref.div_ceil(CHUNK))
         .into_par_iter()
         .map(|c| {
-            let mut sum = vec![0.0; len];
+            // per chunk: Σ ln d² as running products (mantissa, binary exponent) with one
+            // logarithm per Δn at the end; squared distances below PROD_LO (never in practice:
+            // 2^-100 of the squared range) take their logarithm at once
+            let mut prod = vec![1.0f64; len];
+            let mut exp2 = vec![0i64; len];
+            let mut tiny = vec![0.0f64; len];
             let mut count = vec![0u64; len];
+            let mut d2s = vec![0.0f64; len];
+            let mut since = 0u32;
             let mut refs = 0usize;
+            let mut stack = Vec::with_capacity(64);
+            let mut hint = None;
             for n in c * CHUNK..((c + 1) * CHUNK).min(n_ref) {
-                let Some((j, d2, duplicate)) = nearest(&tree, &pts, n, o.theiler) else {
+                let found = tree.nearest(&pts, n, o.theiler, hint, &mut stack);
+                // the previous reference's neighbour, one step on, seeds the next search
+                hint = found.map(|(j, _, _)| j + 1);
+                let Some((j, d2, duplicate)) = found else {
                     continue;
                 };
                 // TISEAN: a reference with an exact duplicate is done in the first round
@@ -213,18 +224,43 @@ fn run<const K: usize>(s: &[f64], o: &RosensteinOptions, eps0: f64) -> Result<Su
                     continue;
                 }
                 refs += 1;
-                for t in 0..len {
-                    let mut dx = 0.0;
-                    for k in 0..K {
-                        let v = s[n + t + k * tau] - s[j + t + k * tau];
-                        dx += v * v;
-                    }
-                    if dx > 0.0 {
-                        sum[t] += 0.5 * dx.ln();
-                        count[t] += 1;
+                // squared distances of the pair at every Δn, coordinate by coordinate
+                // (contiguous in Δn)
+                d2s.iter_mut().for_each(|v| *v = 0.0);
+                for k in 0..K {
+                    let a = &s[n + k * tau..n + k * tau + len];
+                    let b = &s[j + k * tau..j + k * tau + len];
+                    for ((d, &u), &v) in d2s.iter_mut().zip(a).zip(b) {
+                        let e = u - v;
+                        *d += e * e;
                     }
                 }
+                let mut rare = false;
+                for ((p, &d), c) in prod.iter_mut().zip(&d2s).zip(count.iter_mut()) {
+                    let ok = d >= PROD_LO;
+                    *p *= if ok { d } else { 1.0 };
+                    *c += u64::from(d > 0.0);
+                    rare |= !ok;
+                }
+                if rare {
+                    for (l, &d) in tiny.iter_mut().zip(&d2s) {
+                        if d > 0.0 && d < PROD_LO {
+                            *l += d.ln();
+                        }
+                    }
+                }
+                since += 1;
+                if since == RENORM_EVERY {
+                    since = 0;
+                    renormalise(&mut prod, &mut exp2);
+                }
             }
+            let sum = prod
+                .iter()
+                .zip(&exp2)
+                .zip(&tiny)
+                .map(|((&p, &e), &l)| 0.5 * (p.ln() + e as f64 * std::f64::consts::LN_2 + l))
+                .collect();
             (sum, count, refs)
         })
         .collect();
@@ -243,39 +279,176 @@ fn run<const K: usize>(s: &[f64], o: &RosensteinOptions, eps0: f64) -> Result<Su
 
 /// Nearest candidate of reference n with `|n − j| > w` and squared distance > 0 (ties: the
 /// smallest index), and whether an exact duplicate (distance 0) lies outside the window.
-fn nearest<const K: usize>(
-    tree: &ImmutableKdTree<f64, K>,
-    pts: &[[f64; K]],
-    n: usize,
-    w: usize,
-) -> Option<(usize, f64, bool)> {
-    let total = pts.len();
-    let mut k = 4usize.min(total);
-    loop {
-        let nb = tree
-            .query(&pts[n])
-            .nearest_n::<SquaredEuclidean<f64>>(NonZero::new(k)?)
-            .execute();
-        let admissible = |j: usize| outside_theiler_window(n, j, w);
-        if let Some(r) = nb
-            .iter()
-            .find(|r| r.distance > 0.0 && admissible(r.item as usize))
-        {
-            let duplicate = nb
-                .iter()
-                .any(|q| q.distance == 0.0 && admissible(q.item as usize));
-            let best = nb
-                .iter()
-                .filter(|q| q.distance == r.distance && admissible(q.item as usize))
-                .map(|q| q.item as usize)
-                .min()
-                .unwrap_or(r.item as usize);
-            return Some((best, r.distance, duplicate));
+/// Smallest factor of a running product (2^-100); squared distances are at most m ≤ 10 in
+/// rescaled units.
+const PROD_LO: f64 = 7.888_609_052_210_118e-31;
+/// Renormalise the products after this many factors: 8 factors in [2^-100, 10] times a
+/// mantissa in [1, 2) stay inside 2^±808.
+const RENORM_EVERY: u32 = 8;
+
+/// Moves the binary exponents of `prod` into `exp2`, leaving mantissas in [1, 2).
+fn renormalise(prod: &mut [f64], exp2: &mut [i64]) {
+    const MANTISSA: u64 = 0x000f_ffff_ffff_ffff;
+    const ONE_BITS: u64 = 0x3ff0_0000_0000_0000;
+    for (x, e) in prod.iter_mut().zip(exp2) {
+        let b = x.to_bits();
+        *e += ((b >> 52) & 0x7ff) as i64 - 1023;
+        *x = f64::from_bits((b & MANTISSA) | ONE_BITS);
+    }
+}
+
+/// Points per leaf of [`ExclusionTree`].
+const LEAF: usize = 16;
+
+/// A kd-tree over the candidate delay vectors whose nearest-neighbour query skips the
+/// reference's Theiler window and zero distances itself (one descent, pruned by the best
+/// admissible distance so far), instead of asking a general kd-tree for 4, 16, 64, …
+/// neighbours until one lies outside the window.
+struct ExclusionTree {
+    /// Point indices, permuted so that every node's points are contiguous.
+    perm: Vec<u32>,
+    nodes: Vec<Node>,
+}
+
+#[derive(Clone, Copy)]
+struct Node {
+    /// Points `lo..hi` of `perm`.
+    lo: u32,
+    hi: u32,
+    /// Children (0: a leaf), split coordinate and value (left: ≤ value, right: ≥ value).
+    left: u32,
+    right: u32,
+    dim: u32,
+    split: f64,
+}
+
+impl ExclusionTree {
+    fn new<const K: usize>(pts: &[[f64; K]]) -> Self {
+        let mut t = Self {
+            perm: (0..pts.len() as u32).collect(),
+            nodes: Vec::with_capacity(2 * pts.len() / LEAF + 2),
+        };
+        let mut lo = [f64::INFINITY; K];
+        let mut hi = [f64::NEG_INFINITY; K];
+        for p in pts {
+            for k in 0..K {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
         }
-        if k >= total {
-            return None;
+        t.build(pts, 0, pts.len(), lo, hi);
+        t
+    }
+
+    /// Builds the node of points `lo..hi` of `perm`, inside the box `bl..bh` (the parent's
+    /// box cut at the splits: the widest side of it chooses the split coordinate).
+    fn build<const K: usize>(
+        &mut self,
+        pts: &[[f64; K]],
+        lo: usize,
+        hi: usize,
+        bl: [f64; K],
+        bh: [f64; K],
+    ) -> u32 {
+        let id = self.nodes.len() as u32;
+        self.nodes.push(Node {
+            lo: lo as u32,
+            hi: hi as u32,
+            left: 0,
+            right: 0,
+            dim: 0,
+            split: 0.0,
+        });
+        if hi - lo <= LEAF {
+            return id;
         }
-        k = (k * 4).min(total);
+        // split the widest side of the box at the median
+        let mut dim = 0;
+        for k in 1..K {
+            if bh[k] - bl[k] > bh[dim] - bl[dim] {
+                dim = k;
+            }
+        }
+        let mid = lo + (hi - lo) / 2;
+        self.perm[lo..hi].select_nth_unstable_by(mid - lo, |&a, &b| {
+            pts[a as usize][dim].total_cmp(&pts[b as usize][dim])
+        });
+        let split = pts[self.perm[mid] as usize][dim];
+        let (mut lh, mut rl) = (bh, bl);
+        lh[dim] = split;
+        rl[dim] = split;
+        let left = self.build(pts, lo, mid, bl, lh);
+        let right = self.build(pts, mid, hi, rl, bh);
+        let node = &mut self.nodes[id as usize];
+        node.left = left;
+        node.right = right;
+        node.dim = dim as u32;
+        node.split = split;
+        id
+    }
+
+    /// The nearest point j of reference n with `|n − j| > w` and a distance > 0 (squared
+    /// Euclidean; ties: the smallest index), its squared distance, and whether an admissible
+    /// point lies at distance 0 (an exact duplicate). `hint`: a likely good neighbour.
+    fn nearest<const K: usize>(
+        &self,
+        pts: &[[f64; K]],
+        n: usize,
+        w: usize,
+        hint: Option<usize>,
+        stack: &mut Vec<(u32, f64)>,
+    ) -> Option<(usize, f64, bool)> {
+        let q = &pts[n];
+        let dist = |j: usize| -> f64 {
+            let p = &pts[j];
+            let mut d = 0.0;
+            for k in 0..K {
+                let e = q[k] - p[k];
+                d += e * e;
+            }
+            d
+        };
+        let (mut best, mut best_j) = (f64::INFINITY, usize::MAX);
+        if let Some(h) = hint.filter(|&h| h < pts.len() && outside_theiler_window(n, h, w)) {
+            let d = dist(h);
+            if d > 0.0 {
+                (best, best_j) = (d, h);
+            }
+        }
+        let mut duplicate = false;
+        stack.clear();
+        stack.push((0, 0.0));
+        while let Some((id, bound)) = stack.pop() {
+            if bound > best {
+                continue;
+            }
+            let node = self.nodes[id as usize];
+            if node.left == 0 {
+                for &j in &self.perm[node.lo as usize..node.hi as usize] {
+                    let j = j as usize;
+                    if !outside_theiler_window(n, j, w) {
+                        continue;
+                    }
+                    let d = dist(j);
+                    if d == 0.0 {
+                        duplicate = true;
+                    } else if d < best || (d == best && j < best_j) {
+                        (best, best_j) = (d, j);
+                    }
+                }
+                continue;
+            }
+            let e = q[node.dim as usize] - node.split;
+            let (near, far) = if e <= 0.0 {
+                (node.left, node.right)
+            } else {
+                (node.right, node.left)
+            };
+            // the far side is at least e² away (its points lie beyond the split value)
+            stack.push((far, bound.max(e * e)));
+            stack.push((near, bound));
+        }
+        (best_j != usize::MAX).then_some((best_j, best, duplicate))
     }
 }
 

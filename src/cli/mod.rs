@@ -99,6 +99,11 @@ pub const PARSE_ONLY_ENV: &str = "PDAMP_PARSE_ONLY";
 
 /// Parse the command line and run the chosen subcommand.
 pub fn run() -> anyhow::Result<()> {
+    commands::tisean_flags::check(
+        &std::env::args_os()
+            .map(|a| a.to_string_lossy().into_owned())
+            .collect::<Vec<_>>(),
+    )?;
     let cli = Cli::parse();
     if std::env::var_os(PARSE_ONLY_ENV).is_some() {
         return Ok(());

@@ -23,4 +23,5 @@ pub mod spectrum;
 pub mod surrogate_test;
 pub mod surrogates;
 pub mod sweep;
+pub mod tisean_flags;
 pub mod tradeoff;

@@ -17,21 +17,29 @@ use pdamp::analysis::noise_reduction::{
 /// stderr. Defaults as TISEAN 3.0.1 `nrlazy`: m = 5, d = 1, one pass, ε = (max − min)/1000
 /// (almost always too small: set -r to 2–3 noise amplitudes, or --radius-sd as a fraction of the
 /// standard deviation, which overrides -r). By default only the middle coordinate of each
-/// delay vector is corrected (Schreiber 1993, TISEAN `lazy`); --all corrects every coordinate
-/// as TISEAN's `nrlazy` does.
+/// delay vector is corrected (Schreiber 1993, TISEAN `lazy`), and the first ⌊(m−1)/2⌋·d and last
+/// ⌈(m−1)/2⌉·d samples stay as they are; `--tisean` (or `--all`) corrects every coordinate and
+/// every sample as TISEAN 3.0.1's `nrlazy` does, after which the output equals TISEAN's to its
+/// print precision (`tests/golden_tisean.rs`).
+///
+/// TISEAN's flags: `-m1,7` (components, dimension) is read as dimension 7 (one component only);
+/// with `--tisean` a bare `-m7` is refused, since TISEAN reads it as 7 components of dimension
+/// 5. TISEAN's `-v0.2` is `--radius-sd 0.2` here (`-v` is pdamp's `--verbose`) and its `-V`
+/// verbosity has no equivalent (`-q` quietens pdamp); both are refused with that message.
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// Input series.
     #[command(flatten)]
     pub input: SeriesInput,
-    /// Embedding dimension (TISEAN -m).
+    /// Embedding dimension m, or TISEAN's `components,m` with one component (TISEAN -m1,7).
+    /// Default 5.
     #[arg(
         short = 'm',
         long = "dimension",
-        default_value_t = 5,
+        value_parser = parse_dim,
         help_heading = "Noise reduction"
     )]
-    pub dim: usize,
+    pub dim: Option<DimArg>,
     /// Delay in samples (TISEAN -d).
     #[arg(
         short = 'd',
@@ -58,22 +66,77 @@ pub struct Args {
     /// Correct every coordinate of the delay vectors (TISEAN nrlazy) instead of the middle one.
     #[arg(long = "all", help_heading = "Noise reduction")]
     pub all: bool,
+    /// TISEAN nrlazy's definition: every coordinate corrected (as --all); -m must then be
+    /// given in TISEAN's form `1,m`.
+    #[arg(long, help_heading = "Noise reduction")]
+    pub tisean: bool,
     /// Write to this file instead of stdout (TISEAN -o).
     #[arg(short = 'o', long = "output", help_heading = "Output")]
     pub output: Option<String>,
 }
 
+/// The `-m` argument: the dimension, and whether it came in TISEAN's `components,m` form.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct DimArg {
+    /// Embedding dimension m.
+    pub m: usize,
+    /// Written as `1,m` (TISEAN's form).
+    pub tisean_form: bool,
+}
+
+/// Parses `m` or TISEAN's `components,m` (one component only).
+pub(crate) fn parse_dim(s: &str) -> Result<DimArg, String> {
+    let (comp, m, tisean_form) = match s.split(',').collect::<Vec<_>>().as_slice() {
+        [m] => ("1", *m, false),
+        [c, m] => (*c, *m, true),
+        _ => {
+            return Err(format!(
+                "`{s}`: expected m or TISEAN's `components,m` (e.g. 1,7)"
+            ))
+        }
+    };
+    if comp.trim() != "1" {
+        return Err(format!(
+            "`{s}`: {comp} components asked; pdamp nrlazy reads one column (-c), write -m 1,{m}"
+        ));
+    }
+    let m = m
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{s}`: `{m}` is not a dimension"))?;
+    Ok(DimArg { m, tisean_form })
+}
+
 /// Run `pdamp nrlazy`.
 pub fn run(args: Args) -> anyhow::Result<()> {
+    let dim = args.dim.unwrap_or(DimArg {
+        m: 5,
+        tisean_form: false,
+    });
+    if args.tisean && args.dim.is_some() && !dim.tisean_form {
+        anyhow::bail!(
+            "-m {m} with --tisean: TISEAN nrlazy reads a bare -m{m} as {m} components of \
+             dimension 5; write -m 1,{m} for dimension {m}",
+            m = dim.m
+        );
+    }
     let x = args.input.read()?;
     reject_time_column(&x, &args.input)?;
+    let all = args.all || args.tisean;
+    if dim.tisean_form && !all {
+        tracing::warn!(
+            "-m 1,{m}: correcting the middle coordinate only (pdamp's default, Schreiber 1993); \
+             add --tisean to correct every coordinate as TISEAN nrlazy does",
+            m = dim.m
+        );
+    }
     let opts = NoiseReductionOptions {
-        dim: args.dim,
+        dim: dim.m,
         delay: args.delay,
         epsilon: args.radius,
         epsilon_sd: args.radius_sd,
         iterations: args.iterations,
-        correction: if args.all {
+        correction: if all {
             Correction::AllCoordinates
         } else {
             Correction::Middle
@@ -105,4 +168,30 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dim_accepts_tisean_form_and_refuses_components() {
+        assert_eq!(
+            parse_dim("7"),
+            Ok(DimArg {
+                m: 7,
+                tisean_form: false
+            })
+        );
+        assert_eq!(
+            parse_dim("1,7"),
+            Ok(DimArg {
+                m: 7,
+                tisean_form: true
+            })
+        );
+        assert!(parse_dim("2,7").unwrap_err().contains("one column"));
+        assert!(parse_dim("1,x").is_err());
+        assert!(parse_dim("1,2,3").is_err());
+    }
 }
