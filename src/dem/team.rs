@@ -440,7 +440,11 @@ mod tests {
             })
         }));
         assert!(r.is_err());
-        assert_eq!(done.load(Ordering::SeqCst), 2, "both workers finished first");
+        assert_eq!(
+            done.load(Ordering::SeqCst),
+            2,
+            "both workers finished first"
+        );
         // and the team still works
         let again = AtomicUsize::new(0);
         team.run(&|_| {
