@@ -7,7 +7,7 @@
 //! - `ch4_impacts`: collective bed–floor and bed–ceiling impacts per cycle versus f
 //!   ([`crate::dem::bed_impacts`]), so that "two impacts per period" can be read off;
 //! - `ch4_checks` (with `--ch4-checks`): every frequency from three starts, doubled, and with
-//!   the other shipped softened scene, verdict by verdict ([`checks`]);
+//!   the other shipped softened scene, verdict by verdict (`chapter4/checks.rs`);
 //! - `ch4_run_length`: the check frequencies again with every run twice as long, verdict by
 //!   verdict and amplitude by amplitude (the quick mode's run length is only trusted where
 //!   doubling it changes nothing);
