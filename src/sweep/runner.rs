@@ -272,12 +272,17 @@ pub fn run_shard_with(
     // finished points from an earlier run (unreadable ones, e.g. from a crash mid-write of an
     // old version, are recomputed)
     let mine: Vec<usize> = shard.points(n).collect();
-    let pending: Vec<usize> = mine
+    // each stored point read once: missing (pending) or finished with its physics revision
+    let stored: Vec<(usize, Option<u32>)> = mine
         .iter()
-        .copied()
-        .filter(|&i| read_record(&point_path(out, i), i).is_none())
+        .map(|&i| (i, read_record(&point_path(out, i), i).map(|r| r.physics)))
         .collect();
-    check_physics(out, mine.iter().copied().filter(|i| !pending.contains(i)))?;
+    let pending: Vec<usize> = stored
+        .iter()
+        .filter(|(_, p)| p.is_none())
+        .map(|(i, _)| *i)
+        .collect();
+    check_physics(out, stored.iter().filter_map(|(i, p)| p.map(|p| (*i, p))))?;
     let skipped = mine.len() - pending.len();
     let keys: Vec<String> = spec.varies.iter().map(|v| v.key.clone()).collect();
     let label = (!shard.is_whole()).then(|| shard.label());
@@ -410,10 +415,10 @@ fn check_manifest(spec: &SweepSpec, c: Option<&Continuation>, out: &Path) -> Res
     manifest.write(out)
 }
 
-/// Refuses to resume over finished points computed with another physics revision.
-fn check_physics(out: &Path, done: impl Iterator<Item = usize>) -> Result<(), SimError> {
+/// Refuses to resume over finished points (index, physics revision) computed with another
+/// physics revision.
+fn check_physics(out: &Path, done: impl Iterator<Item = (usize, u32)>) -> Result<(), SimError> {
     let stale: Vec<(usize, u32)> = done
-        .filter_map(|i| read_record(&point_path(out, i), i).map(|r| (i, r.physics)))
         .filter(|(_, p)| *p != crate::model::PHYSICS_REVISION)
         .collect();
     match stale.first() {
