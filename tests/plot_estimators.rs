@@ -180,8 +180,21 @@ fn figures_reject_unusable_data() {
 
 #[test]
 fn pareto_from_a_tradeoff_settings_table() {
-    let settings = concat!(env!("CARGO_MANIFEST_DIR"), "/figures/tradeoff_settings.csv");
+    // a settings table as `pdamp tradeoff` writes it (the columns the figure reads)
     let dir = scratch::tempdir().unwrap();
+    let table = dir.path().join("tradeoff_settings.csv");
+    std::fs::write(
+        &table,
+        "# pdamp tradeoff\n\
+         setting,axis,label,core_seconds_per_point,dissipation_max_rel_error\n\
+         reference,reference,reference,480,0\n\
+         dt-50,dt-fraction,dt = t_s/50,240,0.004\n\
+         dt-20,dt-fraction,dt = t_s/20,96,0.02\n\
+         soften-1000,softening,E / 1000,30,0.05\n\
+         soften-10000,softening,E / 10000,12,0.3\n",
+    )
+    .unwrap();
+    let settings = table.to_str().unwrap();
     let png = dir.path().join("pareto.png");
     let p = png.to_str().unwrap();
     let (err, ok) = pdamp(&[
@@ -202,7 +215,7 @@ fn pareto_from_a_tradeoff_settings_table() {
     let (err, ok) = pdamp(&["plot", "pareto", settings, "--y", "nope", "-o", p]);
     assert!(!ok);
     assert!(
-        err.contains("y: `nope`") && err.contains("c_ef_rel_error"),
+        err.contains("y: `nope`") && err.contains("resonance_frequency_rel_error"),
         "{err}"
     );
 }

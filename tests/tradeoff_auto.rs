@@ -1,32 +1,34 @@
 //! `[damper] kind = "auto"` picks the cheapest measured setting that delivers a scene's
-//! `[outputs]` within its tolerance (src/tradeoff/auto.rs), and says which and why.
+//! `[outputs]` within its tolerance (src/tradeoff/auto.rs), names the row and its measured
+//! errors, and falls back to the scene as written when nothing qualifies.
 //!
 //! Two parts: the selection rules on a synthetic table (every rule has a case where it
-//! changes the choice, so a rule that were ignored would fail), and the built-in measured
-//! table (data/reference/tradeoff_scene_b.csv) choosing differently for three scenes that
-//! ask for different outputs.
+//! changes the choice, so a rule that were ignored would fail), and the built-in table
+//! (data/reference/tradeoff_settings.csv), which must be the committed
+//! figures/tradeoff_settings.csv and read.
 
 use pdamp::scene::dem::DemParams;
 use pdamp::scene::{Damper, Outputs, Scene};
-use pdamp::tradeoff::auto::{choose, choose_with, table_reference};
+use pdamp::tradeoff::auto::{builtin_table, choose, choose_with, BUILTIN_TABLE};
 use pdamp::tradeoff::table::read_settings;
 
 const SYNTHETIC: &str = "\
-# reference_softening = 100
-# reference_dt_fraction = 0.01
-axis,setting,value,runs_ok,runs,wall_time_s,speedup,amplitude_max_rel_error,dissipation_max_rel_error,m_ef_kg,m_ef_rel_error,c_ef_n_s_m,c_ef_rel_error,regime_matches,mle_max_abs_error_per_s,pareto_amplitude
-reference,reference,1,3,3,100,1,0,0,,,,,3,0,true
-one-particle,\"one particle, fitted e = 0.1\",0.1,3,3,0.01,10000,0.05,0.08,,,,,1,,true
-grain-count,N = 31,31,3,3,2,50,0.04,0.09,,,,,3,,true
-rotations,rotations off,0,3,3,5,20,0.02,0.05,,,,,3,,false
-friction,friction off,0,3,3,1,100,0.03,0.5,,,,,3,,true
-softening,E / 10000,10000,3,3,8,12,0.01,0.02,,,,,3,,false
-dt-fraction,dt = t_s/10,0.1,0,3,,,,,,,,,0,,false
-run-length,run 0.33 s,0.33,3,3,0.001,1,0.01,0.01,,,,,3,,false
+# synthetic: costs in CPU seconds per point, errors relative
+setting,axis,label,status,frequencies_compared,frequencies,core_seconds_per_point,speedup,amplitude_max_rel_error,resonance_frequency_rel_error,dissipation_max_rel_error,regime_matches,regime_compared,mle_max_rel_error
+reference,reference,reference,complete,13,13,1800,1,0,0,0,13,13,0
+one-particle-e0,one-particle,\"one particle, e = 0\",complete,13,13,0.5,3600,0.05,0.02,0.08,4,13,
+one-particle-e0.5,one-particle,\"one particle, e = 0.5\",complete,13,13,0.6,3000,0.012,0.04,0.3,4,13,
+n-125,grain-count,\"N = 125, same mass\",complete,13,13,400,4.5,0.04,0.01,0.09,13,13,0.05
+rotations-off,rotations,rotations off,complete,13,13,900,2,0.02,0.005,0.05,13,13,0.05
+friction-off,friction,friction off,complete,13,13,300,6,0.03,0.01,0.5,13,13,0.05
+soften-10000,softening,E / 10000,complete,13,13,1000,1.8,0.01,0.003,0.02,13,13,0.01
+dt-20,dt-fraction,dt = t_s/20,partial,2,13,100,18,0.001,0.001,0.001,2,2,
+dt-10,dt-fraction,dt = t_s/10,refused,0,13,,,,,,0,0,
+periods-50,run-length,50 periods,complete,13,13,450,4,0.005,0.001,0.01,13,13,0.01
 ";
 
 fn scene(outputs: Outputs) -> Scene {
-    let mut s = Scene::from_toml(include_str!("../data/scenes/thesis_b.toml")).unwrap();
+    let mut s = Scene::from_toml(include_str!("../data/scenes/thesis_b_reference.toml")).unwrap();
     s.damper = Damper::Auto(DemParams::thesis_b());
     s.outputs = outputs;
     s
@@ -34,90 +36,112 @@ fn scene(outputs: Outputs) -> Scene {
 
 fn pick(o: Outputs) -> (String, String, Scene) {
     let table = read_settings(SYNTHETIC, "synthetic").unwrap();
-    let c = choose_with(&scene(o), &table, &table_reference(SYNTHETIC)).unwrap();
+    let c = choose_with(&scene(o), &table).unwrap();
+    assert!(c.reason.contains(&format!("row `{}`", c.setting)) || c.setting == "reference");
     (c.model, c.setting, c.scene)
+}
+
+fn tol(t: f64) -> Outputs {
+    Outputs {
+        tolerance: t,
+        ..Outputs::default()
+    }
 }
 
 #[test]
 fn rules_on_a_synthetic_table() {
-    let tol = |t| Outputs {
-        tolerance: t,
-        ..Outputs::default()
-    };
-    // FRF only, 10 %: the one-particle model (cheapest, 5 % and 8 %); the run-length row is
-    // never chosen even though it is cheaper (it describes the run, not the model)
+    // FRF only, 10 %: the one-particle model with e = 0 (cheapest; Z 5 %, f_res 2 %); the
+    // run-length row and the partly measured dt = t_s/20 are never chosen though cheaper
     let (m, s, sc) = pick(Outputs {
         frf_only: true,
         ..tol(0.1)
     });
-    assert_eq!(
-        (m.as_str(), s.as_str()),
-        ("impact", "one particle, fitted e = 0.1")
-    );
+    assert_eq!((m.as_str(), s.as_str()), ("impact", "one-particle-e0"));
     match sc.damper {
-        // m_p = 250 × 8030 × 4/3 π (3 mm)³ = 0.2270 kg (the grains' mass), e from the table
+        // m_p = 250 × 8030 × 4/3 π (3 mm)³ = 0.2270 kg (the grains' mass); scene B's gap
         Damper::Impact(p) => {
-            assert!((p.mass - 0.22700).abs() < 1e-4, "{}", p.mass);
-            assert_eq!(p.restitution, 0.1);
-            assert!(p.gap > 0.07 && p.gap < 0.1225, "gap {}", p.gap);
+            assert!((p.mass - 0.22704).abs() < 1e-4, "{}", p.mass);
+            assert_eq!(p.restitution, 0.0);
+            assert_eq!(p.gap, 0.0835);
         }
         d => panic!("{d:?}"),
     }
-    // tolerance 4.5 %: the one particle (Z 5 %) is out → friction off (Z 3 %, 1 s); its
-    // 50 % dissipation error does not count without energies_by_mechanism
-    let (_, s, _) = pick(tol(0.045));
-    assert_eq!(s, "friction off");
-    // 2.5 %: friction off (3 %) out → rotations off (2 %) beats E / 10000 on cost
-    let (_, s, _) = pick(tol(0.025));
-    assert_eq!(s, "rotations off");
-    // orientations exclude rotations off and N changes → E / 10000 (8 s); quaternions on
+    // 1.5 % without frf_only: e = 0.5 (Z 1.2 %) is the cheapest; with frf_only its
+    // resonance-frequency error (4 %) excludes it → E / 10000 (Z 1 %, f_res 0.3 %)
+    assert_eq!(pick(tol(0.015)).1, "one-particle-e0.5");
     let (m, s, sc) = pick(Outputs {
+        frf_only: true,
+        ..tol(0.015)
+    });
+    assert_eq!((m.as_str(), s.as_str()), ("dem", "soften-10000"));
+    match sc.damper {
+        Damper::Dem(p) => assert!((p.youngs_modulus - 2.03e7).abs() < 1.0),
+        d => panic!("{d:?}"),
+    }
+    // grain outputs exclude the one particle. 4.5 %: friction off (Z 3 %, 300 s) beats
+    // N = 125 (4 %, 400 s); its 50 % dissipation error does not count without
+    // energies_by_mechanism
+    assert_eq!(
+        pick(Outputs {
+            grain_snapshots: false,
+            ..tol(0.045)
+        })
+        .1,
+        "one-particle-e0.5"
+    );
+    let (_, s, sc) = pick(Outputs {
+        grain_snapshots: true,
+        ..tol(0.045)
+    });
+    assert_eq!(s, "friction-off");
+    assert!(matches!(sc.damper, Damper::Dem(ref p) if p.snapshot_interval == Some(0.01)));
+    // energies by mechanism at 60 %: friction off excluded (no friction share) → N = 125
+    assert_eq!(
+        pick(Outputs {
+            energies_by_mechanism: true,
+            ..tol(0.6)
+        })
+        .1,
+        "n-125"
+    );
+    // orientations at 2.5 %: rotations off (Z 2 %) excluded → E / 10000; quaternions on
+    let (_, s, sc) = pick(Outputs {
         orientations: true,
         ..tol(0.025)
     });
-    assert_eq!((m.as_str(), s.as_str()), ("dem", "E / 10000"));
-    match sc.damper {
-        Damper::Dem(p) => {
-            assert!(p.orientations && p.rotations && p.snapshot_interval.is_none());
-            // E / 10000 relative to steel
-            assert!((p.youngs_modulus - 2.03e7).abs() < 1.0);
-        }
-        d => panic!("{d:?}"),
-    }
-    // z_cm series: the one particle matched the regime at 1 of 3 frequencies → excluded;
-    // friction off (all regimes, Z 3 %) is the cheapest with tolerance 10 %
-    let (_, s, _) = pick(Outputs {
-        zcm_series: true,
-        ..tol(0.1)
-    });
-    assert_eq!(s, "friction off");
-    // energies by mechanism at 60 %: friction off (50 %) is excluded, one particle too
-    let (_, s, _) = pick(Outputs {
-        energies_by_mechanism: true,
-        ..tol(0.6)
-    });
-    assert_eq!(s, "N = 31");
-    // snapshots: N must stay, the one particle has no grains → friction off, snapshots on
-    let (_, s, sc) = pick(Outputs {
-        grain_snapshots: true,
-        ..tol(0.1)
-    });
-    assert_eq!(s, "friction off");
-    assert!(matches!(sc.damper, Damper::Dem(ref p) if p.snapshot_interval == Some(0.01)));
-    // nothing meets 0.1 %: the reference (E / 100, dt = t_s/100) with the reason saying so
+    assert_eq!(s, "soften-10000");
+    assert!(matches!(sc.damper, Damper::Dem(ref p) if p.orientations && p.rotations));
+    // z_cm series: the one particle matched 4 of 13 verdicts → excluded → friction off
+    assert_eq!(
+        pick(Outputs {
+            zcm_series: true,
+            ..tol(0.1)
+        })
+        .1,
+        "friction-off"
+    );
+    // the same at 3 %: λ within 5 % fails → E / 10000 (λ 1 %, Z 1 %)
+    assert_eq!(
+        pick(Outputs {
+            zcm_series: true,
+            ..tol(0.03)
+        })
+        .1,
+        "soften-10000"
+    );
+    // nothing meets 0.05 %: the scene as written, and the reason says why
     let table = read_settings(SYNTHETIC, "synthetic").unwrap();
-    let c = choose_with(&scene(tol(0.001)), &table, &table_reference(SYNTHETIC)).unwrap();
+    let c = choose_with(&scene(tol(0.0005)), &table).unwrap();
     assert_eq!(c.setting, "reference");
     assert!(
-        c.reason.contains("no measured cheaper setting"),
+        c.reason.contains("no measured setting meets"),
         "{}",
         c.reason
     );
     match c.scene.damper {
-        Damper::Dem(p) => assert!((p.youngs_modulus - 2.03e9).abs() < 1.0),
+        Damper::Dem(p) => assert_eq!(p, DemParams::thesis_b()),
         d => panic!("{d:?}"),
     }
-    assert_eq!(c.scene.run.dt_fraction, 0.01);
 }
 
 #[test]
@@ -144,32 +168,17 @@ fn auto_scene_file_parses_with_outputs() {
 }
 
 #[test]
-fn builtin_table_chooses_differently_for_three_scenes() {
-    // the measured scene-B table (data/reference/tradeoff_scene_b.csv): an FRF-only scene
-    // gets the one-particle model (Z within 7.4 %), a scene that wants orientations at 10 %
-    // the DEM softened 10⁴× (7.3 %, rotations kept), the same at 1 % the time step t_s/20
-    // (0.25 %); the choices follow the committed measurements, so a rule or a table that
-    // stopped telling them apart fails here
-    let mk = |o: Outputs| choose(&scene(o)).unwrap();
-    let a = mk(Outputs {
-        frf_only: true,
-        tolerance: 0.1,
-        ..Outputs::default()
-    });
-    let b = mk(Outputs {
-        orientations: true,
-        tolerance: 0.1,
-        ..Outputs::default()
-    });
-    let c = mk(Outputs {
-        orientations: true,
-        tolerance: 0.01,
-        ..Outputs::default()
-    });
-    assert_eq!(a.model, "impact");
-    assert_eq!((b.model.as_str(), b.axis.as_str()), ("dem", "softening"));
-    assert_eq!((c.model.as_str(), c.axis.as_str()), ("dem", "dt-fraction"));
-    assert!(a.reason.contains("scene B") && !a.skipped.is_empty());
-    let settings = [&a.setting, &b.setting, &c.setting];
-    assert!(settings[0] != settings[1] && settings[1] != settings[2] && settings[0] != settings[2]);
+fn builtin_table_is_the_committed_study_and_reads() {
+    // `pdamp tradeoff --out figures` writes figures/tradeoff_settings.csv; the binary carries
+    // a copy: the two must be the same file, so that `auto` decides on what is published
+    let published = include_str!("../figures/tradeoff_settings.csv");
+    assert_eq!(
+        BUILTIN_TABLE, published,
+        "copy figures/tradeoff_settings.csv to data/reference/"
+    );
+    let t = builtin_table().unwrap();
+    assert_eq!(t.iter().filter(|s| s.setting == "reference").count(), 1);
+    // an impossible tolerance gives the reference, saying so
+    let c = choose(&scene(tol(1e-9))).unwrap();
+    assert_eq!(c.setting, "reference");
 }

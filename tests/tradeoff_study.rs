@@ -1,156 +1,199 @@
-//! The trade-off study end to end on a small bed (src/tradeoff/study.rs): the reference
-//! compared with itself has zero error, the measured quantities do not depend on the number
-//! of worker threads (only wall times do), a setting that removes a dissipation mechanism
-//! shows a dissipation error (negative control: an error metric that always said 0 would
-//! fail), and the one-particle model gets the bed's mass.
+//! The speed–accuracy study from stored points (src/tradeoff): points are found by what was
+//! simulated wherever a sweep stored them, only the missing ones are computed (and resume),
+//! errors are measured against the reference's points read independently from the stored
+//! files, a guard's refusal is a row with its message, and no cell is NaN or infinite.
+//!
+//! A tiny DEM scene (20 soft grains, 12 forcing periods) keeps the runs to seconds.
 
-use pdamp::scene::dem::DemParams;
-use pdamp::tradeoff::measure::Rig;
-use pdamp::tradeoff::study::{run_study, Study, StudyOptions};
-use pdamp::tradeoff::{Axis, LadderOptions};
+mod scratch;
 
-mod common;
+use std::path::Path;
 
-fn small_bed() -> DemParams {
-    // 24 steel spheres R = 3 mm in a 20 × 20 × 60 mm box
-    let mut p = DemParams::thesis_b();
-    p.count = 24;
-    p.r#box = [0.02, 0.02, 0.06];
-    p
-}
+use pdamp::scene::SceneSource;
+use pdamp::sweep::{run_sweep, Catalog, SweepSpec, Vary};
+use pdamp::tradeoff::compute::compute_missing;
+use pdamp::tradeoff::study::study;
+use pdamp::tradeoff::table::{rows_csv, settings_csv};
+use pdamp::tradeoff::{Change, StudyPlan};
 
-fn rig() -> Rig {
-    // scene B's primary with the base amplitude of scene B
-    Rig {
-        primary: common::scene_b_primary(),
-        amplitude_m: common::SCENE_B_AMPLITUDE_M,
-        gravity: 9.8,
-    }
-}
+const TINY: &str = r#"
+[primary]
+mass = 2.37
+stiffness = 21500.0
+damping = 7.6
 
-fn study(threads: usize) -> Study {
-    let opts = StudyOptions {
-        ladder: LadderOptions {
-            reference_softening: 10000.0,
-            reference_dt_fraction: 0.02,
-            duration_s: 0.25,
-            steady_fraction: 0.5,
-            quick: true,
-        },
-        frequencies_hz: vec![15.0],
-        threads: Some(threads),
-        fitted_e_candidates: vec![0.0, 0.5],
+[excitation]
+amplitude = 0.0045
+frequency = 15.0
+
+[damper]
+kind = "dem"
+box = [0.02, 0.02, 0.05]
+count = 20
+radius = 0.003
+density = 8030.0
+youngs_modulus = 2.03e7
+poisson = 0.28
+friction = 0.3
+gamma_n = 14.57
+gamma_s = 43.72
+contact = "hertz-kk"
+
+[run]
+periods = 12
+steady_fraction = 0.5
+analysis_fraction = 0.5
+sample_interval = 1e-3
+dt = "auto"
+dt_fraction = 0.02
+"#;
+
+fn plain_sweep(data: &Path, freqs: &str) {
+    let spec = SweepSpec {
+        base: SceneSource::parse(TINY).unwrap(),
+        set: Vec::new(),
+        varies: vec![Vary::parse(&format!("excitation.frequency={freqs}")).unwrap()],
+        analyze: true,
     };
-    run_study(&small_bed(), &rig(), &opts, &|_| {}).expect("study runs")
+    let r = run_sweep(&spec, &data.join("plain"), &|_| {}).unwrap();
+    assert!(r.failed.is_empty(), "{:?}", r.failed);
+}
+
+/// Z of every stored point of `dir` by frequency, read straight from the JSON files.
+fn stored_amplitudes(dir: &Path) -> Vec<(f64, f64)> {
+    let mut v = Vec::new();
+    for e in std::fs::read_dir(dir.join("points")).unwrap().flatten() {
+        let p = e.path();
+        if p.extension().is_some_and(|x| x == "json") {
+            let j: serde_json::Value =
+                serde_json::from_str(&std::fs::read_to_string(&p).unwrap()).unwrap();
+            let s = &j["summary"];
+            v.push((
+                s["frequency_hz"].as_f64().unwrap(),
+                s["amplitude_m"].as_f64().unwrap(),
+            ));
+        }
+    }
+    v
 }
 
 #[test]
-fn small_study_is_consistent_and_thread_independent() {
-    let a = study(1);
-    let b = study(2);
-    let measured = |s: &Study| -> Vec<(String, Option<f64>, Option<f64>, String)> {
-        s.runs
-            .iter()
-            .map(|r| {
-                (
-                    r.setting.clone(),
-                    r.amplitude_m,
-                    r.dissipation_j_per_cycle,
-                    r.status.clone(),
-                )
-            })
-            .collect()
-    };
-    // bit-identical physics with 1 and 2 threads (each run is sequential and seeded)
-    assert_eq!(measured(&a), measured(&b));
+fn study_reuses_stored_points_computes_the_rest_and_measures_errors() {
+    let dir = scratch::tempdir().unwrap();
+    let data = dir.path().join("data");
+    let scene = dir.path().join("tiny.toml");
+    std::fs::write(&scene, TINY).unwrap();
+    // a user's sweep of the reference scene at 14 and 16 Hz, in a folder of its own
+    plain_sweep(&data, "14,16");
 
-    let reference = a
-        .settings
+    let freqs = [14.0, 15.0, 16.0];
+    let catalog = Catalog::scan(&data).unwrap();
+    let plan = StudyPlan::new(&scene, &freqs, &data, &catalog).unwrap();
+    let reference = plan
+        .rungs
         .iter()
-        .find(|s| s.axis == Axis::Reference)
+        .find(|r| r.change == Change::None)
         .unwrap();
-    assert_eq!(reference.amplitude_max_rel_error, Some(0.0));
-    assert_eq!(reference.dissipation_max_rel_error, Some(0.0));
-    // t_s/10 is refused by the DEM's stability guard (dt ≤ t_s/20): recorded, not run
-    let coarse = a.runs.iter().find(|r| r.setting == "dt = t_s/10").unwrap();
+    // only 15 Hz is missing: the user's points are the reference's (same scene)
+    let c = compute_missing(&plan, reference, &catalog, &|_| {}).unwrap();
+    assert_eq!(c.missing_hz, vec![15.0]);
+    assert_eq!(c.report.as_ref().unwrap().computed, 1);
+    // dt = t_s/50 is the tiny scene's own time step: that rung is the reference's points
+    let catalog = Catalog::scan(&data).unwrap();
+    let dt50 = plan.rungs.iter().find(|r| r.id == "dt-50").unwrap();
+    assert!(compute_missing(&plan, dt50, &catalog, &|_| {})
+        .unwrap()
+        .missing_hz
+        .is_empty());
+    // a rung that changes the physics is computed at all three, and resumes to nothing
+    let rot = plan.rungs.iter().find(|r| r.id == "rotations-off").unwrap();
+    let c = compute_missing(&plan, rot, &catalog, &|_| {}).unwrap();
+    assert_eq!(c.report.as_ref().unwrap().computed, 3);
+    let catalog = Catalog::scan(&data).unwrap();
+    assert!(compute_missing(&plan, rot, &catalog, &|_| {})
+        .unwrap()
+        .missing_hz
+        .is_empty());
+
+    let s = study(&plan, &catalog).unwrap();
+    let row = |id: &str, f: f64| {
+        s.rows
+            .iter()
+            .find(|r| r.setting == id && r.frequency_hz == f)
+            .unwrap()
+    };
+    // the reference against itself: zero error, all verdicts equal, speed-up exactly 1
+    for f in freqs {
+        assert_eq!(row("reference", f).amplitude_rel_error, Some(0.0));
+        assert_eq!(row("reference", f).status, "ok");
+    }
+    let ref_sum = &s.settings[0];
+    assert_eq!(ref_sum.speedup, Some(1.0));
+    assert_eq!(ref_sum.regime_matches, ref_sum.regime_compared);
+    // the rung's Z error equals |Z − Z_ref| / Z_ref from the stored files (to rounding)
+    let mut reference_z = stored_amplitudes(&data.join("plain"));
+    for e in std::fs::read_dir(plan.home(reference)).unwrap().flatten() {
+        reference_z.extend(stored_amplitudes(&e.path()));
+    }
+    let rot_dir = std::fs::read_dir(plan.home(rot))
+        .unwrap()
+        .flatten()
+        .next()
+        .unwrap();
+    for (f, z) in stored_amplitudes(&rot_dir.path()) {
+        let zr = reference_z.iter().find(|(g, _)| *g == f).unwrap().1;
+        let e = row("rotations-off", f).amplitude_rel_error.unwrap();
+        assert!((e - (z - zr).abs() / zr).abs() < 1e-12, "{f} Hz: {e}");
+    }
+    // t_s/10 is refused by the time-step guard: a row with its message, not a NaN
+    let coarse = row("dt-10", 15.0);
+    assert_eq!(coarse.status, "refused");
     assert!(
-        coarse.status.contains("run.dt_fraction"),
+        coarse.message.contains("run.dt_fraction"),
         "{}",
-        coarse.status
+        coarse.message
     );
-    assert!(coarse.amplitude_m.is_none());
-    // friction off removes the friction share of the dissipation: its error must be well
-    // above 0 (friction is tens of % of the loss of a dense bed, Sánchez 2012 ch. 5)
-    let fr = a
-        .settings
-        .iter()
-        .find(|s| s.axis == Axis::Friction)
+    assert_eq!(row("soften-10", 15.0).status, "not computed");
+    let header = vec!["test".to_string()];
+    for text in [rows_csv(&s, &header), settings_csv(&s, &header)] {
+        assert!(text.starts_with("# test\n"));
+        let mut r = csv::ReaderBuilder::new()
+            .comment(Some(b'#'))
+            .from_reader(text.as_bytes());
+        for rec in r.records() {
+            for cell in rec.unwrap().iter() {
+                // a cell that reads as a number reads as a finite one ("NaN", "inf" parse)
+                assert!(
+                    cell.parse::<f64>().map_or(true, f64::is_finite),
+                    "{cell}: {text}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn a_scene_without_grains_cannot_be_laddered() {
+    let dir = scratch::tempdir().unwrap();
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/data/scenes/thesis_b_impact.toml"
+    );
+    let e = StudyPlan::new(Path::new(scene), &[15.0], dir.path(), &Catalog::default())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("damper.kind") && e.contains("DEM"), "{e}");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_pdamp"))
+        .args(["tradeoff", scene, "--data"])
+        .arg(dir.path())
+        .arg("--out")
+        .arg(dir.path())
+        .output()
         .unwrap();
-    assert!(fr.dissipation_max_rel_error.unwrap() > 0.02, "{fr:?}");
-    // every error is finite and ≥ 0 where the run finished
-    for r in a.runs.iter().filter(|r| r.status == "ok") {
-        assert!(
-            r.amplitude_rel_error
-                .is_some_and(|e| e.is_finite() && e >= 0.0),
-            "{r:?}"
-        );
-    }
-    // the cost side of the trade-off: a DEM run's cost is its number of steps, which is the
-    // driven duration over dt (to one step), and dt follows the rung's setting (a rung that
-    // ignored its setting, or a step counter that counted something else, fails here; wall
-    // times are measured, not asserted)
-    let ref_run = a.runs.iter().find(|r| r.axis == Axis::Reference).unwrap();
-    let ref_dt = ref_run.dt_s.unwrap();
-    for r in a.runs.iter().filter(|r| r.status == "ok") {
-        let Some(dt) = r.dt_s else { continue }; // the one-particle model counts events
-        let duration = if r.axis == Axis::RunLength {
-            r.value
-        } else {
-            0.25
-        };
-        let steps = duration / dt;
-        assert!(
-            (r.steps as f64 - steps).abs() <= 1.0 + 1e-9 * steps,
-            "{}: {} steps for {duration} s / {dt:e} s",
-            r.setting,
-            r.steps
-        );
-        assert!(
-            r.wall_time_s > 0.0 && r.total_wall_time_s >= r.wall_time_s,
-            "{r:?}"
-        );
-    }
-    // dt = t_s/20 against the reference's t_s/50: 2.5 × longer steps; the E/1000 rung is 10 ×
-    // stiffer than the reference's E/10000 and t_s ∝ E^{-2/5} (Hertz), so its steps are
-    // 10^{2/5} = 2.512 × shorter. The run rounds dt down to a whole number of steps per output
-    // sample (7 at t_s/20, 18 at the reference, 44 at E/1000 here), which moves these ratios
-    // by up to 1/7 ≈ 14 %: hence 15 %. The step counts follow the same ratios.
-    let by = |label: &str| a.runs.iter().find(|r| r.setting == label).unwrap();
-    let dt20 = by("dt = t_s/20");
-    let stiff = by("E / 1000");
-    for (run, want) in [(dt20, 2.5), (stiff, 10f64.powf(-0.4))] {
-        let ratio = run.dt_s.unwrap() / ref_dt;
-        assert!(
-            (ratio / want - 1.0).abs() < 0.15,
-            "{}: dt ratio {ratio}",
-            run.setting
-        );
-        let cost = ref_run.steps as f64 / run.steps as f64;
-        assert!(
-            (cost / ratio - 1.0).abs() < 1e-3,
-            "{}: {cost} vs {ratio}",
-            run.setting
-        );
-    }
-    // and the accuracy side: coarser dt and a different stiffness both move the amplitude
-    // away from the reference (an error metric stuck at 0 fails)
-    assert!(dt20.amplitude_rel_error.unwrap() > 0.0, "{dt20:?}");
-    assert!(stiff.amplitude_rel_error.unwrap() > 0.0, "{stiff:?}");
-    // the one-particle note gives m_p = 24 × 8030 × 4/3 π (3 mm)³ = 0.02180 kg
-    assert!(
-        a.notes.iter().any(|n| n.contains("m_p = 0.0218")),
-        "{:?}",
-        a.notes
+    assert_eq!(
+        out.status.code(),
+        Some(3),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
     );
-    assert!(a.settings.iter().any(|s| s.pareto_amplitude));
 }

@@ -281,7 +281,7 @@ pub fn settle(world: &mut DemWorld, max_time_s: f64) -> (f64, u64) {
 
 /// CPU time of the calling thread (s), from `/proc/thread-self/stat` (utime + stime, in
 /// clock ticks of 1/100 s); `None` where unavailable.
-fn thread_cpu_time_s() -> Option<f64> {
+pub fn thread_cpu_time_s() -> Option<f64> {
     let s = std::fs::read_to_string("/proc/thread-self/stat").ok()?;
     let f: Vec<&str> = s.rsplit(')').next()?.split_whitespace().collect();
     let utime: f64 = f.get(11)?.parse().ok()?;

@@ -1,4 +1,4 @@
-//! Pareto figure: error against wall time on log–log axes, one labelled marker per setting,
+//! Pareto figure: error against cost (CPU time per point) on log–log axes, one labelled marker per setting,
 //! coloured by group (the knob turned), with the Pareto front drawn as a staircase.
 
 use plotters::coord::Shift;
@@ -15,8 +15,8 @@ pub struct ParetoPoint {
     pub label: String,
     /// Group (legend entry and colour), e.g. `softening`.
     pub group: String,
-    /// Cost: wall time (s), > 0.
-    pub wall_time_s: f64,
+    /// Cost: CPU time per point (core-seconds), > 0.
+    pub core_seconds: f64,
     /// Error (dimensionless or in the figure's unit), > 0 (errors below `error_floor` are
     /// drawn at the floor).
     pub error: f64,
@@ -34,7 +34,7 @@ pub struct ParetoFigure {
     /// Smallest error drawn (errors below are clamped to it), > 0. Default choice: 1e-4.
     pub error_floor: f64,
     /// Wall time of the reference (s), drawn as a vertical dashed line; `None`: none.
-    pub reference_wall_time_s: Option<f64>,
+    pub reference_core_seconds: Option<f64>,
     /// Caption used when the options give none.
     pub title: String,
 }
@@ -60,10 +60,10 @@ impl Figure for ParetoFigure {
             ));
         }
         for p in &self.points {
-            if !(p.wall_time_s > 0.0 && p.wall_time_s.is_finite()) {
+            if !(p.core_seconds > 0.0 && p.core_seconds.is_finite()) {
                 return Err(PlotError::bad(
                     "pareto",
-                    format!("{} wall_time_s", p.label),
+                    format!("{} core_seconds", p.label),
                     "must be finite and > 0 (log axis); leave failed runs out",
                 ));
             }
@@ -90,13 +90,13 @@ impl Figure for ParetoFigure {
         let (root, panel) = common::with_side_panel(root, title, 0.2, 190)?;
         let err = |p: &ParetoPoint| p.error.max(self.error_floor);
         let reference = self
-            .reference_wall_time_s
+            .reference_core_seconds
             .filter(|r| *r > 0.0 && r.is_finite());
         let (mut x_lo, mut x_hi) = (f64::INFINITY, 0.0f64);
         let (mut y_lo, mut y_hi) = (f64::INFINITY, 0.0f64);
         for p in &self.points {
-            x_lo = x_lo.min(p.wall_time_s);
-            x_hi = x_hi.max(p.wall_time_s);
+            x_lo = x_lo.min(p.core_seconds);
+            x_hi = x_hi.max(p.core_seconds);
             y_lo = y_lo.min(err(p));
             y_hi = y_hi.max(err(p));
         }
@@ -114,7 +114,7 @@ impl Figure for ParetoFigure {
             .map_err(draw_err)?;
         chart
             .configure_mesh()
-            .x_desc("wall time, summed over the frequencies (s)")
+            .x_desc("CPU time per point (core-seconds)")
             .y_desc(self.y_label.as_str())
             .label_style(common::tick_font())
             .axis_desc_style(common::label_font())
@@ -134,7 +134,7 @@ impl Figure for ParetoFigure {
                 ))
                 .map_err(draw_err)?;
             legend.push(LegendEntry::new(
-                "reference wall time",
+                "reference",
                 RGBColor(128, 128, 128),
                 LegendMark::Dashed(1),
             ));
@@ -165,7 +165,7 @@ impl Figure for ParetoFigure {
                     self.points
                         .iter()
                         .filter(|p| p.group == *g)
-                        .map(|p| Circle::new((p.wall_time_s, err(p)), radius(p), color.filled())),
+                        .map(|p| Circle::new((p.core_seconds, err(p)), radius(p), color.filled())),
                 )
                 .map_err(draw_err)?;
             legend.push(LegendEntry::new(*g, color, LegendMark::Dot(5)));
@@ -177,7 +177,7 @@ impl Figure for ParetoFigure {
             .points
             .iter()
             .map(|p| {
-                let (x, y) = chart.backend_coord(&(p.wall_time_s, err(p)));
+                let (x, y) = chart.backend_coord(&(p.core_seconds, err(p)));
                 Marker { x, y, r: radius(p) }
             })
             .collect();
@@ -196,7 +196,7 @@ impl Figure for ParetoFigure {
         let placed = place_labels(&markers, &sizes, &obstacles, bounds);
         let area = chart.plotting_area();
         for ((p, m), q) in self.points.iter().zip(&markers).zip(&placed) {
-            let at = (p.wall_time_s, err(p));
+            let at = (p.core_seconds, err(p));
             let (dx, dy) = (q.rect.x - m.x, q.rect.y - m.y);
             if q.detached {
                 // a leader line from the marker's edge to the nearest point of the label box
@@ -227,13 +227,13 @@ impl ParetoFigure {
         groups
     }
 
-    /// The Pareto front as a staircase through its points, in order of wall time.
+    /// The Pareto front as a staircase through its points, in order of cost.
     fn front_staircase(&self) -> Vec<(f64, f64)> {
         let mut front: Vec<(f64, f64)> = self
             .points
             .iter()
             .filter(|p| p.on_front)
-            .map(|p| (p.wall_time_s, p.error.max(self.error_floor)))
+            .map(|p| (p.core_seconds, p.error.max(self.error_floor)))
             .collect();
         front.sort_by(|a, b| a.0.total_cmp(&b.0));
         let mut stair = Vec::new();
@@ -257,7 +257,7 @@ mod tests {
             points,
             y_label: "error (–)".into(),
             error_floor: 1e-4,
-            reference_wall_time_s: Some(10.0),
+            reference_core_seconds: Some(10.0),
             title: "t".into(),
         }
     }
@@ -267,7 +267,7 @@ mod tests {
         let p = |l: &str, w: f64, e: f64, f: bool| ParetoPoint {
             label: l.into(),
             group: "g".into(),
-            wall_time_s: w,
+            core_seconds: w,
             error: e,
             on_front: f,
         };
@@ -292,7 +292,7 @@ mod tests {
             .validate()
             .unwrap_err()
             .to_string()
-            .contains("wall_time_s"));
+            .contains("core_seconds"));
         assert!(fig(vec![]).validate().is_err());
     }
 }

@@ -108,6 +108,11 @@ impl SceneSource {
         })
     }
 
+    /// The (possibly overridden) table.
+    pub fn table(&self) -> &toml::Table {
+        &self.table
+    }
+
     /// The (possibly overridden) table as TOML text.
     pub fn to_toml(&self) -> String {
         toml::to_string(&self.table).unwrap_or_default()

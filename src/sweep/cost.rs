@@ -29,9 +29,11 @@ use crate::setup::Setup;
 pub const IMPACT_S_PER_PERIOD: f64 = 20e-6;
 /// CPU seconds of the nonlinear analysis of one point (measured: 43 ms mean, 2000 periods).
 pub const ANALYSIS_S: f64 = 0.1;
-/// DEM particle-steps per CPU second (measured 4.4e6 for scene B with real steel,
-/// `data/reference/tradeoff_scene_b.csv`, one thread; `pdamp slurm` adds its safety factor).
-pub const DEM_PARTICLE_STEPS_PER_S: f64 = 4.4e6;
+/// DEM particle-steps per CPU second of the driven run, one thread: the slowest measured on
+/// scene B's 250 grains (2.5e7 at 12 Hz, softened 1000×, `figures/data/dem_ch4_p200`; 4.1–4.6e7
+/// with real steel at 14–16 Hz, `figures/data/reference_steel_p200`, 2026-12-06); `pdamp
+/// slurm` adds its safety factor.
+pub const DEM_PARTICLE_STEPS_PER_S: f64 = 2.5e7;
 /// Memory of a process besides the DEM's particles (bytes).
 const BASE_MEMORY: f64 = 200e6;
 /// Memory per DEM grain (state, neighbour lists, contacts) (bytes).

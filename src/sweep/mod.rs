@@ -7,6 +7,7 @@
 //! `timings.csv`). A grid too large for the disk or memory is refused up front ([`budget`]).
 
 pub mod budget;
+pub mod catalog;
 pub mod continuation;
 pub mod cost;
 pub mod points;
@@ -17,6 +18,7 @@ pub mod slurm;
 pub mod tables;
 pub mod vary;
 
+pub use catalog::{Catalog, FoundPoint};
 pub use continuation::{Continuation, Direction};
 pub use points::{SweepPoint, SweepPoints};
 pub use run::{run_scene, run_with_analysis};

@@ -19,6 +19,10 @@ pub struct SweepPoint {
     /// The run's summary, with its stroboscopic samples (`strobe.csv`'s rows of this point;
     /// `time_s` = cycle / `frequency_hz`).
     pub summary: RunSummary,
+    /// The [`crate::model::PHYSICS_REVISION`] of the binary that computed the point.
+    pub physics: u32,
+    /// CPU time (s) of the thread that ran the point, when recorded (not part of the physics).
+    pub cpu_s: Option<f64>,
 }
 
 impl SweepPoint {
@@ -49,9 +53,18 @@ pub struct SweepPoints {
 #[derive(serde::Deserialize)]
 struct StoredPoint {
     point: usize,
+    #[serde(default = "first_revision")]
+    physics: u32,
     values: Vec<(String, String)>,
     strobe: Vec<String>,
     summary: RunSummary,
+    #[serde(default)]
+    cpu_s: Option<f64>,
+}
+
+/// Points written before they carried their physics revision: revision 1.
+pub(super) fn first_revision() -> u32 {
+    1
 }
 
 impl SweepPoints {
@@ -107,6 +120,8 @@ impl SweepPoints {
                     })
                     .collect(),
                 summary,
+                physics: rec.physics,
+                cpu_s: rec.cpu_s,
             });
         }
         Ok(SweepPoints {
@@ -230,6 +245,8 @@ mod tests {
                 ),
             ],
             summary,
+            physics: 1,
+            cpu_s: None,
         }
     }
 

@@ -49,7 +49,7 @@ pub struct SweepReport {
 pub(super) struct PointRecord {
     pub(super) point: usize,
     /// The [`crate::model::PHYSICS_REVISION`] of the binary that computed it.
-    #[serde(default = "first_revision")]
+    #[serde(default = "super::points::first_revision")]
     pub(super) physics: u32,
     /// (key, value) of the varied keys.
     pub(super) values: Vec<(String, String)>,
@@ -59,11 +59,11 @@ pub(super) struct PointRecord {
     pub(super) strobe: Vec<String>,
     /// The full run summary.
     pub(super) summary: serde_json::Value,
-}
-
-/// Points written before they carried their physics revision: revision 1.
-fn first_revision() -> u32 {
-    1
+    /// CPU time (s) of the thread that ran the point (bed, settling, drive, replica test and
+    /// analysis; a DEM's extra force threads are not counted); absent in points written before
+    /// it was recorded, or where the platform cannot measure it. Not part of the physics.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub(super) cpu_s: Option<f64>,
 }
 
 /// Identity of a sweep, stored in `DIR/sweep.json` so that a rerun resumes only the same sweep.
@@ -119,6 +119,23 @@ impl Manifest {
                     .collect()
             })
             .collect()
+    }
+
+    /// What every point of the sweep shares: the scene with the `--set` overrides
+    /// applied (varied keys as in the base scene), the varied keys, and whether the points were
+    /// analysed.
+    ///
+    /// # Errors
+    /// [`SimError::Scene`] if the stored scene or an override no longer parses.
+    pub(super) fn identity(
+        &self,
+    ) -> Result<(crate::scene::SceneSource, Vec<String>, bool), SimError> {
+        let mut src = crate::scene::SceneSource::parse(&self.scene)?;
+        for (k, v) in &self.set {
+            src.set(k, crate::scene::overrides::parse_value(v))?;
+        }
+        let keys = self.vary.iter().map(|(k, _)| k.clone()).collect();
+        Ok((src, keys, self.analysis))
     }
 
     /// The manifest `DIR/sweep.json`.
@@ -449,7 +466,12 @@ pub(super) fn run_point(
     analyze: bool,
     points_dir: &Path,
 ) -> Result<PointRecord, SimError> {
+    let cpu0 = crate::dem::run::thread_cpu_time_s();
     let s = run_in_point_dir(scene, &points_dir.join(i.to_string()), analyze)?;
+    let cpu_s = match (cpu0, crate::dem::run::thread_cpu_time_s()) {
+        (Some(a), Some(b)) => Some(b - a),
+        _ => None,
+    };
     let cells = cells_of(&s);
     // the same text as format!("{},{},…", cycle, fmt_num(…), …), written into one buffer
     let strobe = s
@@ -477,6 +499,7 @@ pub(super) fn run_point(
         cells,
         strobe,
         summary,
+        cpu_s,
     })
 }
 

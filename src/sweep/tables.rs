@@ -512,6 +512,7 @@ mod tests {
             cells: BTreeMap::new(),
             strobe: vec![],
             summary: serde_json::Value::Null,
+            cpu_s: None,
         };
         log.append(&rec, 0.25).unwrap();
         let text = std::fs::read_to_string(&path).unwrap();

@@ -1,12 +1,13 @@
-//! The settings ladder: each cheaper (or more accurate) setting is one [`Change`] applied to
-//! the reference [`Case`] of a DEM scene.
+//! The settings ladder: every shortcut a user reaches for, each one [`Change`] to the
+//! reference scene, turned into the scene that is simulated ([`Rung::scene`]).
 //!
-//! The reference is the most accurate *affordable* setting: the scene's grains with their
-//! Young's modulus divided by [`LadderOptions::reference_softening`] (default 100; the
-//! damping rescaled so that the restitution curve e(v) is unchanged, γ ∝ E^{3/5}, SPEC §9),
-//! Hertz–Kuwabara–Kono contacts with friction and rotations, dt = t_s/100 (the thesis's
-//! rule of thumb), the scene's N and radii, a short run (default 1.5 s of drive) whose last
-//! half is the steady state. Each rung changes one thing only.
+//! The reference is a scene file (for scene B, `data/scenes/thesis_b_reference.toml`: real
+//! steel, Hertz–Kuwabara–Kono with friction and rotations, dt = t_s/100, 200 forcing periods,
+//! the last 60 % analysed). Each rung changes one thing only: the time step, the stiffness
+//! (E ÷ f with the damping rescaled so that the restitution e(v) is kept, γ ∝ f^{-3/5}, SPEC
+//! §9), the contact law, the tangential law, rotations, friction, the number of grains at the
+//! same total mass, the one-particle model in place of the grains, the run length, the
+//! analysis window.
 
 use crate::contact::hertz_stiffness;
 use crate::contact::material::PairProperties;
@@ -14,11 +15,12 @@ use crate::contact::restitution::kuwabara_kono_restitution;
 use crate::dem::stability::impact_speed;
 use crate::dem::BoxDrive;
 use crate::error::SceneError;
-use crate::scene::dem::{ContactKind, DemParams};
+use crate::scene::dem::DemParams;
+use crate::scene::{Damper, Scene, SceneSource};
 use serde::{Deserialize, Serialize};
 
 /// Yield strength used for the linear law when the scene gives none (Pa): hardened steel,
-/// the seed paper's order of magnitude.
+/// the linear-DEM paper's order of magnitude.
 pub const DEFAULT_YIELD_STRENGTH_PA: f64 = 1.0e9;
 
 /// Which knob a setting turns (a column of `tradeoff.csv`).
@@ -33,19 +35,36 @@ pub enum Axis {
     Softening,
     /// Linear spring–dashpot instead of Hertz–Kuwabara–Kono.
     ContactLaw,
+    /// Mindlin tangential spring with history instead of the history-free Coulomb law.
+    TangentialLaw,
     /// Rotations (and so frictional torques) switched off.
     Rotations,
     /// Friction (tangential force) switched off.
     Friction,
-    /// Number of grains at fixed total grain mass.
+    /// Fewer, larger grains at the same total grain mass.
     GrainCount,
     /// The one-particle impact model (SPEC §3) instead of the DEM.
     OneParticle,
-    /// Shorter drive.
+    /// Fewer forcing periods of drive.
     RunLength,
-    /// Shorter steady-state window (same run).
-    SteadyFraction,
+    /// A shorter steady-state and analysis window (same run length).
+    Window,
 }
+
+/// Every axis, in the order of the tables.
+pub const ALL_AXES: [Axis; 11] = [
+    Axis::Reference,
+    Axis::DtFraction,
+    Axis::Softening,
+    Axis::ContactLaw,
+    Axis::TangentialLaw,
+    Axis::Rotations,
+    Axis::Friction,
+    Axis::GrainCount,
+    Axis::OneParticle,
+    Axis::RunLength,
+    Axis::Window,
+];
 
 impl Axis {
     /// The name used in CSV files and plots.
@@ -55,12 +74,13 @@ impl Axis {
             Axis::DtFraction => "dt-fraction",
             Axis::Softening => "softening",
             Axis::ContactLaw => "contact-law",
+            Axis::TangentialLaw => "tangential-law",
             Axis::Rotations => "rotations",
             Axis::Friction => "friction",
             Axis::GrainCount => "grain-count",
             Axis::OneParticle => "one-particle",
             Axis::RunLength => "run-length",
-            Axis::SteadyFraction => "steady-fraction",
+            Axis::Window => "window",
         }
     }
 
@@ -68,91 +88,236 @@ impl Axis {
     pub fn parse(s: &str) -> Option<Axis> {
         ALL_AXES.iter().copied().find(|a| a.as_str() == s)
     }
+
+    /// Whether the axis describes how long or how much of a run is looked at rather than the
+    /// model (never chosen by `auto`: the scene's `[run]` is the user's).
+    pub fn is_run_setting(self) -> bool {
+        matches!(self, Axis::RunLength | Axis::Window)
+    }
 }
 
-/// Every axis, in the order of the tables.
-pub const ALL_AXES: [Axis; 10] = [
-    Axis::Reference,
-    Axis::DtFraction,
-    Axis::Softening,
-    Axis::ContactLaw,
-    Axis::Rotations,
-    Axis::Friction,
-    Axis::GrainCount,
-    Axis::OneParticle,
-    Axis::RunLength,
-    Axis::SteadyFraction,
-];
+/// Where the one-particle model's gap comes from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Gap {
+    /// A given free travel (m), e.g. the source's 0.0835 m for scene B.
+    Given(f64),
+    /// The box height minus the settled bed's height, measured by the reference runs
+    /// (`bed_height_m`); the value (m) once known.
+    SettledBed(Option<f64>),
+}
 
-/// One change to the reference case.
+/// One change to the reference.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Change {
     /// No change (the reference).
     None,
     /// dt = fraction × t_s (–).
     DtFraction(f64),
-    /// Young's modulus divided by this factor relative to the scene's material (–).
+    /// Young's modulus divided by this factor (–), γ_n, γ_s × factor^{-3/5}, Y ÷ factor.
     Soften(f64),
-    /// Linear spring–dashpot law with e equal to the Kuwabara–Kono restitution at the design
-    /// impact speed, and the yield strength scaled with E (so k_n scales like Hertz's).
+    /// Linear spring–dashpot law (the linear-DEM paper's parameters from the yield strength)
+    /// with e equal to the Kuwabara–Kono restitution at the design impact speed.
     LinearLaw,
-    /// Rotations off (`false`).
-    Rotations(bool),
-    /// Friction off (`false`): μ = 0, no tangential force.
-    Friction(bool),
-    /// N grains at the scene's total grain mass (radii scaled by (N₀/N)^{1/3}).
+    /// Mindlin tangential spring with per-contact history (`damper.tangential = "mindlin"`).
+    Mindlin,
+    /// Rotations off.
+    RotationsOff,
+    /// Friction off: μ = 0 for grains and walls.
+    FrictionOff,
+    /// N grains at the reference's total grain mass (radius × (N₀/N)^{1/3}).
     GrainCount(usize),
-    /// One-particle impact model with this restitution; `None`: fitted to the reference.
-    OneParticle(Option<f64>),
-    /// Drive duration (s).
-    Duration(f64),
-    /// Steady-state fraction of the same run (–).
-    SteadyFraction(f64),
+    /// The one-particle model: the bed's mass as one particle with restitution e and a gap.
+    OneParticle {
+        /// Effective restitution e (–).
+        restitution: f64,
+        /// Free travel.
+        gap: Gap,
+    },
+    /// Forcing periods of drive.
+    Periods(u32),
+    /// Steady-state and analysis fraction of the run (–).
+    Window(f64),
 }
 
-/// A rung of the ladder: a change, its axis, its value and a label.
+/// A rung of the ladder.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Setting {
+pub struct Rung {
+    /// Short identifier, also the folder name of its points (`dt-50`, `soften-1000`, …).
+    pub id: String,
     /// The knob.
     pub axis: Axis,
-    /// Short label, e.g. `dt = t_s/50`.
+    /// Label for tables and figures, e.g. `dt = t_s/50`.
     pub label: String,
-    /// Numeric value of the knob (e.g. 0.02, 1000, 100 grains; 1/0 for on/off; e for the
-    /// one-particle model, NaN when fitted).
-    pub value: f64,
     /// The change.
     pub change: Change,
 }
 
-/// A fully specified DEM run (before softening is applied to the parameters).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Case {
-    /// The scene's grains, unsoftened.
-    pub params: DemParams,
-    /// Young's modulus divisor (–), ≥ 1 normally.
-    pub softening: f64,
-    /// dt / t_s (–).
-    pub dt_fraction: f64,
-    /// Drive duration (s).
-    pub duration_s: f64,
-    /// Steady-state fraction (–).
-    pub steady_fraction: f64,
-}
+impl Rung {
+    fn new(id: impl Into<String>, axis: Axis, label: impl Into<String>, change: Change) -> Rung {
+        Rung {
+            id: id.into(),
+            axis,
+            label: label.into(),
+            change,
+        }
+    }
 
-impl Case {
-    /// The DEM parameters actually simulated: softening applied.
-    pub fn effective_params(&self) -> DemParams {
-        soften(&self.params, self.softening)
+    /// The scene this rung simulates: `reference` with the change applied.
+    ///
+    /// # Errors
+    /// [`SceneError`] naming the key when the reference cannot take the change (no DEM
+    /// damper, radii that are not one fixed radius for a grain-count change, a one-particle
+    /// gap that is not known yet).
+    pub fn scene(&self, reference: &SceneSource) -> Result<SceneSource, SceneError> {
+        let scene = reference.scene(&[])?;
+        let p = dem_params(&scene)?;
+        let mut src = reference.clone();
+        let set = |src: &mut SceneSource, k: &str, v: toml::Value| src.set(k, v);
+        match self.change {
+            Change::None => {}
+            Change::DtFraction(f) => set(&mut src, "run.dt_fraction", f.into())?,
+            Change::Soften(f) => soften_keys(&mut src, p, f)?,
+            Change::LinearLaw => {
+                let e = design_restitution(p, &drive_of(&scene))?;
+                set(&mut src, "damper.contact", "linear".into())?;
+                set(&mut src, "damper.restitution", e.into())?;
+                let y = p.yield_strength.unwrap_or(DEFAULT_YIELD_STRENGTH_PA);
+                set(&mut src, "damper.yield_strength", y.into())?;
+            }
+            Change::Mindlin => set(&mut src, "damper.tangential", "mindlin".into())?,
+            Change::RotationsOff => set(&mut src, "damper.rotations", false.into())?,
+            Change::FrictionOff => {
+                set(&mut src, "damper.friction", 0.0.into())?;
+                set(&mut src, "damper.wall_friction", 0.0.into())?;
+            }
+            Change::GrainCount(n) => count_keys(&mut src, p, n)?,
+            Change::OneParticle { restitution, gap } => {
+                return one_particle_scene(reference, p, restitution, gap)
+            }
+            Change::Periods(n) => set(&mut src, "run.periods", i64::from(n).into())?,
+            Change::Window(f) => {
+                set(&mut src, "run.steady_fraction", f.into())?;
+                set(&mut src, "run.analysis_fraction", f.into())?;
+            }
+        }
+        Ok(src)
     }
 }
 
-/// The softening rule ([`DemParams::softened`]): E/f, γ·f^{-3/5}, Y/f.
-pub fn soften(p: &DemParams, factor: f64) -> DemParams {
-    p.softened(factor)
+fn dem_params(scene: &Scene) -> Result<&DemParams, SceneError> {
+    match &scene.damper {
+        Damper::Dem(p) => Ok(p),
+        other => Err(SceneError::invalid(
+            "damper.kind",
+            other.kind(),
+            "the speed–accuracy ladder starts from a DEM reference (kind = \"dem\")",
+        )),
+    }
+}
+
+fn drive_of(scene: &Scene) -> BoxDrive {
+    BoxDrive {
+        primary: None,
+        amplitude_m: scene.excitation.amplitude,
+        frequency_hz: scene.excitation.frequency,
+    }
+}
+
+/// E ÷ f, γ × f^{-3/5} (grain–grain and, where given, grain–wall), Y ÷ f: the keys
+/// [`DemParams::softened`] changes.
+fn soften_keys(src: &mut SceneSource, p: &DemParams, f: f64) -> Result<(), SceneError> {
+    let q = p.softened(f);
+    src.set("damper.youngs_modulus", q.youngs_modulus.into())?;
+    src.set("damper.gamma_n", q.gamma_n.into())?;
+    src.set("damper.gamma_s", q.gamma_s.into())?;
+    let optional = [
+        ("damper.wall_youngs_modulus", q.wall_youngs_modulus),
+        ("damper.wall_gamma_n", q.wall_gamma_n),
+        ("damper.wall_gamma_s", q.wall_gamma_s),
+        ("damper.yield_strength", q.yield_strength),
+    ];
+    for (k, v) in optional {
+        if let Some(v) = v {
+            src.set(k, v.into())?;
+        }
+    }
+    Ok(())
+}
+
+fn count_keys(src: &mut SceneSource, p: &DemParams, n: usize) -> Result<(), SceneError> {
+    let Some(r) = p
+        .radius
+        .filter(|_| p.radius_table.is_none() && p.radius_min.is_none())
+    else {
+        return Err(SceneError::invalid(
+            "damper.radius",
+            "a distribution",
+            "the grain-count rung scales one fixed radius; give damper.radius",
+        ));
+    };
+    if n == 0 {
+        return Err(SceneError::invalid("damper.count", n, "must be ≥ 1 grain"));
+    }
+    let s = (p.count as f64 / n as f64).cbrt();
+    src.set("damper.count", (n as i64).into())?;
+    src.set("damper.radius", (r * s).into())
+}
+
+/// The reference's primary, drive and run with the grains replaced by one particle of their
+/// total mass (SPEC §3).
+fn one_particle_scene(
+    reference: &SceneSource,
+    p: &DemParams,
+    restitution: f64,
+    gap: Gap,
+) -> Result<SceneSource, SceneError> {
+    let gap_m = match gap {
+        Gap::Given(g) => g,
+        Gap::SettledBed(Some(h)) => p.r#box[2] - h,
+        Gap::SettledBed(None) => {
+            return Err(SceneError::invalid(
+                "damper.gap",
+                "the settled bed",
+                "the settled bed's height comes from the reference runs: compute at least \
+                 one reference point first",
+            ))
+        }
+    };
+    let mass = bed_mass_kg(p)?;
+    let mut table = reference.table().clone();
+    let mut damper = toml::Table::new();
+    damper.insert("kind".into(), "impact".into());
+    damper.insert("mass".into(), mass.into());
+    damper.insert("gap".into(), gap_m.into());
+    damper.insert("restitution".into(), restitution.into());
+    table.insert("damper".into(), toml::Value::Table(damper));
+    if let Some(toml::Value::Table(run)) = table.get_mut("run") {
+        for k in ["dt", "dt_fraction", "replica", "replica_perturbation"] {
+            run.remove(k);
+        }
+    }
+    SceneSource::parse(&toml::to_string(&table).unwrap_or_default())
+}
+
+/// Total mass of the grains (kg): Σ ρ 4/3 π r_i³ over the radii the packing draws
+/// (`damper.seed`).
+///
+/// # Errors
+/// Radius errors of the distribution.
+pub fn bed_mass_kg(p: &DemParams) -> Result<f64, SceneError> {
+    let radii = p.radius_distribution()?.sample_n(p.count, p.seed);
+    let v: f64 = radii
+        .iter()
+        .map(|r| 4.0 / 3.0 * std::f64::consts::PI * r.powi(3))
+        .sum();
+    Ok(v * p.density)
 }
 
 /// Kuwabara–Kono restitution (–) of two of the scene's grains colliding at the design impact
-/// speed max(2UΩ, √(2 g Lz)) of `drive` (used to give the linear law the same e).
+/// speed max(2UΩ, √(2 g Lz)) of `drive` (gives the linear law the same e).
+///
+/// # Errors
+/// Radius errors of the distribution.
 pub fn design_restitution(p: &DemParams, drive: &BoxDrive) -> Result<f64, SceneError> {
     let r = p.radius_distribution()?.r_max();
     let m = p.density * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
@@ -163,249 +328,117 @@ pub fn design_restitution(p: &DemParams, drive: &BoxDrive) -> Result<f64, SceneE
     Ok(kuwabara_kono_restitution(k, p.gamma_n, pair.m_star, v).clamp(0.01, 1.0))
 }
 
-impl Change {
-    /// Applies the change to a DEM case. [`Change::OneParticle`] leaves it unchanged (the
-    /// impact model is built separately, see [`crate::tradeoff::measure`]).
-    ///
-    /// # Errors
-    /// Radii that cannot be scaled (invalid distribution).
-    pub fn apply(&self, base: &Case, drive: &BoxDrive) -> Result<Case, SceneError> {
-        let mut c = base.clone();
-        match *self {
-            Change::None | Change::OneParticle(_) => {}
-            Change::DtFraction(f) => c.dt_fraction = f,
-            Change::Soften(f) => c.softening = f,
-            Change::LinearLaw => {
-                let e = design_restitution(&c.params, drive)?;
-                c.params.contact = ContactKind::Linear;
-                c.params.restitution = Some(e);
-                c.params.yield_strength =
-                    Some(c.params.yield_strength.unwrap_or(DEFAULT_YIELD_STRENGTH_PA));
-            }
-            Change::Rotations(on) => c.params.rotations = on,
-            Change::Friction(on) => {
-                if !on {
-                    c.params.friction = 0.0;
-                    c.params.wall_friction = Some(0.0);
-                }
-            }
-            Change::GrainCount(n) => c.params = with_count_at_fixed_mass(&c.params, n)?,
-            Change::Duration(d) => c.duration_s = d,
-            Change::SteadyFraction(f) => c.steady_fraction = f,
-        }
-        Ok(c)
-    }
-}
+/// The source's gap for scene B's one-particle model (m) (thesis §5, Fig. 5.2a).
+pub const SCENE_B_SOURCE_GAP_M: f64 = 0.0835;
 
-/// The scene's grains replaced by `n` grains of the same total mass: every radius scaled by
-/// (N₀/n)^{1/3} (same density, same size distribution shape).
-///
-/// # Errors
-/// `damper.count` when n = 0; radius errors of the distribution.
-pub fn with_count_at_fixed_mass(p: &DemParams, n: usize) -> Result<DemParams, SceneError> {
-    if n == 0 {
-        return Err(SceneError::invalid("damper.count", n, "must be ≥ 1 grain"));
+/// The ladder of scene B's reference with `count` grains, reference first: dt = t_s/50, /20,
+/// /10; E ÷ 10, 100, 1000, 10 000; the linear law; Mindlin; rotations off; friction off;
+/// N/2 grains; one particle with e = 0, 0.5, 0.8 at the source's gap and e = 0 at the settled
+/// bed's gap (`bed_height_m`, when known); 50 and 100 periods (reference: `periods`); the
+/// last 30 % analysed (reference: 60 %).
+pub fn ladder(count: usize, bed_height_m: Option<f64>) -> Vec<Rung> {
+    let mut v = vec![Rung::new(
+        "reference",
+        Axis::Reference,
+        "reference",
+        Change::None,
+    )];
+    for d in [50u32, 20, 10] {
+        v.push(Rung::new(
+            format!("dt-{d}"),
+            Axis::DtFraction,
+            format!("dt = t_s/{d}"),
+            Change::DtFraction(1.0 / f64::from(d)),
+        ));
     }
-    p.radius_distribution()?;
-    let s = (p.count as f64 / n as f64).cbrt();
-    let mut q = p.clone();
-    q.count = n;
-    q.radius = q.radius.map(|r| r * s);
-    q.radius_min = q.radius_min.map(|r| r * s);
-    q.radius_max = q.radius_max.map(|r| r * s);
-    q.radius_std = q.radius_std.map(|r| r * s);
-    q.radius_table = q
-        .radius_table
-        .map(|t| t.into_iter().map(|[r, w]| [r * s, w]).collect());
-    q.neighbor_skin = q.neighbor_skin.map(|r| r * s);
-    Ok(q)
-}
-
-/// How far up and down the ladder goes.
-#[derive(Debug, Clone, PartialEq)]
-pub struct LadderOptions {
-    /// Young's modulus divisor of the reference (–). Default 100 (real steel is ~6× slower
-    /// still; state it next to the results).
-    pub reference_softening: f64,
-    /// dt / t_s of the reference (–). Default 1/100 (the thesis's δt ≈ t_s/100).
-    pub reference_dt_fraction: f64,
-    /// Drive duration of the reference (s). Default 1.5.
-    pub duration_s: f64,
-    /// Steady-state fraction of the reference (–). Default 0.5.
-    pub steady_fraction: f64,
-    /// Quick ladder: no rung costlier than the reference (no real steel, no t_s/200, no
-    /// larger N). Default `false`.
-    pub quick: bool,
-}
-
-impl Default for LadderOptions {
-    fn default() -> Self {
-        LadderOptions {
-            reference_softening: 100.0,
-            reference_dt_fraction: 0.01,
-            duration_s: 1.5,
-            steady_fraction: 0.5,
-            quick: false,
-        }
+    for f in [10u32, 100, 1000, 10000] {
+        v.push(Rung::new(
+            format!("soften-{f}"),
+            Axis::Softening,
+            format!("E / {f}"),
+            Change::Soften(f64::from(f)),
+        ));
     }
-}
-
-impl LadderOptions {
-    /// The reference case for the scene's grains `params`.
-    pub fn reference(&self, params: &DemParams) -> Case {
-        let mut p = params.clone();
-        p.snapshot_interval = None;
-        p.orientations = false;
-        Case {
-            params: p,
-            softening: self.reference_softening,
-            dt_fraction: self.reference_dt_fraction,
-            duration_s: self.duration_s,
-            steady_fraction: self.steady_fraction,
-        }
-    }
-
-    /// Checks the options.
-    ///
-    /// # Errors
-    /// [`SceneError`] naming the option.
-    pub fn validate(&self) -> Result<(), SceneError> {
-        crate::scene::run::Run::with_duration(self.duration_s).validate()?;
-        if !(self.reference_softening >= 1.0 && self.reference_softening.is_finite()) {
-            return Err(SceneError::invalid(
-                "reference_softening",
-                self.reference_softening,
-                "must be ≥ 1",
-            ));
-        }
-        if !(self.reference_dt_fraction > 0.0 && self.reference_dt_fraction <= 0.05) {
-            return Err(SceneError::invalid(
-                "reference_dt_fraction",
-                self.reference_dt_fraction,
-                "must be in (0, 0.05]",
-            ));
-        }
-        if !(self.steady_fraction > 0.0 && self.steady_fraction <= 1.0) {
-            return Err(SceneError::invalid(
-                "steady_fraction",
-                self.steady_fraction,
-                "must be in (0, 1]",
-            ));
-        }
-        Ok(())
-    }
-}
-
-fn rung(axis: Axis, label: impl Into<String>, value: f64, change: Change) -> Setting {
-    Setting {
-        axis,
-        label: label.into(),
-        value,
-        change,
-    }
-}
-
-/// The ladder of settings for a scene with `count` grains, reference first.
-///
-/// dt = t_s/10 … t_s/200; E ÷ 1, 10, 100, 1 000, 10 000; linear law; rotations off; friction
-/// off; N at fixed mass; one particle with e = 0 and fitted e; run length 1/3 and 2/3 of the
-/// reference; steady fraction 0.1 and 0.25. Rungs equal to the reference are left out;
-/// `quick` drops the rungs costlier than the reference.
-pub fn settings_ladder(opts: &LadderOptions, count: usize) -> Vec<Setting> {
-    let mut v = vec![rung(Axis::Reference, "reference", 1.0, Change::None)];
-    let dts: &[f64] = if opts.quick {
-        &[10.0, 20.0, 50.0]
-    } else {
-        &[10.0, 20.0, 50.0, 200.0]
-    };
-    for &d in dts {
-        if (1.0 / d - opts.reference_dt_fraction).abs() > 1e-12 {
-            v.push(rung(
-                Axis::DtFraction,
-                format!("dt = t_s/{d}"),
-                1.0 / d,
-                Change::DtFraction(1.0 / d),
-            ));
-        }
-    }
-    let softs: &[f64] = if opts.quick {
-        &[1000.0, 10000.0]
-    } else {
-        &[1.0, 10.0, 1000.0, 10000.0]
-    };
-    for &s in softs {
-        if (s - opts.reference_softening).abs() > 1e-9 {
-            v.push(rung(
-                Axis::Softening,
-                format!("E / {s}"),
-                s,
-                Change::Soften(s),
-            ));
-        }
-    }
-    v.push(rung(Axis::ContactLaw, "linear law", 0.0, Change::LinearLaw));
-    v.push(rung(
+    v.push(Rung::new(
+        "linear",
+        Axis::ContactLaw,
+        "linear spring-dashpot",
+        Change::LinearLaw,
+    ));
+    v.push(Rung::new(
+        "mindlin",
+        Axis::TangentialLaw,
+        "Mindlin tangential",
+        Change::Mindlin,
+    ));
+    v.push(Rung::new(
+        "rotations-off",
         Axis::Rotations,
         "rotations off",
-        0.0,
-        Change::Rotations(false),
+        Change::RotationsOff,
     ));
-    v.push(rung(
+    v.push(Rung::new(
+        "friction-off",
         Axis::Friction,
         "friction off",
-        0.0,
-        Change::Friction(false),
+        Change::FrictionOff,
     ));
-    let mut counts: Vec<usize> = vec![(count / 8).max(1), (count * 2 / 5).max(1)];
-    if !opts.quick {
-        counts.push(count * 2);
-    }
-    counts.dedup();
-    for n in counts.into_iter().filter(|&n| n != count) {
-        v.push(rung(
-            Axis::GrainCount,
-            format!("N = {n}"),
-            n as f64,
-            Change::GrainCount(n),
+    let half = (count / 2).max(1);
+    v.push(Rung::new(
+        format!("n-{half}"),
+        Axis::GrainCount,
+        format!("N = {half}, same mass"),
+        Change::GrainCount(half),
+    ));
+    for e in [0.0, 0.5, 0.8] {
+        v.push(Rung::new(
+            format!("one-particle-e{e}"),
+            Axis::OneParticle,
+            format!("one particle, e = {e}"),
+            Change::OneParticle {
+                restitution: e,
+                gap: Gap::Given(SCENE_B_SOURCE_GAP_M),
+            },
         ));
     }
-    v.push(rung(
+    v.push(Rung::new(
+        "one-particle-e0-bed",
         Axis::OneParticle,
-        "one particle e = 0",
-        0.0,
-        Change::OneParticle(Some(0.0)),
+        "one particle, e = 0, gap of the settled bed",
+        Change::OneParticle {
+            restitution: 0.0,
+            gap: Gap::SettledBed(bed_height_m),
+        },
     ));
-    v.push(rung(
-        Axis::OneParticle,
-        "one particle, fitted e",
-        f64::NAN,
-        Change::OneParticle(None),
-    ));
-    for frac in [1.0 / 3.0, 2.0 / 3.0] {
-        let d = opts.duration_s * frac;
-        v.push(rung(
+    for n in [50u32, 100] {
+        v.push(Rung::new(
+            format!("periods-{n}"),
             Axis::RunLength,
-            format!("run {d:.2} s"),
-            d,
-            Change::Duration(d),
+            format!("{n} periods"),
+            Change::Periods(n),
         ));
     }
-    for sf in [0.1, 0.25] {
-        if (sf - opts.steady_fraction).abs() > 1e-12 {
-            v.push(rung(
-                Axis::SteadyFraction,
-                format!("steady {sf}"),
-                sf,
-                Change::SteadyFraction(sf),
-            ));
-        }
-    }
+    v.push(Rung::new(
+        "window-0.3",
+        Axis::Window,
+        "last 30 % analysed",
+        Change::Window(0.3),
+    ));
     v
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn reference() -> SceneSource {
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/data/scenes/thesis_b_reference.toml"
+        ))
+        .unwrap();
+        SceneSource::parse(&text).unwrap()
+    }
 
     #[test]
     fn softening_keeps_restitution_curve() {
@@ -419,36 +452,91 @@ mod tests {
         };
         let p = DemParams::thesis_b();
         let e1 = design_restitution(&p, &drive).unwrap();
-        let e2 = design_restitution(&soften(&p, 1000.0), &drive).unwrap();
+        let e2 = design_restitution(&p.softened(1000.0), &drive).unwrap();
         assert!((e1 - e2).abs() < 1e-12, "{e1} vs {e2}");
         assert!(e1 > 0.3 && e1 < 1.0);
-        assert_eq!(soften(&p, 1000.0), DemParams::thesis_b_softened(1000.0));
     }
 
     #[test]
-    fn fixed_mass_scaling() {
-        let p = DemParams::thesis_b();
-        let q = with_count_at_fixed_mass(&p, 31).unwrap();
-        let m = |p: &DemParams| p.count as f64 * p.radius.unwrap().powi(3);
-        assert!((m(&p) / m(&q) - 1.0).abs() < 1e-12);
-        assert!(with_count_at_fixed_mass(&p, 0).is_err());
-    }
-
-    #[test]
-    fn ladder_has_every_axis_and_no_duplicate_reference() {
-        let l = settings_ladder(&LadderOptions::default(), 250);
+    fn every_rung_makes_a_valid_scene_that_differs_from_the_reference() {
+        let r = reference();
+        let rungs = ladder(250, Some(0.0347));
         for a in ALL_AXES {
-            assert!(l.iter().any(|s| s.axis == a), "{a:?} missing");
+            assert!(rungs.iter().any(|s| s.axis == a), "{a:?} missing");
             assert_eq!(Axis::parse(a.as_str()), Some(a));
         }
-        assert!(!l.iter().any(|s| s.change == Change::Soften(100.0)));
-        let q = settings_ladder(
-            &LadderOptions {
-                quick: true,
-                ..Default::default()
+        for rung in &rungs {
+            let s = rung
+                .scene(&r)
+                .unwrap_or_else(|e| panic!("{}: {e}", rung.id));
+            let scene = s.scene(&[]).unwrap_or_else(|e| panic!("{}: {e}", rung.id));
+            assert_eq!(
+                rung.change == Change::None,
+                s.table() == r.table(),
+                "{}",
+                rung.id
+            );
+            if let Change::OneParticle { .. } = rung.change {
+                assert_eq!(scene.damper.kind(), "impact");
+            }
+        }
+    }
+
+    #[test]
+    fn the_e100_scene_file_is_the_soften_100_rung() {
+        // the committed 5–26 Hz sweep of thesis_b_reference_e100.toml is found as the
+        // E ÷ 100 rung's points only if the two scenes are the same table, value for value
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/data/scenes/thesis_b_reference_e100.toml"
+        ))
+        .unwrap();
+        let e100 = SceneSource::parse(&text).unwrap();
+        let rung = ladder(250, None)
+            .into_iter()
+            .find(|r| r.id == "soften-100")
+            .unwrap();
+        assert_eq!(rung.scene(&reference()).unwrap().table(), e100.table());
+    }
+
+    #[test]
+    fn grain_count_keeps_the_mass_and_one_particle_takes_it() {
+        let r = reference();
+        let half = Rung::new("n", Axis::GrainCount, "n", Change::GrainCount(125));
+        let s = half.scene(&r).unwrap().scene(&[]).unwrap();
+        let Damper::Dem(q) = &s.damper else { panic!() };
+        let mass = |p: &DemParams| p.count as f64 * p.radius.unwrap().powi(3);
+        let p = DemParams::thesis_b();
+        assert!((mass(q) / mass(&p) - 1.0).abs() < 1e-12);
+        let one = Rung::new(
+            "o",
+            Axis::OneParticle,
+            "o",
+            Change::OneParticle {
+                restitution: 0.0,
+                gap: Gap::SettledBed(Some(0.035)),
             },
-            250,
         );
-        assert!(q.len() < l.len());
+        let s = one.scene(&r).unwrap().scene(&[]).unwrap();
+        let Damper::Impact(i) = &s.damper else {
+            panic!()
+        };
+        // 250 steel grains of 3 mm radius: 250 × 8030 × 4/3 π (0.003)³ = 0.22704 kg
+        assert!((i.mass - 0.227_043).abs() < 1e-5, "{}", i.mass);
+        assert!((i.gap - (0.1225 - 0.035)).abs() < 1e-12);
+        let unknown = Rung::new(
+            "u",
+            Axis::OneParticle,
+            "u",
+            Change::OneParticle {
+                restitution: 0.0,
+                gap: Gap::SettledBed(None),
+            },
+        );
+        assert!(unknown
+            .scene(&r)
+            .unwrap_err()
+            .to_string()
+            .contains("damper.gap"));
     }
 }

@@ -1,20 +1,24 @@
-//! Speed against accuracy (SPEC §2–§4): measure what each cheaper setting of a DEM scene
-//! costs and how wrong it is against the most accurate affordable reference, find the Pareto
-//! front, and let `[damper] kind = "auto"` pick the cheapest model that meets a scene's
-//! `[outputs]`.
+//! Speed against accuracy (SPEC §2–§4): how wrong and how cheap every shortcut of a DEM scene
+//! is against a converged reference, measured on stored sweep points; the Pareto fronts; and
+//! `[damper] kind = "auto"`, which picks the cheapest setting that meets a scene's `[outputs]`.
 //!
-//! Pipeline: [`ladder`] (the settings) → [`measure`] (one run, timed inside) → [`metrics`]
-//! (errors of Z, dissipation, M_ef/C_ef, regime, Lyapunov exponent) → [`study`] (all runs in
-//! parallel, each single-threaded) → [`pareto`] → [`table`] (CSV) → [`auto`] (model choice).
+//! Pipeline: [`ladder`] (the settings, each one change to the reference scene) → [`plan`]
+//! (frequencies, where points live) → [`compute`] (the missing points, as resumable sweeps)
+//! → [`observed`] (each rung's stored point at each frequency, or why there is none) →
+//! [`study`] (errors, resonance, M_ef/C_ef, verdicts, cost; [`metrics`], [`pareto`]) →
+//! [`table`] (`tradeoff.csv`, `tradeoff_settings.csv`) → [`auto`] (model choice).
 
 pub mod auto;
+pub mod compute;
 pub mod ladder;
-pub mod measure;
 pub mod metrics;
+pub mod observed;
 pub mod pareto;
+pub mod plan;
 pub mod study;
 pub mod table;
 
 pub use auto::{choose, AutoChoice};
-pub use ladder::{settings_ladder, Axis, Case, Change, LadderOptions, Setting};
-pub use study::{run_study, Study, StudyOptions};
+pub use ladder::{ladder, Axis, Change, Rung};
+pub use plan::StudyPlan;
+pub use study::{study, Study};

@@ -1,501 +1,435 @@
-//! The trade-off study: every rung of the ladder at a few frequencies (below, at and above
-//! resonance), run in parallel with rayon — each run single-threaded, its wall time measured
-//! inside the run — and compared with the reference.
+//! The speed–accuracy study from stored points: one [`Row`] per rung and frequency (Z, its
+//! error, the dissipation, the verdict beside the reference's, λ, the cost) and one
+//! [`SettingSummary`] per rung (largest errors, the FRF's resonance against the reference's,
+//! M_ef and C_ef fitted through the peak, regime agreement with its confusion matrix, cost and
+//! speed-up, Pareto flags).
+//!
+//! Errors are measured only where both the rung and the reference have a point; a rung's
+//! coverage (`frequencies_ok` of `frequencies`) says how much of the grid that is.
 
-use rayon::prelude::*;
-use serde::Serialize;
+use std::collections::BTreeMap;
 
-use crate::error::{SceneError, SimError};
-use crate::scene::dem::DemParams;
+use crate::error::DataError;
+use crate::model::RunSummary;
+use crate::sweep::Catalog;
 
-use super::ladder::{settings_ladder, Axis, Case, Change, LadderOptions, Setting};
-use super::measure::{
-    observe, one_particle_scene, run_dem_case, run_impact_scene, Observation, Rig, RunOutput,
-};
-use super::metrics::{dynamics, effective, relative_error, Dynamics};
+use super::ladder::{Axis, Change, Rung};
+use super::metrics::{effective, relative_error, resonance, Effective, Peak};
+use super::observed::{observe, Observed};
 use super::pareto::pareto_front;
+use super::plan::StudyPlan;
 
-/// Options of [`run_study`].
+/// One rung at one frequency.
 #[derive(Debug, Clone, PartialEq)]
-pub struct StudyOptions {
-    /// Reference and ladder.
-    pub ladder: LadderOptions,
-    /// Frequencies (Hz); empty (default): 0.7 f_r, f_r, 1.3 f_r with f_r = √(K/(M + m_p))/2π,
-    /// the natural frequency with the grains' mass attached.
-    pub frequencies_hz: Vec<f64>,
-    /// Worker threads (each run is single-threaded); `None` (default): rayon's default.
-    pub threads: Option<usize>,
-    /// Restitutions tried when fitting the one-particle model's e to the reference
-    /// (default 0, 0.1, …, 0.9).
-    pub fitted_e_candidates: Vec<f64>,
-}
-
-impl Default for StudyOptions {
-    fn default() -> Self {
-        StudyOptions {
-            ladder: LadderOptions::default(),
-            frequencies_hz: Vec::new(),
-            threads: None,
-            fitted_e_candidates: (0..10).map(|i| i as f64 / 10.0).collect(),
-        }
-    }
-}
-
-/// One run (setting × frequency): a row of `tradeoff.csv`.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct RunRow {
-    /// The knob.
-    pub axis: Axis,
-    /// The setting's label.
+pub struct Row {
+    /// Rung identifier.
     pub setting: String,
-    /// The knob's value.
-    pub value: f64,
+    /// Its axis.
+    pub axis: Axis,
+    /// Its label.
+    pub label: String,
     /// Forcing frequency (Hz).
     pub frequency_hz: f64,
-    /// `ok`, or the error that stopped the run.
+    /// `ok`, `not computed`, `refused`, `failed`, `other physics`.
     pub status: String,
-    /// Wall time of the driven run (s), measured inside the single-threaded run.
-    pub wall_time_s: f64,
-    /// Wall time including bed building and settling (s).
-    pub total_wall_time_s: f64,
-    /// Time steps of the driven run (DEM) or events (impact model).
-    pub steps: u64,
-    /// Time step (s), DEM only.
+    /// The guard's or the run's message when refused or failed.
+    pub message: String,
+    /// The grains' Young's modulus (Pa); none for the one-particle model.
+    pub youngs_modulus_pa: Option<f64>,
+    /// Time step used (s) (DEM).
     pub dt_s: Option<f64>,
+    /// Forcing periods of drive.
+    pub periods: Option<f64>,
     /// Steady amplitude of the primary Z (m).
     pub amplitude_m: Option<f64>,
     /// |Z − Z_ref| / Z_ref (–).
     pub amplitude_rel_error: Option<f64>,
-    /// Grain dissipation per cycle (J).
+    /// Energy the grains dissipate per forcing cycle (J).
     pub dissipation_j_per_cycle: Option<f64>,
     /// Its relative error (–).
     pub dissipation_rel_error: Option<f64>,
-    /// Regime verdict of the steady grain series.
-    pub regime: String,
+    /// Verdict (regime and period, e.g. `periodic-1`, `chaotic`).
+    pub regime: Option<String>,
     /// The reference's verdict at this frequency.
-    pub regime_reference: String,
-    /// Whether both verdicts agree.
-    pub regime_match: bool,
-    /// Maximal Lyapunov exponent (1/s).
+    pub regime_reference: Option<String>,
+    /// Whether the two verdicts are equal.
+    pub regime_match: Option<bool>,
+    /// Largest Lyapunov exponent (1/s) where the verdict is chaotic.
     pub mle_per_s: Option<f64>,
-    /// |λ − λ_ref| (1/s).
-    pub mle_abs_error_per_s: Option<f64>,
+    /// CPU seconds (see [`core_seconds`]).
+    pub core_seconds: Option<f64>,
+    /// Particle-steps (grains × (settling + drive steps)) (DEM).
+    pub particle_steps: Option<f64>,
 }
 
-/// One setting over all frequencies: a row of `tradeoff_settings.csv`.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct SettingRow {
-    /// The knob.
-    pub axis: Axis,
-    /// The setting's label.
+/// One rung over all frequencies.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SettingSummary {
+    /// Rung identifier.
     pub setting: String,
-    /// The knob's value.
-    pub value: f64,
-    /// Runs that finished / runs tried.
-    pub runs_ok: usize,
-    /// Runs tried.
-    pub runs: usize,
-    /// Summed wall time over the frequencies (s).
-    pub wall_time_s: f64,
-    /// Reference wall time / this wall time (–).
-    pub speedup: f64,
-    /// Largest amplitude error over the frequencies (–).
+    /// Its axis.
+    pub axis: Axis,
+    /// Its label.
+    pub label: String,
+    /// `complete`, `partial`, `not computed`, `refused`, `failed`.
+    pub status: String,
+    /// The first refusal or failure message.
+    pub message: String,
+    /// Frequencies with a point.
+    pub frequencies_ok: usize,
+    /// Frequencies of the study.
+    pub frequencies: usize,
+    /// Frequencies where both this rung and the reference have a point.
+    pub frequencies_compared: usize,
+    /// Mean CPU seconds per point over the compared frequencies.
+    pub core_seconds_per_point: Option<f64>,
+    /// The reference's mean CPU seconds per point over the same frequencies ÷ this rung's.
+    pub speedup: Option<f64>,
+    /// Largest |Z − Z_ref| / Z_ref (–).
     pub amplitude_max_rel_error: Option<f64>,
-    /// Largest dissipation error (–).
-    pub dissipation_max_rel_error: Option<f64>,
-    /// Fitted M_ef (kg).
-    pub m_ef_kg: Option<f64>,
-    /// Its relative error (–).
+    /// Median of the same (–).
+    pub amplitude_median_rel_error: Option<f64>,
+    /// Resonance of the rung's FRF (peak of Z over the compared frequencies).
+    pub resonance: Option<Peak>,
+    /// |f_res − f_res,ref| / f_res,ref (–).
+    pub resonance_frequency_rel_error: Option<f64>,
+    /// |Z_res − Z_res,ref| / Z_res,ref (–).
+    pub resonance_amplitude_rel_error: Option<f64>,
+    /// M_ef and C_ef of (2.1.21) fitted to the compared points.
+    pub effective: Option<Effective>,
+    /// |M_ef − M_ef,ref| / M_ef,ref (–).
     pub m_ef_rel_error: Option<f64>,
-    /// Fitted C_ef (N s/m).
-    pub c_ef_n_s_m: Option<f64>,
-    /// Its relative error (–).
+    /// |C_ef − C_ef,ref| / C_ef,ref (–).
     pub c_ef_rel_error: Option<f64>,
-    /// Frequencies where the regime verdict matches the reference's.
+    /// Largest relative error of the grains' dissipation per cycle (–).
+    pub dissipation_max_rel_error: Option<f64>,
+    /// Frequencies whose verdict equals the reference's.
     pub regime_matches: usize,
-    /// Largest |λ − λ_ref| (1/s).
-    pub mle_max_abs_error_per_s: Option<f64>,
-    /// On the Pareto front of (wall time, amplitude error).
+    /// Frequencies where both verdicts exist.
+    pub regime_compared: usize,
+    /// `reference verdict → rung verdict: count` pairs, `; `-separated.
+    pub confusion: String,
+    /// Largest relative error of λ where both are chaotic (–).
+    pub mle_max_rel_error: Option<f64>,
+    /// On the Pareto front of cost against the Z error.
     pub pareto_amplitude: bool,
+    /// On the Pareto front of cost against the resonance-frequency error.
+    pub pareto_resonance: bool,
+    /// On the Pareto front of cost against the dissipation error.
+    pub pareto_dissipation: bool,
+    /// On the Pareto front of cost against the verdict disagreement.
+    pub pareto_regime: bool,
 }
 
-/// Everything measured.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+impl SettingSummary {
+    /// Share of compared verdicts that differ from the reference's (–).
+    pub fn regime_disagreement(&self) -> Option<f64> {
+        (self.regime_compared > 0)
+            .then(|| 1.0 - self.regime_matches as f64 / self.regime_compared as f64)
+    }
+}
+
+/// The whole study.
+#[derive(Debug, Clone)]
 pub struct Study {
-    /// Frequencies (Hz).
-    pub frequencies_hz: Vec<f64>,
-    /// One row per run.
-    pub runs: Vec<RunRow>,
-    /// One row per setting.
-    pub settings: Vec<SettingRow>,
-    /// How the reference and the one-particle model were set up, in words.
-    pub notes: Vec<String>,
+    /// Every rung at every frequency, rung by rung.
+    pub rows: Vec<Row>,
+    /// One summary per rung, reference first.
+    pub settings: Vec<SettingSummary>,
 }
 
-/// Default frequencies: 0.7, 1 and 1.3 × √(K/(M + m_p))/2π (Hz).
-pub fn default_frequencies(rig: &Rig, params: &DemParams) -> Result<Vec<f64>, SceneError> {
-    let d = params.radius_distribution()?;
-    let r = 0.5 * (d.r_min() + d.r_max());
-    let m_p = params.count as f64 * params.density * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
-    let fr =
-        (rig.primary.stiffness_n_m / (rig.primary.mass_kg + m_p)).sqrt() / crate::units::TWO_PI;
-    Ok([0.7, 1.0, 1.3]
-        .iter()
-        .map(|k| (k * fr * 100.0).round() / 100.0)
-        .collect())
-}
-
-/// A finished run with its observation and dynamics, or its error.
-type Done = Result<(RunOutput, Observation, Dynamics), String>;
-
-fn finish(out: Result<RunOutput, SimError>, steady_fraction: f64) -> Done {
-    let out = out.map_err(|e| e.to_string())?;
-    let obs = observe(&out, steady_fraction).map_err(|e| e.to_string())?;
-    let dynm = dynamics(&obs, out.frequency_hz);
-    Ok((out, obs, dynm))
-}
-
-/// Relative cost estimate of a DEM case (for scheduling the longest runs first).
-fn cost(c: &Case) -> f64 {
-    c.duration_s / c.dt_fraction * c.softening.powf(0.4) * (c.params.count as f64).powf(4.0 / 3.0)
-}
-
-/// Runs the study for the grains `params` on `rig`. `progress` is called after each run with
-/// a one-line description.
+/// Reads the stored points of every rung of `plan` and measures them against the reference.
 ///
 /// # Errors
-/// Invalid options; the reference failing at any frequency (nothing to compare with).
-pub fn run_study(
-    params: &DemParams,
-    rig: &Rig,
-    opts: &StudyOptions,
-    progress: &(dyn Fn(&str) + Sync),
-) -> Result<Study, SimError> {
-    opts.ladder.validate()?;
-    params.validate()?;
-    let freqs = if opts.frequencies_hz.is_empty() {
-        default_frequencies(rig, params)?
-    } else {
-        opts.frequencies_hz.clone()
-    };
-    if let Some(f) = freqs.iter().find(|f| !(**f > 0.0 && f.is_finite())) {
-        return Err(SceneError::invalid("frequencies", f, "must be > 0 (Hz)").into());
+/// [`DataError`] when stored points cannot be read.
+pub fn study(plan: &StudyPlan, catalog: &Catalog) -> Result<Study, DataError> {
+    let observed: Vec<(Rung, Vec<Observed>)> = plan
+        .rungs
+        .iter()
+        .map(|r| Ok((r.clone(), observe(plan, r, catalog)?)))
+        .collect::<Result<_, DataError>>()?;
+    let reference = observed
+        .iter()
+        .find(|(r, _)| r.change == Change::None)
+        .map(|(_, o)| o.clone())
+        .unwrap_or_default();
+    let k = plan_stiffness_and_drive(plan);
+    let ref_fit = fit_of(&reference, &reference, k);
+    let mut rows = Vec::new();
+    let mut settings = Vec::new();
+    for (rung, obs) in &observed {
+        let youngs = youngs_of(plan, rung);
+        let r: Vec<Row> = obs
+            .iter()
+            .zip(&reference)
+            .map(|(o, re)| row(rung, o, re, youngs))
+            .collect();
+        settings.push(summarise(rung, &r, obs, &reference, &ref_fit, k));
+        rows.extend(r);
     }
-    let ladder = settings_ladder(&opts.ladder, params.count);
-    let reference = opts.ladder.reference(params);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(opts.threads.unwrap_or(0))
-        .build()
-        .map_err(|e| SimError::Output(format!("thread pool: {e}")))?;
+    mark_pareto(&mut settings);
+    Ok(Study { rows, settings })
+}
 
-    // 1. every DEM run (reference included), longest first
-    let mut jobs: Vec<(usize, usize, Case)> = Vec::new();
-    for (si, s) in ladder.iter().enumerate() {
-        if matches!(s.change, Change::OneParticle(_) | Change::SteadyFraction(_)) {
-            continue;
-        }
-        for (fi, &f) in freqs.iter().enumerate() {
-            jobs.push((si, fi, s.change.apply(&reference, &rig.drive(f))?));
-        }
-    }
-    jobs.sort_by(|a, b| {
-        cost(&b.2)
-            .total_cmp(&cost(&a.2))
-            .then((a.0, a.1).cmp(&(b.0, b.1)))
-    });
-    let results: Vec<Done> = pool.install(|| {
-        jobs.par_iter()
-            .map(|(si, fi, case)| {
-                let d = finish(run_dem_case(case, rig, freqs[*fi]), case.steady_fraction);
-                progress(&describe(&ladder[*si], freqs[*fi], &d));
-                d
-            })
-            .collect()
-    });
-    let mut done: Vec<Vec<Option<Done>>> = vec![vec![None; freqs.len()]; ladder.len()];
-    let mut ref_out: Vec<Option<RunOutput>> = vec![None; freqs.len()];
-    for ((si, fi, _), d) in jobs.iter().zip(results) {
-        if ladder[*si].axis == Axis::Reference {
-            match &d {
-                Ok((o, _, _)) => ref_out[*fi] = Some(o.clone()),
-                Err(e) => {
-                    return Err(SimError::Output(format!(
-                        "the reference run at {} Hz failed: {e}",
-                        freqs[*fi]
-                    )))
-                }
-            }
-        }
-        done[*si][*fi] = Some(d);
-    }
-    let ref_out: Vec<RunOutput> = ref_out.into_iter().flatten().collect();
+/// Primary stiffness K (N/m) and base amplitude U (m) of the reference (for the fit).
+fn plan_stiffness_and_drive(plan: &StudyPlan) -> Option<(f64, f64)> {
+    let s = plan.reference.scene(&[]).ok()?;
+    Some((s.primary.as_ref()?.stiffness, s.excitation.amplitude))
+}
 
-    // 2. the same reference runs seen through a shorter steady window
-    for (si, s) in ladder.iter().enumerate() {
-        if let Change::SteadyFraction(sf) = s.change {
-            for (fi, o) in ref_out.iter().enumerate() {
-                done[si][fi] = Some(finish(Ok(o.clone()), sf));
-            }
-        }
+fn youngs_of(plan: &StudyPlan, rung: &Rung) -> Option<f64> {
+    let s = rung.scene(&plan.reference).ok()?.scene(&[]).ok()?;
+    match s.damper {
+        crate::scene::Damper::Dem(p) => Some(p.youngs_modulus),
+        _ => None,
     }
+}
 
-    // 3. the one-particle model: m_p and gap = Lz − bed height from the reference's bed
-    let m_p = ref_out[0].grain_mass_kg;
-    let bed = ref_out[0].bed_height_m.unwrap_or(0.0);
-    let gap = (params.r#box[2] - bed).max(0.0);
-    let rl = &opts.ladder;
-    let impact = |e: f64, f: f64| -> Done {
-        let scene = one_particle_scene(rig, f, m_p, gap, e, rl.duration_s, rl.steady_fraction);
-        finish(run_impact_scene(&scene), rl.steady_fraction)
-    };
-    let ref_z: Vec<f64> = (0..freqs.len())
-        .map(|fi| {
-            done[0][fi]
-                .as_ref()
-                .and_then(|d| d.as_ref().ok())
-                .map_or(f64::NAN, |d| d.1.amplitude_m)
-        })
-        .collect();
-    let mut fitted_e = f64::NAN;
-    for (si, s) in ladder.iter().enumerate() {
-        let Change::OneParticle(e) = s.change else {
-            continue;
-        };
-        let (e, runs) = match e {
-            Some(e) => (
-                e,
-                pool.install(|| freqs.par_iter().map(|&f| impact(e, f)).collect::<Vec<_>>()),
-            ),
-            None => fit_restitution(&opts.fitted_e_candidates, &freqs, &ref_z, &pool, &impact),
-        };
-        if s.value.is_nan() {
-            fitted_e = e;
-        }
-        for (fi, d) in runs.into_iter().enumerate() {
-            progress(&describe(s, freqs[fi], &d));
-            done[si][fi] = Some(d);
-        }
-    }
-    let mut ladder = ladder;
-    for s in ladder.iter_mut().filter(|s| s.value.is_nan()) {
-        s.value = fitted_e;
-        s.label = format!("one particle, fitted e = {fitted_e:.1}");
-    }
-
-    // 4. errors against the reference
-    let (runs, settings) = compare(&ladder, &freqs, &done, rig);
-    let notes = vec![
-        format!(
-            "reference: DEM, Young's modulus / {} (damping × {:.4}, e(v) unchanged), Hertz–Kuwabara–Kono, \
-             friction and rotations on, dt = t_s × {}, {} s of drive, last {} analysed",
-            rl.reference_softening,
-            crate::scene::dem::softening_damping_scale(rl.reference_softening),
-            rl.reference_dt_fraction,
-            rl.duration_s,
-            rl.steady_fraction
-        ),
-        format!(
-            "one-particle model: m_p = {m_p:.4} kg (the grains' mass), gap = Lz − settled bed height = {:.4} − {bed:.4} = {gap:.4} m; \
-             fitted e = {fitted_e:.1} minimises the largest Z error over the frequencies (in-sample fit; fitting cost not counted)",
-            params.r#box[2]
-        ),
-        "steady-fraction rows re-analyse the reference runs (same wall time)".into(),
-    ];
-    Ok(Study {
-        frequencies_hz: freqs,
-        runs,
-        settings,
-        notes,
+/// Verdict of a summary: the regime with its period (`periodic-2`), without qualifiers.
+pub fn core_verdict(s: &RunSummary) -> Option<String> {
+    let a = s.analysis.as_ref()?;
+    Some(match (a.regime, a.period) {
+        (crate::analysis::regime::Regime::Periodic, Some(p)) => format!("periodic-{p}"),
+        (r, _) => r.as_str().to_string(),
     })
 }
 
-/// Runs the impact model for every candidate e and keeps the e with the smallest largest
-/// amplitude error against `ref_z`.
-fn fit_restitution(
-    candidates: &[f64],
-    freqs: &[f64],
-    ref_z: &[f64],
-    pool: &rayon::ThreadPool,
-    impact: &(dyn Fn(f64, f64) -> Done + Sync),
-) -> (f64, Vec<Done>) {
-    let grid: Vec<(f64, f64)> = candidates
-        .iter()
-        .flat_map(|&e| freqs.iter().map(move |&f| (e, f)))
-        .collect();
-    let all: Vec<Done> = pool.install(|| grid.par_iter().map(|&(e, f)| impact(e, f)).collect());
-    let mut best: Option<(f64, f64, Vec<Done>)> = None;
-    for (k, chunk) in all.chunks(freqs.len()).enumerate() {
-        let worst = chunk
-            .iter()
-            .zip(ref_z)
-            .map(|(d, &z)| {
-                d.as_ref()
-                    .ok()
-                    .and_then(|d| relative_error(d.1.amplitude_m, z))
-                    .unwrap_or(f64::INFINITY)
-            })
-            .fold(0.0, f64::max);
-        if best.as_ref().is_none_or(|b| worst < b.1) {
-            best = Some((candidates[k], worst, chunk.to_vec()));
-        }
-    }
-    match best {
-        Some((e, _, runs)) => (e, runs),
-        None => (f64::NAN, Vec::new()),
+/// λ (1/s) where the verdict is chaotic: the model's exponent where the simulator has one,
+/// else the data's.
+fn chaotic_mle(s: &RunSummary) -> Option<f64> {
+    let a = s.analysis.as_ref()?;
+    (a.regime == crate::analysis::regime::Regime::Chaotic)
+        .then_some(a.model_mle_per_s.or(a.data_mle_per_s))
+        .flatten()
+}
+
+/// CPU seconds of a point. DEM: the bed's settling and driven stepping, particle-steps ÷ the
+/// measured particle-steps per CPU second (the replica's second bed and the analysis are not
+/// counted: the same share for every DEM rung). One particle: the recorded CPU time of the
+/// whole point (simulation and analysis).
+pub fn core_seconds(s: &RunSummary, cpu_s: Option<f64>) -> Option<f64> {
+    match (particle_steps(s), s.extra.get("particle_steps_per_cpu_s")) {
+        (Some(n), Some(&rate)) if rate > 0.0 => Some(n / rate),
+        (Some(_), _) => None,
+        (None, _) => cpu_s,
     }
 }
 
-fn describe(s: &Setting, f: f64, d: &Done) -> String {
-    match d {
-        Ok((o, obs, _)) => format!(
-            "{:<28} {f:>7.2} Hz: Z = {:.4e} m, wall {:.2} s",
-            s.label, obs.amplitude_m, o.wall_time_s
+fn particle_steps(s: &RunSummary) -> Option<f64> {
+    let g = s.extra.get("grains")?;
+    let steps = s.extra.get("steps")? + s.extra.get("settle_steps").copied().unwrap_or(0.0);
+    Some(g * steps)
+}
+
+fn dissipation(s: &RunSummary) -> f64 {
+    s.energy_impact_j_per_cycle
+}
+
+fn row(rung: &Rung, o: &Observed, re: &Observed, youngs: Option<f64>) -> Row {
+    let s = o.summary.as_ref();
+    let rs = re.summary.as_ref();
+    let both = |f: fn(&RunSummary) -> f64| match (s, rs) {
+        (Some(a), Some(b)) => relative_error(f(a), f(b)),
+        _ => None,
+    };
+    let regime = s.and_then(core_verdict);
+    let regime_reference = rs.and_then(core_verdict);
+    Row {
+        setting: rung.id.clone(),
+        axis: rung.axis,
+        label: rung.label.clone(),
+        frequency_hz: o.frequency_hz,
+        status: o.status.as_str().to_string(),
+        message: o.status.message(),
+        youngs_modulus_pa: youngs,
+        dt_s: s.and_then(|s| s.extra.get("dt_s").copied()),
+        periods: s.map(|s| (s.duration_s * s.frequency_hz).round()),
+        amplitude_m: s.map(|s| s.amplitude_m),
+        amplitude_rel_error: both(|s| s.amplitude_m),
+        dissipation_j_per_cycle: s.map(dissipation),
+        dissipation_rel_error: both(dissipation),
+        regime_match: regime
+            .as_ref()
+            .zip(regime_reference.as_ref())
+            .map(|(a, b)| a == b),
+        regime,
+        regime_reference,
+        mle_per_s: s.and_then(chaotic_mle),
+        core_seconds: s.and_then(|x| core_seconds(x, o.cpu_s)),
+        particle_steps: s.and_then(particle_steps),
+    }
+}
+
+/// (f, Z) of the frequencies where both `obs` and `reference` have a point, by frequency.
+fn compared_frf(obs: &[Observed], reference: &[Observed]) -> (Vec<f64>, Vec<f64>) {
+    let mut v: Vec<(f64, f64)> = obs
+        .iter()
+        .zip(reference)
+        .filter(|(_, r)| r.summary.is_some())
+        .filter_map(|(o, _)| Some((o.frequency_hz, o.summary.as_ref()?.amplitude_m)))
+        .collect();
+    v.sort_by(|a, b| a.0.total_cmp(&b.0));
+    v.into_iter().unzip()
+}
+
+struct Fit {
+    peak: Option<Peak>,
+    effective: Option<Effective>,
+}
+
+fn fit_of(obs: &[Observed], reference: &[Observed], k: Option<(f64, f64)>) -> Fit {
+    let (f, z) = compared_frf(obs, reference);
+    Fit {
+        peak: resonance(&f, &z),
+        effective: k.and_then(|(k, u)| effective(&f, &z, k, u)),
+    }
+}
+
+fn max_of(v: impl Iterator<Item = Option<f64>>) -> Option<f64> {
+    v.flatten().reduce(f64::max)
+}
+
+fn median(mut v: Vec<f64>) -> Option<f64> {
+    if v.is_empty() {
+        return None;
+    }
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    Some(if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    })
+}
+
+fn summarise(
+    rung: &Rung,
+    rows: &[Row],
+    obs: &[Observed],
+    reference: &[Observed],
+    ref_fit: &Fit,
+    k: Option<(f64, f64)>,
+) -> SettingSummary {
+    let compared: Vec<(&Row, &Observed)> = rows
+        .iter()
+        .zip(reference)
+        .filter(|(r, re)| r.status == "ok" && re.summary.is_some())
+        .collect();
+    let cost = |v: &[Option<f64>]| {
+        let c: Vec<f64> = v.iter().flatten().copied().collect();
+        (c.len() == v.len() && !c.is_empty()).then(|| c.iter().sum::<f64>() / c.len() as f64)
+    };
+    let own: Vec<Option<f64>> = compared.iter().map(|(r, _)| r.core_seconds).collect();
+    let theirs: Vec<Option<f64>> = compared
+        .iter()
+        .map(|(_, re)| re.summary.as_ref().and_then(|s| core_seconds(s, re.cpu_s)))
+        .collect();
+    let (cps, ref_cps) = (cost(&own), cost(&theirs));
+    let fit = fit_of(obs, reference, k);
+    let rel_opt = |a: Option<f64>, b: Option<f64>| relative_error(a?, b?);
+    let mut confusion: BTreeMap<(String, String), usize> = BTreeMap::new();
+    for (r, _) in &compared {
+        if let (Some(a), Some(b)) = (&r.regime_reference, &r.regime) {
+            *confusion.entry((a.clone(), b.clone())).or_default() += 1;
+        }
+    }
+    let ok = rows.iter().filter(|r| r.status == "ok").count();
+    let first_msg = rows.iter().find(|r| !r.message.is_empty());
+    let status = match (ok, first_msg) {
+        (n, _) if n == rows.len() => "complete",
+        (0, Some(r)) => r.status.as_str(),
+        (0, None) => "not computed",
+        _ => "partial",
+    };
+    SettingSummary {
+        setting: rung.id.clone(),
+        axis: rung.axis,
+        label: rung.label.clone(),
+        status: status.to_string(),
+        message: first_msg.map(|r| r.message.clone()).unwrap_or_default(),
+        frequencies_ok: ok,
+        frequencies: rows.len(),
+        frequencies_compared: compared.len(),
+        core_seconds_per_point: cps,
+        speedup: cps.zip(ref_cps).map(|(a, b)| b / a),
+        amplitude_max_rel_error: max_of(compared.iter().map(|(r, _)| r.amplitude_rel_error)),
+        amplitude_median_rel_error: median(
+            compared
+                .iter()
+                .filter_map(|(r, _)| r.amplitude_rel_error)
+                .collect(),
         ),
-        Err(e) => format!("{:<28} {f:>7.2} Hz: failed: {e}", s.label),
-    }
-}
-
-fn max_opt(v: impl Iterator<Item = Option<f64>>) -> Option<f64> {
-    v.flatten()
-        .fold(None, |m, x| Some(m.map_or(x, |m: f64| m.max(x))))
-}
-
-fn compare(
-    ladder: &[Setting],
-    freqs: &[f64],
-    done: &[Vec<Option<Done>>],
-    rig: &Rig,
-) -> (Vec<RunRow>, Vec<SettingRow>) {
-    let reference: Vec<&(RunOutput, Observation, Dynamics)> = done[0]
-        .iter()
-        .map(|d| {
-            d.as_ref()
-                .and_then(|d| d.as_ref().ok())
-                .expect("reference checked")
-        })
-        .collect();
-    let ref_wall: f64 = reference.iter().map(|r| r.0.wall_time_s).sum();
-    let ref_eff = effective(
-        freqs,
-        &reference
+        resonance_frequency_rel_error: rel_opt(
+            fit.peak.map(|p| p.frequency_hz),
+            ref_fit.peak.map(|p| p.frequency_hz),
+        ),
+        resonance_amplitude_rel_error: rel_opt(
+            fit.peak.map(|p| p.amplitude_m),
+            ref_fit.peak.map(|p| p.amplitude_m),
+        ),
+        resonance: fit.peak,
+        m_ef_rel_error: rel_opt(
+            fit.effective.map(|e| e.mass_kg),
+            ref_fit.effective.map(|e| e.mass_kg),
+        ),
+        c_ef_rel_error: rel_opt(
+            fit.effective.map(|e| e.damping_n_s_m),
+            ref_fit.effective.map(|e| e.damping_n_s_m),
+        ),
+        effective: fit.effective,
+        dissipation_max_rel_error: max_of(compared.iter().map(|(r, _)| r.dissipation_rel_error)),
+        regime_matches: compared
             .iter()
-            .map(|r| r.1.amplitude_m)
-            .collect::<Vec<_>>(),
-        rig.primary.stiffness_n_m,
-        rig.amplitude_m,
-    );
-    let mut runs = Vec::new();
-    let mut settings = Vec::new();
-    for (si, s) in ladder.iter().enumerate() {
-        let mut rows = Vec::new();
-        for (fi, &f) in freqs.iter().enumerate() {
-            let (r_out, r_obs, r_dyn) = reference[fi];
-            let _ = r_out;
-            let row = match done[si][fi].as_ref() {
-                None => continue,
-                Some(Err(e)) => RunRow {
-                    axis: s.axis,
-                    setting: s.label.clone(),
-                    value: s.value,
-                    frequency_hz: f,
-                    status: e.clone(),
-                    wall_time_s: f64::NAN,
-                    total_wall_time_s: f64::NAN,
-                    steps: 0,
-                    dt_s: None,
-                    amplitude_m: None,
-                    amplitude_rel_error: None,
-                    dissipation_j_per_cycle: None,
-                    dissipation_rel_error: None,
-                    regime: "n/a".into(),
-                    regime_reference: r_dyn.regime.clone(),
-                    regime_match: false,
-                    mle_per_s: None,
-                    mle_abs_error_per_s: None,
-                },
-                Some(Ok((o, obs, d))) => RunRow {
-                    axis: s.axis,
-                    setting: s.label.clone(),
-                    value: s.value,
-                    frequency_hz: f,
-                    status: "ok".into(),
-                    wall_time_s: o.wall_time_s,
-                    total_wall_time_s: o.total_wall_time_s,
-                    steps: o.steps,
-                    dt_s: o.dt_s,
-                    amplitude_m: Some(obs.amplitude_m),
-                    amplitude_rel_error: relative_error(obs.amplitude_m, r_obs.amplitude_m),
-                    dissipation_j_per_cycle: Some(obs.dissipation_j_per_cycle)
-                        .filter(|x| x.is_finite()),
-                    dissipation_rel_error: relative_error(
-                        obs.dissipation_j_per_cycle,
-                        r_obs.dissipation_j_per_cycle,
-                    ),
-                    regime: d.regime.clone(),
-                    regime_reference: r_dyn.regime.clone(),
-                    regime_match: d.regime == r_dyn.regime && d.regime != "n/a",
-                    mle_per_s: d.mle_per_s,
-                    mle_abs_error_per_s: d
-                        .mle_per_s
-                        .zip(r_dyn.mle_per_s)
-                        .map(|(a, b)| (a - b).abs()),
-                },
-            };
-            rows.push(row);
-        }
-        let ok: Vec<&RunRow> = rows.iter().filter(|r| r.status == "ok").collect();
-        let eff = (ok.len() == freqs.len())
-            .then(|| {
-                let z: Vec<f64> = ok
-                    .iter()
-                    .map(|r| r.amplitude_m.unwrap_or(f64::NAN))
-                    .collect();
-                effective(freqs, &z, rig.primary.stiffness_n_m, rig.amplitude_m)
+            .filter(|(r, _)| r.regime_match == Some(true))
+            .count(),
+        regime_compared: compared
+            .iter()
+            .filter(|(r, _)| r.regime_match.is_some())
+            .count(),
+        confusion: confusion
+            .iter()
+            .map(|((a, b), n)| format!("{a} → {b}: {n}"))
+            .collect::<Vec<_>>()
+            .join("; "),
+        mle_max_rel_error: max_of(compared.iter().map(|(r, re)| {
+            let theirs = re.summary.as_ref().and_then(chaotic_mle);
+            relative_error(r.mle_per_s?, theirs?)
+        })),
+        pareto_amplitude: false,
+        pareto_resonance: false,
+        pareto_dissipation: false,
+        pareto_regime: false,
+    }
+}
+
+/// Marks the Pareto fronts of cost per point against each error; the reference's errors are 0.
+fn mark_pareto(settings: &mut [SettingSummary]) {
+    type Get = fn(&SettingSummary) -> Option<f64>;
+    type Set = fn(&mut SettingSummary, bool);
+    let fronts: [(Get, Set); 4] = [
+        (|s| s.amplitude_max_rel_error, |s, b| s.pareto_amplitude = b),
+        (
+            |s| s.resonance_frequency_rel_error,
+            |s, b| s.pareto_resonance = b,
+        ),
+        (
+            |s| s.dissipation_max_rel_error,
+            |s, b| s.pareto_dissipation = b,
+        ),
+        (|s| s.regime_disagreement(), |s, b| s.pareto_regime = b),
+    ];
+    for (get, set) in fronts {
+        let pts: Vec<(f64, f64)> = settings
+            .iter()
+            .map(|s| {
+                (
+                    s.core_seconds_per_point.unwrap_or(f64::NAN),
+                    get(s).unwrap_or(f64::NAN),
+                )
             })
-            .flatten();
-        let wall = if ok.len() == rows.len() && !rows.is_empty() {
-            ok.iter().map(|r| r.wall_time_s).sum()
-        } else {
-            f64::NAN
-        };
-        settings.push(SettingRow {
-            axis: s.axis,
-            setting: s.label.clone(),
-            value: s.value,
-            runs_ok: ok.len(),
-            runs: rows.len(),
-            wall_time_s: wall,
-            speedup: ref_wall / wall,
-            amplitude_max_rel_error: if ok.len() == rows.len() {
-                max_opt(ok.iter().map(|r| r.amplitude_rel_error))
-            } else {
-                None
-            },
-            dissipation_max_rel_error: if ok.len() == rows.len() {
-                max_opt(ok.iter().map(|r| r.dissipation_rel_error))
-            } else {
-                None
-            },
-            m_ef_kg: eff.map(|e| e.mass_kg),
-            m_ef_rel_error: eff
-                .zip(ref_eff)
-                .and_then(|(e, r)| relative_error(e.mass_kg, r.mass_kg)),
-            c_ef_n_s_m: eff.map(|e| e.damping_n_s_m),
-            c_ef_rel_error: eff
-                .zip(ref_eff)
-                .and_then(|(e, r)| relative_error(e.damping_n_s_m, r.damping_n_s_m)),
-            regime_matches: ok.iter().filter(|r| r.regime_match).count(),
-            mle_max_abs_error_per_s: max_opt(ok.iter().map(|r| r.mle_abs_error_per_s)),
-            pareto_amplitude: false,
-        });
-        runs.extend(rows);
+            .collect();
+        for (s, on) in settings.iter_mut().zip(pareto_front(&pts)) {
+            set(s, on);
+        }
     }
-    let pts: Vec<(f64, f64)> = settings
-        .iter()
-        .map(|s| (s.wall_time_s, s.amplitude_max_rel_error.unwrap_or(f64::NAN)))
-        .collect();
-    for (s, on) in settings.iter_mut().zip(pareto_front(&pts)) {
-        s.pareto_amplitude = on;
-    }
-    (runs, settings)
 }

@@ -1,217 +1,198 @@
-//! `tradeoff.csv` (one row per run) and `tradeoff_settings.csv` (one row per setting): writing
-//! them, and reading the settings table back (with its `#` provenance header) for
-//! [`super::auto`].
+//! `tradeoff.csv` (one row per setting × frequency) and `tradeoff_settings.csv` (one row per
+//! setting): writing them with their `#` provenance header, and reading the settings table
+//! back for [`super::auto`]. Empty cells mean "not applicable / not measured": no cell is
+//! ever NaN or infinite; a refused or failed setting says so in `status` and `message`.
+
+use serde::Deserialize;
 
 use crate::error::DataError;
-use crate::io::csv_out::table_text;
+use crate::io::csv_out::CsvOut;
 use crate::observe::fmt_num;
 
 use super::ladder::Axis;
-use super::study::{RunRow, SettingRow, Study};
+use super::study::{Row, SettingSummary, Study};
 
-/// Header of `tradeoff.csv`.
-pub const RUN_COLUMNS: &str = "axis,setting,value,frequency_hz,status,wall_time_s,total_wall_time_s,steps,dt_s,amplitude_m,\
-amplitude_rel_error,dissipation_j_per_cycle,dissipation_rel_error,regime,regime_reference,regime_match,\
-mle_per_s,mle_abs_error_per_s";
+type Col<T> = (&'static str, fn(&T) -> String);
 
-/// Header of `tradeoff_settings.csv`.
-pub const SETTING_COLUMNS: &str =
-    "axis,setting,value,runs_ok,runs,wall_time_s,speedup,amplitude_max_rel_error,\
-dissipation_max_rel_error,m_ef_kg,m_ef_rel_error,c_ef_n_s_m,c_ef_rel_error,regime_matches,\
-mle_max_abs_error_per_s,pareto_amplitude";
-
-fn opt(x: Option<f64>) -> String {
-    x.map(fmt_num).unwrap_or_default()
+fn num(x: Option<f64>) -> String {
+    x.filter(|v| v.is_finite()).map(fmt_num).unwrap_or_default()
 }
 
-fn run_cells(r: &RunRow) -> [String; 18] {
-    [
-        r.axis.as_str().to_string(),
-        r.setting.clone(),
-        fmt_num(r.value),
-        fmt_num(r.frequency_hz),
-        r.status.clone(),
-        fmt_num(r.wall_time_s),
-        fmt_num(r.total_wall_time_s),
-        r.steps.to_string(),
-        opt(r.dt_s),
-        opt(r.amplitude_m),
-        opt(r.amplitude_rel_error),
-        opt(r.dissipation_j_per_cycle),
-        opt(r.dissipation_rel_error),
-        r.regime.clone(),
-        r.regime_reference.clone(),
-        r.regime_match.to_string(),
-        opt(r.mle_per_s),
-        opt(r.mle_abs_error_per_s),
-    ]
+fn text(x: &Option<String>) -> String {
+    x.clone().unwrap_or_default()
 }
 
-fn setting_cells(s: &SettingRow) -> [String; 16] {
-    [
-        s.axis.as_str().to_string(),
-        s.setting.clone(),
-        fmt_num(s.value),
-        s.runs_ok.to_string(),
-        s.runs.to_string(),
-        fmt_num(s.wall_time_s),
-        fmt_num(s.speedup),
-        opt(s.amplitude_max_rel_error),
-        opt(s.dissipation_max_rel_error),
-        opt(s.m_ef_kg),
-        opt(s.m_ef_rel_error),
-        opt(s.c_ef_n_s_m),
-        opt(s.c_ef_rel_error),
-        s.regime_matches.to_string(),
-        opt(s.mle_max_abs_error_per_s),
-        s.pareto_amplitude.to_string(),
-    ]
-}
+/// The columns of `tradeoff.csv`.
+pub const ROW_COLUMNS: [Col<Row>; 19] = [
+    ("setting", |r| r.setting.clone()),
+    ("axis", |r| r.axis.as_str().into()),
+    ("label", |r| r.label.clone()),
+    ("frequency_hz", |r| num(Some(r.frequency_hz))),
+    ("status", |r| r.status.clone()),
+    ("youngs_modulus_pa", |r| num(r.youngs_modulus_pa)),
+    ("dt_s", |r| num(r.dt_s)),
+    ("periods", |r| num(r.periods)),
+    ("amplitude_m", |r| num(r.amplitude_m)),
+    ("amplitude_rel_error", |r| num(r.amplitude_rel_error)),
+    (
+        "dissipation_j_per_cycle",
+        |r| num(r.dissipation_j_per_cycle),
+    ),
+    ("dissipation_rel_error", |r| num(r.dissipation_rel_error)),
+    ("regime", |r| text(&r.regime)),
+    ("regime_reference", |r| text(&r.regime_reference)),
+    ("regime_match", |r| {
+        r.regime_match.map(|b| b.to_string()).unwrap_or_default()
+    }),
+    ("mle_per_s", |r| num(r.mle_per_s)),
+    ("core_seconds", |r| num(r.core_seconds)),
+    ("particle_steps", |r| num(r.particle_steps)),
+    ("message", |r| r.message.clone()),
+];
 
-/// `tradeoff.csv` text: one row per run.
-pub fn runs_csv(study: &Study) -> String {
-    table_text(&columns(RUN_COLUMNS), study.runs.iter().map(run_cells))
-}
+/// The columns of `tradeoff_settings.csv` (read back by [`read_settings`]).
+pub const SETTING_COLUMNS: [Col<SettingSummary>; 30] = [
+    ("setting", |s| s.setting.clone()),
+    ("axis", |s| s.axis.as_str().into()),
+    ("label", |s| s.label.clone()),
+    ("status", |s| s.status.clone()),
+    ("frequencies_ok", |s| s.frequencies_ok.to_string()),
+    ("frequencies", |s| s.frequencies.to_string()),
+    ("frequencies_compared", |s| {
+        s.frequencies_compared.to_string()
+    }),
+    ("core_seconds_per_point", |s| num(s.core_seconds_per_point)),
+    ("speedup", |s| num(s.speedup)),
+    (
+        "amplitude_max_rel_error",
+        |s| num(s.amplitude_max_rel_error),
+    ),
+    ("amplitude_median_rel_error", |s| {
+        num(s.amplitude_median_rel_error)
+    }),
+    ("resonance_frequency_hz", |s| {
+        num(s.resonance.map(|p| p.frequency_hz))
+    }),
+    ("resonance_frequency_rel_error", |s| {
+        num(s.resonance_frequency_rel_error)
+    }),
+    ("resonance_amplitude_m", |s| {
+        num(s.resonance.map(|p| p.amplitude_m))
+    }),
+    ("resonance_amplitude_rel_error", |s| {
+        num(s.resonance_amplitude_rel_error)
+    }),
+    ("m_ef_kg", |s| num(s.effective.map(|e| e.mass_kg))),
+    ("m_ef_rel_error", |s| num(s.m_ef_rel_error)),
+    ("c_ef_n_s_m", |s| num(s.effective.map(|e| e.damping_n_s_m))),
+    ("c_ef_rel_error", |s| num(s.c_ef_rel_error)),
+    ("dissipation_max_rel_error", |s| {
+        num(s.dissipation_max_rel_error)
+    }),
+    ("regime_matches", |s| s.regime_matches.to_string()),
+    ("regime_compared", |s| s.regime_compared.to_string()),
+    ("regime_disagreement", |s| num(s.regime_disagreement())),
+    ("regime_confusion", |s| s.confusion.clone()),
+    ("mle_max_rel_error", |s| num(s.mle_max_rel_error)),
+    ("pareto_amplitude", |s| s.pareto_amplitude.to_string()),
+    ("pareto_resonance", |s| s.pareto_resonance.to_string()),
+    ("pareto_dissipation", |s| s.pareto_dissipation.to_string()),
+    ("pareto_regime", |s| s.pareto_regime.to_string()),
+    ("message", |s| s.message.clone()),
+];
 
-fn columns(header: &str) -> Vec<&str> {
-    header.split(',').collect()
-}
-
-/// `tradeoff_settings.csv` text: `# ` comment lines (`header`, one per line), then one row
-/// per setting.
-pub fn settings_csv(study: &Study, header: &[String]) -> String {
-    let mut s = String::new();
+fn write_table<T>(header: &[String], cols: &[Col<T>], items: &[T]) -> String {
+    let mut out = String::new();
     for h in header {
-        s.push_str(&format!("# {h}\n"));
+        out.push_str("# ");
+        out.push_str(h);
+        out.push('\n');
     }
-    s.push_str(&format!(
-        "# frequencies_hz: {}\n",
-        study
-            .frequencies_hz
-            .iter()
-            .map(|f| fmt_num(*f))
-            .collect::<Vec<_>>()
-            .join(" ")
-    ));
-    for n in &study.notes {
-        s.push_str(&format!("# {n}\n"));
+    let mut csv = CsvOut::in_memory();
+    // writing into memory cannot fail
+    let _ = csv.row(cols.iter().map(|(name, _)| *name));
+    for it in items {
+        let _ = csv.row(cols.iter().map(|(_, get)| get(it)));
     }
-    s.push_str(&table_text(
-        &columns(SETTING_COLUMNS),
-        study.settings.iter().map(setting_cells),
-    ));
-    s
+    out.push_str(&csv.into_string());
+    out
 }
 
-/// A row of a stored settings table (what [`super::auto`] needs).
-#[derive(Debug, Clone, PartialEq)]
+/// `tradeoff.csv`: the `#` header lines, then one row per rung and frequency.
+pub fn rows_csv(study: &Study, header: &[String]) -> String {
+    write_table(header, &ROW_COLUMNS, &study.rows)
+}
+
+/// `tradeoff_settings.csv`: the `#` header lines, then one row per rung.
+pub fn settings_csv(study: &Study, header: &[String]) -> String {
+    write_table(header, &SETTING_COLUMNS, &study.settings)
+}
+
+/// A row of `tradeoff_settings.csv` as [`super::auto`] reads it.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 pub struct MeasuredSetting {
-    /// The knob.
-    pub axis: Axis,
-    /// Label.
+    /// Rung identifier (`dt-50`, `soften-1000`, `one-particle-e0`, …).
     pub setting: String,
-    /// The knob's value.
-    pub value: f64,
-    /// Whether every run finished.
-    pub complete: bool,
-    /// Summed wall time (s); NaN when incomplete.
-    pub wall_time_s: f64,
-    /// Largest amplitude error (–).
+    /// Its axis.
+    pub axis: Axis,
+    /// Its label.
+    pub label: String,
+    /// `complete`, `partial`, `not computed`, `refused`, `failed`.
+    pub status: String,
+    /// Frequencies where both it and the reference have a point.
+    pub frequencies_compared: usize,
+    /// Frequencies of the study.
+    pub frequencies: usize,
+    /// Mean CPU seconds per point.
+    pub core_seconds_per_point: Option<f64>,
+    /// Speed-up over the reference.
+    pub speedup: Option<f64>,
+    /// Largest relative error of Z (–).
     pub amplitude_max_rel_error: Option<f64>,
-    /// Largest dissipation error (–).
+    /// Relative error of the resonance frequency (–).
+    pub resonance_frequency_rel_error: Option<f64>,
+    /// Largest relative error of the dissipation per cycle (–).
     pub dissipation_max_rel_error: Option<f64>,
-    /// Frequencies with the reference's regime.
+    /// Verdicts equal to the reference's.
     pub regime_matches: usize,
-    /// Runs (frequencies).
-    pub runs: usize,
+    /// Verdicts compared.
+    pub regime_compared: usize,
+    /// Largest relative error of λ where both are chaotic (–).
+    pub mle_max_rel_error: Option<f64>,
 }
 
-/// Reads a settings table written by [`settings_csv`]; `#` lines are skipped.
+/// Reads a settings table written by [`settings_csv`] (`#` lines skipped; columns by name,
+/// so that added columns do not break it).
 ///
 /// # Errors
-/// [`DataError::Malformed`] naming the line and column.
+/// [`DataError::Malformed`] naming the file, the line and what is wrong.
 pub fn read_settings(text: &str, path: &str) -> Result<Vec<MeasuredSetting>, DataError> {
+    let mut reader = csv::ReaderBuilder::new()
+        .comment(Some(b'#'))
+        .from_reader(text.as_bytes());
+    let bad = |line: usize, message: String| DataError::Malformed {
+        path: path.into(),
+        line,
+        message,
+    };
+    let headers = reader.headers().map_err(|e| bad(0, e.to_string()))?.clone();
     let mut out = Vec::new();
-    let mut header: Option<Vec<String>> = None;
-    for (k, line) in text.lines().enumerate() {
-        let line_no = k + 1;
-        let bad = |m: String| DataError::Malformed {
-            path: path.into(),
-            line: line_no,
-            message: m,
-        };
-        if line.trim().is_empty() || line.starts_with('#') {
-            continue;
-        }
-        let cells = split_csv(line);
-        let Some(h) = &header else {
-            header = Some(cells);
-            continue;
-        };
-        let get = |name: &str| -> Result<&str, DataError> {
-            let i = h
-                .iter()
-                .position(|c| c == name)
-                .ok_or_else(|| bad(format!("no column `{name}` in the header")))?;
-            Ok(cells.get(i).map(|s| s.as_str()).unwrap_or(""))
-        };
-        let num = |name: &str| -> Result<Option<f64>, DataError> {
-            let v = get(name)?;
-            if v.is_empty() {
-                return Ok(None);
+    for rec in reader.deserialize::<MeasuredSetting>() {
+        out.push(rec.map_err(|e| {
+            let line = e.position().map_or(0, |p| p.line() as usize);
+            match e.kind() {
+                csv::ErrorKind::Deserialize { err, .. } => {
+                    let column = err
+                        .field()
+                        .and_then(|i| headers.get(i as usize))
+                        .map_or(String::new(), |c| format!("column `{c}`: "));
+                    bad(line, format!("{column}{}", err.kind()))
+                }
+                _ => bad(line, e.to_string()),
             }
-            v.parse::<f64>()
-                .map(Some)
-                .map_err(|_| bad(format!("column `{name}`: `{v}` is not a number")))
-        };
-        let int = |name: &str| -> Result<usize, DataError> {
-            let v = get(name)?;
-            v.parse::<usize>()
-                .map_err(|_| bad(format!("column `{name}`: `{v}` is not a count")))
-        };
-        let axis_s = get("axis")?;
-        let axis = Axis::parse(axis_s).ok_or_else(|| bad(format!("unknown axis `{axis_s}`")))?;
-        let (runs_ok, runs) = (int("runs_ok")?, int("runs")?);
-        out.push(MeasuredSetting {
-            axis,
-            setting: get("setting")?.to_string(),
-            value: num("value")?.unwrap_or(f64::NAN),
-            complete: runs_ok == runs && runs > 0,
-            wall_time_s: num("wall_time_s")?.unwrap_or(f64::NAN),
-            amplitude_max_rel_error: num("amplitude_max_rel_error")?,
-            dissipation_max_rel_error: num("dissipation_max_rel_error")?,
-            regime_matches: int("regime_matches")?,
-            runs,
-        });
-    }
-    if header.is_none() {
-        return Err(DataError::Malformed {
-            path: path.into(),
-            line: 0,
-            message: "no header row".into(),
-        });
+        })?);
     }
     Ok(out)
-}
-
-fn split_csv(line: &str) -> Vec<String> {
-    let mut cells = Vec::new();
-    let mut cur = String::new();
-    let mut quoted = false;
-    let mut chars = line.chars().peekable();
-    while let Some(c) = chars.next() {
-        match (c, quoted) {
-            ('"', true) if chars.peek() == Some(&'"') => {
-                cur.push('"');
-                chars.next();
-            }
-            ('"', _) => quoted = !quoted,
-            (',', false) => cells.push(std::mem::take(&mut cur)),
-            _ => cur.push(c),
-        }
-    }
-    cells.push(cur);
-    cells
 }
 
 #[cfg(test)]
@@ -219,15 +200,27 @@ mod tests {
     use super::*;
 
     #[test]
-    fn split_handles_quotes() {
-        assert_eq!(split_csv("a,\"b,c\",\"d\"\"e\""), vec!["a", "b,c", "d\"e"]);
-    }
-
-    #[test]
     fn read_rejects_bad_numbers_with_line() {
-        let t =
-            format!("# x\n{SETTING_COLUMNS}\nreference,reference,1,3,3,abc,1,0,0,,,,,3,,true\n");
+        let head: Vec<&str> = SETTING_COLUMNS.iter().map(|(n, _)| *n).collect();
+        let mut cells = vec![""; head.len()];
+        cells[0] = "reference";
+        cells[1] = "reference";
+        cells[2] = "reference";
+        cells[3] = "complete";
+        cells[4] = "3";
+        cells[5] = "3";
+        cells[6] = "3";
+        cells[7] = "abc";
+        cells[20] = "3";
+        cells[21] = "3";
+        let t = format!("# x\n{}\n{}\n", head.join(","), cells.join(","));
         let e = read_settings(&t, "t.csv").unwrap_err().to_string();
-        assert!(e.contains("t.csv:3") && e.contains("wall_time_s"), "{e}");
+        assert!(e.contains("t.csv:3"), "{e}");
+        assert!(e.contains("core_seconds_per_point"), "{e}");
+        cells[7] = "12.5";
+        let t = format!("# x\n{}\n{}\n", head.join(","), cells.join(","));
+        let s = read_settings(&t, "t.csv").unwrap();
+        assert_eq!(s[0].core_seconds_per_point, Some(12.5));
+        assert_eq!(s[0].axis, Axis::Reference);
     }
 }

@@ -641,16 +641,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 return Err(pdamp::error::PlotError::bad("pareto", "y", msg).into());
             };
             let (labels, groups) = (first.str_column("setting")?, first.str_column("axis")?);
-            let wall = first.opt_f64_column("wall_time_s")?;
+            let cost = first.opt_f64_column("core_seconds_per_point")?;
             let err = first.opt_f64_column(column)?;
             let rows: Vec<super::tradeoff::ParetoRow> = labels
                 .into_iter()
                 .zip(groups)
-                .zip(wall.into_iter().zip(err))
-                .map(|((label, group), (w, error))| super::tradeoff::ParetoRow {
+                .zip(cost.into_iter().zip(err))
+                .map(|((label, group), (c, error))| super::tradeoff::ParetoRow {
                     label,
                     group,
-                    wall_time_s: w.unwrap_or(f64::NAN),
+                    core_seconds: c.unwrap_or(f64::NAN),
                     error,
                 })
                 .collect();
@@ -658,7 +658,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 super::tradeoff::pareto_figure(&rows, plot.label, "Speed against accuracy".into())
                     .ok_or_else(|| {
                         let msg = format!(
-                            "{}: no setting has both a wall time and a finite `{column}`",
+                            "{}: no setting has both a cost and a finite `{column}`",
                             first.path
                         );
                         pdamp::error::PlotError::bad("pareto", "y", msg)

@@ -1,7 +1,8 @@
-//! `pdamp tradeoff SCENE [--out DIR] [--quick]`: run each cheaper setting of a DEM scene
-//! against the most accurate affordable reference at three frequencies (below, at and above
-//! resonance) and write `tradeoff.csv`, `tradeoff_settings.csv` and Pareto plots (error versus
-//! wall time).
+//! `pdamp tradeoff [REFERENCE] [--compute] [--only IDS] [--out DIR] [--data DIR]`: the
+//! speed–accuracy study from stored points. Reads every rung's points (wherever a sweep
+//! stored them under `--data`), measures them against the reference, and writes
+//! `tradeoff.csv`, `tradeoff_settings.csv` and the Pareto figures; `--compute` first runs the
+//! missing points (resumable sweeps, one folder per rung).
 
 use std::path::{Path, PathBuf};
 
@@ -9,111 +10,180 @@ use anyhow::Context;
 
 use pdamp::plot::pareto::{ParetoFigure, ParetoPoint};
 use pdamp::plot::{render, FigureOptions};
-use pdamp::scene::Damper;
-use pdamp::tradeoff::measure::Rig;
-use pdamp::tradeoff::study::{run_study, Study, StudyOptions};
-use pdamp::tradeoff::table::{runs_csv, settings_csv};
-use pdamp::tradeoff::LadderOptions;
+use pdamp::sweep::Catalog;
+use pdamp::tradeoff::compute::compute_missing;
+use pdamp::tradeoff::plan::SCENE_B_FREQUENCIES_HZ;
+use pdamp::tradeoff::study::{study, SettingSummary, Study};
+use pdamp::tradeoff::table::{rows_csv, settings_csv};
+use pdamp::tradeoff::{Axis, StudyPlan};
 
 /// Arguments of `pdamp tradeoff`.
 #[derive(Debug, clap::Args)]
+#[command(after_help = "Examples:
+  pdamp tradeoff                                   # tables and figures from the stored points
+  pdamp tradeoff --compute --only dt-50,soften-1000  # compute two rungs' missing points first
+  pdamp tradeoff --list                            # the rungs and how many points each has")]
 pub struct Args {
-    /// Scene file with a DEM damper (`kind = "dem"` or `"auto"`) and a `[primary]`; its
-    /// excitation frequency is replaced by the study's frequencies.
-    pub scene: PathBuf,
-    /// Output directory (created): tradeoff.csv (one row per run), tradeoff_settings.csv
-    /// (one row per setting, with provenance header), tradeoff_*.png Pareto plots.
-    #[arg(long, default_value = "tradeoff_out")]
+    /// The reference scene (a DEM damper on a `[primary]`); every rung is one change to it.
+    #[arg(default_value = "data/scenes/thesis_b_reference.toml")]
+    pub reference: PathBuf,
+    /// Folder searched for stored sweep points (any sweep of a rung's scene counts).
+    #[arg(long, default_value = "figures/data")]
+    pub data: PathBuf,
+    /// Output folder: tradeoff.csv, tradeoff_settings.csv, tradeoff_*.png.
+    #[arg(long, default_value = "figures")]
     pub out: PathBuf,
-    /// Override a scene key, dotted (as in `simulate`). Repeatable.
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub set: Vec<String>,
-    /// Quick study: no setting costlier than the reference (no real steel, no t_s/200, no
-    /// larger N) and 0.75 s runs instead of 1.5 s.
-    #[arg(long)]
-    pub quick: bool,
-    /// Frequencies (Hz), comma-separated. Default: 0.7, 1 and 1.3 × √(K/(M + m_p))/2π.
+    /// Frequencies (Hz), comma-separated, in computing order. Default: 12–18 Hz every 0.5 Hz,
+    /// the peak first.
     #[arg(long, value_delimiter = ',', value_name = "HZ")]
     pub frequencies: Vec<f64>,
-    /// Drive duration of every run (s). Default 1.5 (0.75 with --quick).
-    #[arg(long, value_name = "S")]
-    pub duration: Option<f64>,
-    /// Young's-modulus divisor of the reference (–): the "most accurate affordable" setting.
-    /// Default 100 (real steel, divisor 1, costs ~6× more and is measured as a rung).
-    #[arg(long, default_value_t = 100.0, value_name = "FACTOR")]
-    pub reference_softening: f64,
-    /// Time step of the reference as a fraction of the contact duration (–). Default 0.01.
-    #[arg(long, default_value_t = 0.01, value_name = "FRACTION")]
-    pub reference_dt_fraction: f64,
-    /// Worker threads; each run is single-threaded so its wall time is fair. Default: all
-    /// cores (RAYON_NUM_THREADS).
+    /// Compute the missing points first (resumable: an interrupted run continues where it
+    /// stopped). Without it nothing is simulated.
     #[arg(long)]
-    pub threads: Option<usize>,
+    pub compute: bool,
+    /// With --compute: only these rungs (identifiers as in --list), comma-separated.
+    #[arg(long, value_delimiter = ',', value_name = "IDS")]
+    pub only: Vec<String>,
+    /// List the rungs with their stored points and stop.
+    #[arg(long)]
+    pub list: bool,
 }
 
 /// Run `pdamp tradeoff`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let (_, _, scene) = super::simulate::load_scene(&args.scene, &args.set)?;
-    let params = match &scene.damper {
-        Damper::Dem(p) | Damper::Auto(p) => p.clone(),
-        other => anyhow::bail!(
-            "{}: damper.kind = \"{}\": the trade-off study needs a DEM scene (kind = \"dem\" or \"auto\"), \
-             e.g. data/scenes/thesis_b.toml",
-            args.scene.display(),
-            other.kind()
-        ),
+    let freqs = if args.frequencies.is_empty() {
+        SCENE_B_FREQUENCIES_HZ.to_vec()
+    } else {
+        args.frequencies.clone()
     };
-    let rig = Rig::of_scene(&scene)?;
-    let opts = StudyOptions {
-        ladder: LadderOptions {
-            reference_softening: args.reference_softening,
-            reference_dt_fraction: args.reference_dt_fraction,
-            duration_s: args.duration.unwrap_or(if args.quick { 0.75 } else { 1.5 }),
-            steady_fraction: 0.5,
-            quick: args.quick,
-        },
-        frequencies_hz: args.frequencies.clone(),
-        threads: args.threads,
-        ..StudyOptions::default()
-    };
+    let mut catalog = Catalog::scan(&args.data)?;
+    let plan = StudyPlan::new(&args.reference, &freqs, &args.data, &catalog)?;
+    if let Some(bad) = args
+        .only
+        .iter()
+        .find(|id| !plan.rungs.iter().any(|r| &r.id == *id))
+    {
+        let ids: Vec<&str> = plan.rungs.iter().map(|r| r.id.as_str()).collect();
+        return Err(pdamp::error::SceneError::invalid(
+            "--only",
+            bad,
+            format!("not a rung; choose among {}", ids.join(", ")),
+        )
+        .into());
+    }
+    if args.compute {
+        for rung in plan
+            .rungs
+            .iter()
+            .filter(|r| args.only.is_empty() || args.only.contains(&r.id))
+        {
+            let c = compute_missing(&plan, rung, &catalog, &|n| {
+                tracing::info!("{}: {n} point(s) done", rung.id)
+            })?;
+            if let (Some(dir), Some(rep)) = (&c.dir, &c.report) {
+                eprintln!(
+                    "{}: {} computed, {} failed, in {}",
+                    rung.id,
+                    rep.computed,
+                    rep.failed.len(),
+                    dir.display()
+                );
+            }
+            catalog = Catalog::scan(&args.data)?;
+        }
+    }
+    let s = study(&plan, &catalog)?;
+    if args.list {
+        for x in &s.settings {
+            println!(
+                "{:<22} {:<15} {:>2}/{:<2} {}  {}",
+                x.setting,
+                x.axis.as_str(),
+                x.frequencies_ok,
+                x.frequencies,
+                x.status,
+                x.message
+            );
+        }
+        return Ok(());
+    }
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
-    let study = run_study(&params, &rig, &opts, &|line| tracing::info!("{line}"))?;
-    let header = vec![
-        "pdamp tradeoff: speed against accuracy, one row per setting (errors against the reference row)".to_string(),
-        format!("generator: pdamp {} `pdamp tradeoff {}`", env!("CARGO_PKG_VERSION"), std::env::args().skip(2).collect::<Vec<_>>().join(" ")),
-        format!("date: {}", pdamp::io::clock::utc_date(pdamp::io::clock::unix_now_s())),
-        format!("scene: {}", args.scene.display()),
-        format!("reference_softening = {}", opts.ladder.reference_softening),
-        format!("reference_dt_fraction = {}", opts.ladder.reference_dt_fraction),
-        format!("duration_s = {}", opts.ladder.duration_s),
-        "wall_time_s: driven run only (bed building and settling excluded; see total_wall_time_s in tradeoff.csv), measured inside each single-threaded run, summed over the frequencies; machine- and load-dependent".into(),
-        "errors: largest over the frequencies of |x - x_ref| / x_ref; M_ef, C_ef fitted with (2.1.21) to the 3 points".into(),
-    ];
+    let header = header(&plan, &args);
     let write = |name: &str, text: String| -> anyhow::Result<()> {
         pdamp::io::atomic_write(&args.out.join(name), text.as_bytes())?;
         Ok(())
     };
-    write("tradeoff.csv", runs_csv(&study))?;
-    write("tradeoff_settings.csv", settings_csv(&study, &header))?;
-    plot_all(&study, &args.out)?;
-    for s in &study.settings {
+    write("tradeoff.csv", rows_csv(&s, &header))?;
+    write("tradeoff_settings.csv", settings_csv(&s, &header))?;
+    plot_all(&s, &args.out)?;
+    for x in &s.settings {
         println!(
-            "{:<16} {:<30} wall {:>8.2} s  speed-up {:>6.2}  Z err {:>9}  diss err {:>9}  C_ef err {:>9}  regimes {}/{}{}",
-            s.axis.as_str(),
-            s.setting,
-            s.wall_time_s,
-            s.speedup,
-            pct(s.amplitude_max_rel_error),
-            pct(s.dissipation_max_rel_error),
-            pct(s.c_ef_rel_error),
-            s.regime_matches,
-            s.runs,
-            if s.pareto_amplitude { "  (Pareto)" } else { "" }
+            "{:<22} {:>2}/{:<2} compared {:>2}  cost/pt {:>9}  Z err {:>8}  f_res err {:>8}  \
+             verdicts {}/{}",
+            x.setting,
+            x.frequencies_ok,
+            x.frequencies,
+            x.frequencies_compared,
+            x.core_seconds_per_point
+                .map_or("n/a".into(), |c| format!("{c:.1} s")),
+            pct(x.amplitude_max_rel_error),
+            pct(x.resonance_frequency_rel_error),
+            x.regime_matches,
+            x.regime_compared
         );
     }
     println!("wrote {}", args.out.display());
     Ok(())
+}
+
+fn header(plan: &StudyPlan, args: &Args) -> Vec<String> {
+    let argv: Vec<String> = std::env::args().skip(1).collect();
+    vec![
+        "pdamp tradeoff: speed against accuracy from stored sweep points, one row per setting \
+         and frequency (tradeoff.csv) or per setting (tradeoff_settings.csv)"
+            .into(),
+        format!("command: pdamp {}", argv.join(" ")),
+        format!(
+            "date: {}",
+            pdamp::io::clock::utc_date(pdamp::io::clock::unix_now_s())
+        ),
+        format!("commit: {}", git_commit()),
+        format!("reference: {}", plan.reference_path.display()),
+        format!(
+            "points: every stored sweep under {} whose scene is the setting's",
+            args.data.display()
+        ),
+        format!(
+            "frequencies_hz: {}",
+            plan.frequencies_hz
+                .iter()
+                .map(|f| f.to_string())
+                .collect::<Vec<_>>()
+                .join(" ")
+        ),
+        "errors: |x − x_ref| / x_ref where both have a point; resonance from the parabola \
+         through the FRF's top three points; M_ef, C_ef fitted with (2.1.21) to the compared \
+         points; dissipation = energy the grains dissipate per cycle"
+            .into(),
+        "core_seconds: DEM — settling and driven stepping of the bed (particle-steps ÷ the \
+         measured particle-steps per CPU second; the replica's second bed and the analysis not \
+         counted); one particle — the whole point's CPU time. Machine- and load-dependent."
+            .into(),
+        "empty cell: not applicable or not measured; status says why a point is missing".into(),
+    ]
+}
+
+/// The checkout's commit (`git describe --always --dirty`), or why it is unknown.
+fn git_commit() -> String {
+    std::process::Command::new("git")
+        .args(["describe", "--always", "--dirty", "--abbrev=12"])
+        .output()
+        .ok()
+        .filter(|o| o.status.success())
+        .and_then(|o| String::from_utf8(o.stdout).ok())
+        .map(|s| s.trim().to_string())
+        .unwrap_or_else(|| "unknown (not run in a git checkout)".into())
 }
 
 fn pct(e: Option<f64>) -> String {
@@ -121,15 +191,15 @@ fn pct(e: Option<f64>) -> String {
 }
 
 /// One Pareto plot: the file, the column of `tradeoff_settings.csv` it draws, the same value
-/// of a measured setting, and the y-axis label.
+/// of a setting, and the y-axis label.
 pub(crate) struct ParetoPlot {
     pub file: &'static str,
     pub column: &'static str,
-    pub get: fn(&pdamp::tradeoff::study::SettingRow) -> Option<f64>,
+    pub get: fn(&SettingSummary) -> Option<f64>,
     pub label: &'static str,
 }
 
-/// The Pareto plots: Z, dissipation, C_ef and Lyapunov-exponent errors against wall time.
+/// The Pareto plots: Z, resonance-frequency, dissipation and verdict errors against cost.
 pub(crate) const PARETO_FIGURES: [ParetoPlot; 4] = [
     ParetoPlot {
         file: "tradeoff_amplitude.png",
@@ -138,22 +208,22 @@ pub(crate) const PARETO_FIGURES: [ParetoPlot; 4] = [
         label: "largest relative error of Z (–)",
     },
     ParetoPlot {
+        file: "tradeoff_resonance.png",
+        column: "resonance_frequency_rel_error",
+        get: |s| s.resonance_frequency_rel_error,
+        label: "relative error of the resonance frequency (–)",
+    },
+    ParetoPlot {
         file: "tradeoff_dissipation.png",
         column: "dissipation_max_rel_error",
         get: |s| s.dissipation_max_rel_error,
         label: "largest relative error of the grains' dissipation per cycle (–)",
     },
     ParetoPlot {
-        file: "tradeoff_effective.png",
-        column: "c_ef_rel_error",
-        get: |s| s.c_ef_rel_error,
-        label: "relative error of C_ef (–)",
-    },
-    ParetoPlot {
-        file: "tradeoff_lyapunov.png",
-        column: "mle_max_abs_error_per_s",
-        get: |s| s.mle_max_abs_error_per_s,
-        label: "largest |λ − λ_ref| (1/s)",
+        file: "tradeoff_regime.png",
+        column: "regime_disagreement",
+        get: |s| s.regime_disagreement(),
+        label: "share of verdicts unlike the reference's (–)",
     },
 ];
 
@@ -163,15 +233,15 @@ pub(crate) struct ParetoRow {
     pub label: String,
     /// Knob (`axis`); `reference` for the reference row.
     pub group: String,
-    /// Summed wall time (s).
-    pub wall_time_s: f64,
+    /// CPU seconds per point.
+    pub core_seconds: f64,
     /// The error drawn, if measured.
     pub error: Option<f64>,
 }
 
-/// The Pareto figure of `rows` (the reference row gives the dashed wall-time line; settings
-/// without a positive finite wall time or a finite error are left out), `None` when no
-/// setting is left.
+/// The Pareto figure of `rows` (the reference row gives the dashed cost line; settings
+/// without a positive finite cost or a finite error are left out), `None` when no setting is
+/// left.
 pub(crate) fn pareto_figure(
     rows: &[ParetoRow],
     y_label: &str,
@@ -179,14 +249,15 @@ pub(crate) fn pareto_figure(
 ) -> Option<ParetoFigure> {
     let reference = rows
         .iter()
-        .find(|r| r.group == pdamp::tradeoff::Axis::Reference.as_str())
-        .map(|r| r.wall_time_s);
+        .find(|r| r.group == Axis::Reference.as_str())
+        .map(|r| r.core_seconds)
+        .filter(|c| c.is_finite() && *c > 0.0);
     let kept: Vec<(&ParetoRow, f64)> = rows
         .iter()
         .filter(|r| {
-            r.group != pdamp::tradeoff::Axis::Reference.as_str()
-                && r.wall_time_s > 0.0
-                && r.wall_time_s.is_finite()
+            r.group != Axis::Reference.as_str()
+                && r.core_seconds > 0.0
+                && r.core_seconds.is_finite()
         })
         .filter_map(|r| r.error.filter(|e| e.is_finite()).map(|e| (r, e)))
         .collect();
@@ -196,7 +267,7 @@ pub(crate) fn pareto_figure(
     let front = pdamp::tradeoff::pareto::pareto_front(
         &kept
             .iter()
-            .map(|(r, e)| (r.wall_time_s, *e))
+            .map(|(r, e)| (r.core_seconds, *e))
             .collect::<Vec<_>>(),
     );
     let points = kept
@@ -205,7 +276,7 @@ pub(crate) fn pareto_figure(
         .map(|((r, e), f)| ParetoPoint {
             label: r.label.clone(),
             group: r.group.clone(),
-            wall_time_s: r.wall_time_s,
+            core_seconds: r.core_seconds,
             error: *e,
             on_front: f,
         })
@@ -214,7 +285,7 @@ pub(crate) fn pareto_figure(
         points,
         y_label: y_label.into(),
         error_floor: 1e-4,
-        reference_wall_time_s: reference,
+        reference_core_seconds: reference,
         title,
     })
 }
@@ -222,29 +293,24 @@ pub(crate) fn pareto_figure(
 /// Size of the Pareto figures (px).
 const PARETO_SIZE: (u32, u32) = (1400, 1000);
 
-/// Draws the Pareto plots of a study into `out`.
+/// Draws the Pareto plots of a study into `out` (a plot with no measured setting is left out
+/// and an older file of that name removed, so that no stale figure remains).
 fn plot_all(study: &Study, out: &Path) -> anyhow::Result<()> {
-    let title = format!(
-        "Speed against accuracy, {} Hz",
-        study
-            .frequencies_hz
-            .iter()
-            .map(|f| format!("{f}"))
-            .collect::<Vec<_>>()
-            .join(" / ")
-    );
     for plot in &PARETO_FIGURES {
         let rows: Vec<ParetoRow> = study
             .settings
             .iter()
             .map(|s| ParetoRow {
-                label: s.setting.clone(),
+                label: s.label.clone(),
                 group: s.axis.as_str().into(),
-                wall_time_s: s.wall_time_s,
+                core_seconds: s.core_seconds_per_point.unwrap_or(f64::NAN),
                 error: (plot.get)(s),
             })
             .collect();
-        let Some(fig) = pareto_figure(&rows, plot.label, title.clone()) else {
+        let path = out.join(plot.file);
+        let title = "Speed against accuracy (scene B reference, 12–18 Hz)".to_string();
+        let Some(fig) = pareto_figure(&rows, plot.label, title) else {
+            let _ = std::fs::remove_file(&path);
             continue;
         };
         let opts = FigureOptions {
@@ -252,8 +318,7 @@ fn plot_all(study: &Study, out: &Path) -> anyhow::Result<()> {
             height: PARETO_SIZE.1,
             title: None,
         };
-        render(&fig, &out.join(plot.file), &opts)
-            .with_context(|| format!("drawing {}", plot.file))?;
+        render(&fig, &path, &opts).with_context(|| format!("drawing {}", plot.file))?;
     }
     Ok(())
 }
