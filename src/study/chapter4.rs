@@ -7,7 +7,8 @@
 //! - `ch4_impacts`: collective bed–floor and bed–ceiling impacts per cycle versus f
 //!   ([`crate::dem::bed_impacts`]), so that "two impacts per period" can be read off;
 //! - `ch4_checks` (with `--ch4-checks`): every frequency from three starts, doubled, and with
-//!   the other shipped softened scene, verdict by verdict (`chapter4/checks.rs`);
+//!   the other shipped softened scene at both run lengths, verdict by verdict
+//!   (`chapter4/checks.rs`);
 //! - `ch4_run_length`: the check frequencies again with every run twice as long, verdict by
 //!   verdict and amplitude by amplitude (the quick mode's run length is only trusted where
 //!   doubling it changes nothing);
@@ -201,10 +202,14 @@ fn sweep_dir(c: &Chapter4Settings, factor: f64) -> String {
 /// `--set` of the other shipped softened scene (`thesis_b_soft.toml`) at the mode's run
 /// length: the chapter-4 scene's material and time step settings, and the run length always
 /// written (that scene counts its runs in seconds).
-fn other_scene_set(d: &DemSettings, c: &Chapter4Settings) -> Vec<(&'static str, String)> {
-    let mut set = ch4_set(d, c, 1.0);
+fn other_scene_set(
+    d: &DemSettings,
+    c: &Chapter4Settings,
+    factor: f64,
+) -> Vec<(&'static str, String)> {
+    let mut set = ch4_set(d, c, factor);
     if c.duration_s.is_none() && !set.iter().any(|(k, _)| *k == RUN_PERIODS) {
-        set.push((RUN_PERIODS, c.periods.to_string()));
+        set.push((RUN_PERIODS, (c.periods * factor).to_string()));
     }
     set
 }
@@ -309,21 +314,27 @@ pub fn all(
     };
     if let (true, Some(e), Some((long, long_pts))) = (checks, &ensemble, &long) {
         if !c.recipe_freqs_hz.is_empty() {
-            let other = ctx.sweep(
-                &format!("dem_soft_{}", length_dir(c, 1.0)),
-                DEM_B_SOFT,
-                &other_scene_set(d, c),
-                &[(EXCITATION_FREQUENCY, frequency_list(&c.recipe_freqs_hz))],
-                true,
-            )?;
+            let other_sweep = |factor: f64| {
+                ctx.sweep(
+                    &format!("dem_soft_{}", length_dir(c, factor)),
+                    DEM_B_SOFT,
+                    &other_scene_set(d, c, factor),
+                    &[(EXCITATION_FREQUENCY, frequency_list(&c.recipe_freqs_hz))],
+                    true,
+                )
+            };
+            let other = other_sweep(1.0)?;
             let other_pts = points("ch4_checks", &other.points)?;
+            let other_long = other_sweep(2.0)?;
+            let other_long_pts = points("ch4_checks", &other_long.points)?;
             let ch = Checks {
                 base: &pts,
                 starts: &e.runs,
                 ensemble_words: &e.words,
                 doubled: long_pts,
                 other_scene: &other_pts,
-                sweeps: [long, &other],
+                other_scene_doubled: &other_long_pts,
+                sweeps: [long, &other, &other_long],
             };
             figures.push(checks_figure(&info, &ch)?);
         }

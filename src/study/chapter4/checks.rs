@@ -1,7 +1,7 @@
 //! The chapter-4 study's verdict checks in one table and one map (`ch4_checks`): at every
 //! frequency, the scene's own start beside two more initial packings, the same run doubled,
 //! and the other shipped softened scene (`thesis_b_soft.toml`: the same bed and time step, other
-//! analysis windows) at the same run length. A verdict is trusted where all agree; where the
+//! analysis windows) at the same run length and doubled. A verdict is trusted where all agree; where the
 //! starts differ the bed is multistable, which the table reports ("split") rather than hides.
 
 use super::{length_text, opt_cell, Info, Point, DEFAULT_SEED};
@@ -22,11 +22,14 @@ pub(super) struct Checks<'a> {
     pub doubled: &'a [Point],
     /// `thesis_b_soft.toml` at the mode's run length.
     pub other_scene: &'a [Point],
-    /// The sweeps behind `doubled` and `other_scene` (their commands go in the record).
-    pub sweeps: [&'a SweepResult; 2],
+    /// `thesis_b_soft.toml` with the runs doubled.
+    pub other_scene_doubled: &'a [Point],
+    /// The sweeps behind `doubled`, `other_scene` and `other_scene_doubled` (their commands go
+    /// in the record).
+    pub sweeps: [&'a SweepResult; 3],
 }
 
-const HEADER: [&str; 15] = [
+const HEADER: [&str; 17] = [
     "frequency_hz",
     "verdict",
     "ensemble",
@@ -42,6 +45,8 @@ const HEADER: [&str; 15] = [
     "replica_saturation_rel",
     "mle_per_s",
     "mle_per_s_soft_scene",
+    "verdict_soft_scene_doubled",
+    "same_soft_scene_doubled",
 ];
 
 fn find(pts: &[Point], f: f64) -> Option<&Point> {
@@ -52,6 +57,7 @@ fn find(pts: &[Point], f: f64) -> Option<&Point> {
 fn row(c: &Checks, p: &Point) -> Vec<String> {
     let d = find(c.doubled, p.f_hz);
     let s = find(c.other_scene, p.f_hz);
+    let sd = find(c.other_scene_doubled, p.f_hz);
     let verdict = |q: Option<&Point>| q.map_or(String::new(), Point::verdict);
     let same =
         |q: Option<&Point>| q.map_or(String::new(), |q| (q.verdict() == p.verdict()).to_string());
@@ -76,6 +82,10 @@ fn row(c: &Checks, p: &Point) -> Vec<String> {
         opt_cell(p.replica_saturation_rel),
         opt_cell(p.mle_per_s),
         opt_cell(s.and_then(|s| s.mle_per_s)),
+        verdict(sd),
+        sd.zip(d).map_or(String::new(), |(sd, d)| {
+            (sd.verdict() == d.verdict()).to_string()
+        }),
     ]
 }
 
@@ -135,6 +145,11 @@ fn rows<'a>(c: &'a Checks) -> Vec<(f64, String, Vec<&'a Point>)> {
     }
     out.push((0.0, "doubled".into(), c.doubled.iter().collect()));
     out.push((0.0, "thesis_b_soft".into(), c.other_scene.iter().collect()));
+    out.push((
+        0.0,
+        "thesis_b_soft, doubled".into(),
+        c.other_scene_doubled.iter().collect(),
+    ));
     for (i, r) in out.iter_mut().enumerate() {
         r.0 = (i + 1) as f64;
     }
@@ -186,8 +201,9 @@ pub(super) fn checks_figure(info: &Info, c: &Checks) -> Result<FigureRecord, Stu
         .map(|(f, w)| format!("{f} Hz ({w})"))
         .collect();
     let caption = format!(
-        "Verdict checks at {}: {}; {}; {}. One row per run in the map, the verdicts and \
-         their qualifiers per frequency in {name}.csv.",
+        "Verdict checks at {}: {}; {}; {}; {}. One row per run in the map, the verdicts and \
+         their qualifiers per frequency in {name}.csv (`same_soft_scene_doubled` compares the \
+         two scenes at the doubled length).",
         length_text(info.c, 1.0),
         if split.is_empty() {
             format!(
@@ -209,6 +225,10 @@ pub(super) fn checks_figure(info: &Info, c: &Checks) -> Result<FigureRecord, Stu
         agreement_text(
             "thesis_b_soft.toml (the same bed, other analysis windows)",
             agreement(c.base, c.other_scene)
+        ),
+        agreement_text(
+            "thesis_b_soft.toml doubled, against the doubled runs",
+            agreement(c.doubled, c.other_scene_doubled)
         ),
     );
     let mut rec = info.record(name, caption, vec![], size);
