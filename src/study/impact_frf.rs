@@ -10,7 +10,7 @@ use crate::plot::Series;
 use crate::scene::keys::{DAMPER_RESTITUTION, EXCITATION_FREQUENCY, RUN_DURATION};
 
 use super::kit::SCENE_B;
-use super::pipeline::{Ctx, FigureRecord, SweepResult, IMPACT_B};
+use super::pipeline::{Ctx, FigureRecord, SweepResult, COMMITTED_DATA, DEM_B_REFERENCE, IMPACT_B};
 use super::settings::Settings;
 use super::settings::SCENE_B_GAP_M;
 
@@ -73,6 +73,35 @@ pub(super) fn energy_vs_frequency(
     })
 }
 
+/// The real-steel bed's FRF (the speed–accuracy reference, `model = dem_steel` in frf.csv):
+/// every stored point of [`DEM_B_REFERENCE`]'s scene under the output's sweeps or the committed
+/// ones, by increasing frequency (none where nothing is stored).
+fn steel_reference(ctx: &Ctx) -> (Vec<f64>, Vec<f64>) {
+    let Ok(scene) = crate::scene::SceneSource::parse(DEM_B_REFERENCE.text) else {
+        return (vec![], vec![]);
+    };
+    let mut pts: Vec<(f64, f64)> = Vec::new();
+    for root in [ctx.path("data"), std::path::PathBuf::from(COMMITTED_DATA)] {
+        let Ok(cat) = crate::sweep::Catalog::scan(&root) else {
+            continue;
+        };
+        let found = cat
+            .points_of(&scene, true, EXCITATION_FREQUENCY)
+            .unwrap_or_default();
+        for p in found
+            .iter()
+            .filter(|p| p.point.physics == crate::model::PHYSICS_REVISION)
+        {
+            let s = &p.point.summary;
+            if !pts.iter().any(|(f, _)| *f == s.frequency_hz) {
+                pts.push((s.frequency_hz, s.amplitude_m));
+            }
+        }
+    }
+    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    pts.into_iter().unzip()
+}
+
 pub(super) fn frf_figure(
     ctx: &Ctx,
     s: &Settings,
@@ -92,11 +121,13 @@ pub(super) fn frf_figure(
         ),
         None => (vec![], vec![]),
     };
+    let (fs, zs) = steel_reference(ctx);
     let mut rows = Vec::new();
     for (label, f, z) in [
         ("impact_e0", &f0, &z0),
         ("impact_e0.8", &f8, &z8),
         ("dem", &fd, &zd),
+        ("dem_steel", &fs, &zs),
     ] {
         for i in 0..f.len() {
             rows.push(vec![label.to_string(), f[i].to_string(), z[i].to_string()]);
@@ -117,9 +148,16 @@ pub(super) fn frf_figure(
     ];
     if dem.is_some() {
         series.push(Series {
-            label: "DEM, N = 250",
+            label: "DEM, N = 250, steel ÷ 1000",
             x: &fd,
             y: &zd,
+        });
+    }
+    if !fs.is_empty() {
+        series.push(Series {
+            label: "DEM, N = 250, real steel",
+            x: &fs,
+            y: &zs,
         });
     }
     let labels: Vec<&str> = series.iter().map(|sr| sr.label).collect();
@@ -155,12 +193,22 @@ pub(super) fn frf_figure(
         name: name.into(),
         caption: format!(
             "Scene B, Lz = 0.1225 m: frequency response of the primary with the one-particle \
-             model (gap {SCENE_B_GAP_M} m, e = 0 and 0.8){}, and the reference curves (2.1.21) \
+             model (gap {SCENE_B_GAP_M} m, e = 0 and 0.8){}{}, and the reference curves (2.1.21) \
              for M and M + m_p.",
             if dem.is_some() {
-                " and the granular DEM bed"
+                " and the granular DEM bed (steel softened 1000×)"
             } else {
                 ""
+            },
+            if fs.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    ", the real-steel bed at {} frequencies (the speed–accuracy reference, \
+                     {}, committed points under {COMMITTED_DATA})",
+                    fs.len(),
+                    DEM_B_REFERENCE.path
+                )
             }
         ),
         spec_item: "Frequency response Z(f) with the reference curves for M and M + m_p; the \

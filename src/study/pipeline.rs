@@ -38,6 +38,17 @@ pub const DEM_B_SOFT: BundledScene = BundledScene {
     text: include_str!("../../data/scenes/thesis_b_soft.toml"),
 };
 
+/// Scene B's bed as the source simulated it (`data/scenes/thesis_b_reference.toml`: real
+/// steel, t_s/100, 200 periods), the speed–accuracy study's reference.
+pub const DEM_B_REFERENCE: BundledScene = BundledScene {
+    path: "data/scenes/thesis_b_reference.toml",
+    text: include_str!("../../data/scenes/thesis_b_reference.toml"),
+};
+
+/// Where the committed sweep points live (relative to the repository root, the working
+/// directory of `pdamp reproduce`).
+pub const COMMITTED_DATA: &str = "figures/data";
+
 /// How one figure was made: written to `OUT/README.md`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FigureRecord {
