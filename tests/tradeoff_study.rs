@@ -154,6 +154,16 @@ fn study_reuses_stored_points_computes_the_rest_and_measures_errors() {
         coarse.message
     );
     assert_eq!(row("soften-10", 15.0).status, "not computed");
+    // the report answers its three questions and lists every setting
+    let md = pdamp::tradeoff::report::markdown(
+        &s,
+        &SceneSource::parse(TINY).unwrap().scene(&[]).unwrap(),
+        &[],
+    );
+    assert_eq!(md.matches("\n- For ").count(), 3, "{md}");
+    for x in &s.settings {
+        assert!(md.contains(&format!("| `{}` ", x.setting)), "{md}");
+    }
     let header = vec!["test".to_string()];
     for text in [rows_csv(&s, &header), settings_csv(&s, &header)] {
         assert!(text.starts_with("# test\n"));

@@ -6,7 +6,8 @@
 //! (frequencies, where points live) → [`compute`] (the missing points, as resumable sweeps)
 //! → [`observed`] (each rung's stored point at each frequency, or why there is none) →
 //! [`study`] (errors, resonance, M_ef/C_ef, verdicts, cost; [`metrics`], [`pareto`]) →
-//! [`table`] (`tradeoff.csv`, `tradeoff_settings.csv`) → [`auto`] (model choice).
+//! [`table`] (`tradeoff.csv`, `tradeoff_settings.csv`) → [`auto`] (model choice) →
+//! [`report`] (`TRADEOFF.md`: what to use for what).
 
 pub mod auto;
 pub mod compute;
@@ -15,6 +16,7 @@ pub mod metrics;
 pub mod observed;
 pub mod pareto;
 pub mod plan;
+pub mod report;
 pub mod study;
 pub mod table;
 

@@ -30,7 +30,7 @@ pub struct Args {
     /// Folder searched for stored sweep points (any sweep of a rung's scene counts).
     #[arg(long, default_value = "figures/data")]
     pub data: PathBuf,
-    /// Output folder: tradeoff.csv, tradeoff_settings.csv, tradeoff_*.png.
+    /// Output folder: tradeoff.csv, tradeoff_settings.csv, TRADEOFF.md, tradeoff_*.png.
     #[arg(long, default_value = "figures")]
     pub out: PathBuf,
     /// Frequencies (Hz), comma-separated, in computing order. Default: 12–18 Hz every 0.5 Hz,
@@ -116,6 +116,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     };
     write("tradeoff.csv", rows_csv(&s, &header))?;
     write("tradeoff_settings.csv", settings_csv(&s, &header))?;
+    let reference = plan.reference.scene(&[])?;
+    write(
+        "TRADEOFF.md",
+        pdamp::tradeoff::report::markdown(&s, &reference, &header),
+    )?;
     plot_all(&s, &args.out)?;
     for x in &s.settings {
         println!(
