@@ -101,7 +101,7 @@ pub fn sweep_cost(spec: &SweepSpec, shards: usize) -> Result<SweepCost, SceneErr
     let mut per_shard = vec![0.0; shards];
     let mut memory: f64 = 0.0;
     for i in 0..n {
-        let c = point_cost(&super::runner::point_scene(spec, i)?, spec.analyze)?;
+        let c = point_cost(&super::point::point_scene(spec, i)?, spec.analyze)?;
         per_shard[i % shards] += c.cpu_s;
         memory = memory.max(c.memory_bytes);
     }
@@ -131,7 +131,7 @@ pub fn sweep_cost_of(
     let mut per_value = Vec::with_capacity(values);
     for v in 0..values {
         per_value.push(point_cost(
-            &super::runner::point_scene(spec, v)?,
+            &super::point::point_scene(spec, v)?,
             spec.analyze,
         )?);
     }

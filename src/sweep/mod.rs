@@ -9,6 +9,7 @@
 pub mod budget;
 pub mod continuation;
 pub mod cost;
+pub mod point;
 pub mod points;
 pub mod run;
 pub mod runner;
@@ -20,7 +21,8 @@ pub mod vary;
 pub use continuation::{Continuation, Direction};
 pub use points::{SweepPoint, SweepPoints};
 pub use run::{run_scene, run_with_analysis};
+pub use runner::{merge, MergeReport};
 pub use runner::{run_shard, run_shard_with, run_sweep, SweepReport, SweepSpec};
 pub use shard::Shard;
-pub use tables::{merge, MergeReport, VERDICT_COLUMNS};
+pub use tables::VERDICT_COLUMNS;
 pub use vary::{grid, Vary};
