@@ -1,7 +1,7 @@
 //! The scaling region of a divergence curve S(Δn): the longest window where S grows linearly
 //! in Δn, fitted by least squares (the slope is the maximal Lyapunov exponent per sample).
-//! Shared by Kantz's estimate ([`crate::analysis::kantz`]) and Rosenstein's
-//! ([`crate::analysis::rosenstein`]).
+//! Shared by Kantz's estimate ([`crate::analysis::kantz()`]) and Rosenstein's
+//! ([`crate::analysis::rosenstein()`]).
 
 /// A straight-line fit `S ≈ intercept + slope·Δn` over `start..=end`.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]

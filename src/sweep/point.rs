@@ -1,6 +1,6 @@
 //! One point of a sweep: what to sweep ([`SweepSpec`]) and what a sweep did
 //! ([`SweepReport`]); the scene of point i, its run in its own directory, and the record
-//! stored as `points/<i>.json` ([`PointRecord`], with the formatted `sweep.csv` cells).
+//! stored as `points/<i>.json` (`PointRecord`, with the formatted `sweep.csv` cells).
 //! Beneath the tables (`super::tables`), the continuation (`super::continuation`) and the
 //! runner (`super::runner`), which all take points from here.
 

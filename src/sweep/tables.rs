@@ -1,6 +1,6 @@
 //! The sweep's files besides the point records: the append-only stream logs written while a
 //! sweep runs, and `sweep.csv`, `strobe.csv` and `timings.csv` rebuilt in point order from
-//! the point records (at the end of an unsharded run, or by [`merge`] over the directories of
+//! the point records (at the end of an unsharded run, or by [`merge`](super::merge) over the directories of
 //! a sharded one).
 //!
 //! `sweep.csv` and `strobe.csv` hold only simulated quantities, so they are byte-identical for
