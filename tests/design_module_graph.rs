@@ -22,10 +22,13 @@
 //! re-exports its children's items is their facade, not a user of them.
 
 use std::collections::{BTreeMap, BTreeSet};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use proc_macro2::{TokenStream, TokenTree};
 use syn::visit::Visit;
+
+mod common;
+use common::rust_files;
 
 /// The library's layers, highest first: a module may import modules of lower layers only
 /// (and never one of its own layer but itself). The same order as `src/lib.rs`'s map.
@@ -127,17 +130,6 @@ struct SourceFile {
     module: Vec<String>,
     rel: String,
     ast: syn::File,
-}
-
-fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    for e in std::fs::read_dir(dir).unwrap() {
-        let p = e.unwrap().path();
-        if p.is_dir() {
-            rust_files(&p, out);
-        } else if p.extension().is_some_and(|x| x == "rs") {
-            out.push(p);
-        }
-    }
 }
 
 /// The library's files with their module paths (`src/dem/world.rs` → `["dem", "world"]`).
