@@ -7,10 +7,17 @@
 //!
 //! ## Architecture (dependencies point one way)
 //! ```text
-//! (binary: cli) → sweep / plot / io → setup (scene → resolved objects) → dem / impact → observe / contact / neighbor / integrate → model → units / error
-//! scene (the TOML form) is read by setup, sweep, tradeoff, study and the CLI; dem, impact and model never import it
-//! analysis → (nothing of the simulators);  systems = reference dynamical systems for tests, benches and examples
+//! (binary: cli) → prelude → systems → study → tradeoff → sweep → plot → io → setup (scene → resolved objects)
+//!   → scene → dem / impact → observe / contact / neighbor / integrate / packing → files → model → analysis → simd → units / error
 //! ```
+//! A module imports only modules to its right, never one beside it (`dem` and `impact` know
+//! nothing of each other), and no two files import each other. `tests/design_module_graph.rs`
+//! reads the `use`/path graph of `src/` from the syntax tree and holds the code to this order
+//! (its lists of exceptions name what is left: the upward edge `setup → tradeoff` for
+//! `kind = "auto"`, issue 38, and a few `mod.rs` ↔ child-file pairs in `scene`, `setup` and
+//! `study`). `dem`, `impact` and `model` never see a scene; `analysis`
+//! knows nothing of the simulators (the primary's FRF (2.1.21) it fits is its own,
+//! [`analysis::frf_fit::base_excitation_amplitude`], and [`model`] evaluates it from there).
 //! - [`scene`]: TOML scene files → validated [`scene::Scene`].
 //! - [`setup`]: the resolve step, [`scene::Scene::resolve`] → the engine's objects
 //!   ([`impact::ImpactSetup`], [`setup::DemSetup`]); `dem`, `impact` and `model` never see a scene.
@@ -23,7 +30,8 @@
 //! - [`systems`]: logistic, Hénon, Lorenz, Rössler, bouncing ball — literature references.
 //! - [`plot`]: headless PNG figures (SPEC §7).
 //! - [`tradeoff`]: speed against accuracy of the models and settings; `kind = "auto"`.
-//! - [`io`]: series and CSV input/output, the run directory, atomic writes.
+//! - [`io`]: series and CSV input/output, the run directory.
+//! - [`files`]: atomic writes and CSV text, beneath the observers (re-exported by [`io`]).
 //! - [`prelude`]: the common types in one `use pdamp::prelude::*;` (see
 //!   `examples/end_to_end.rs`: scene → simulate with an observer → analyse → figure).
 //!
@@ -36,6 +44,7 @@ pub mod analysis;
 pub mod contact;
 pub mod dem;
 pub mod error;
+pub mod files;
 pub mod impact;
 pub mod integrate;
 pub mod io;

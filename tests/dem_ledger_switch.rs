@@ -50,6 +50,8 @@ fn a_run_without_ledger_reports_no_energies() {
         duration_s: 0.05,
         sample_interval_s: 1e-3,
         energy_ledger: false,
+        // the fraction this run was written for (the default was 1/50 then)
+        dt_fraction: 1.0 / 50.0,
         ..Default::default()
     };
     let mut v: Vec<DemSample> = Vec::new();

@@ -103,6 +103,7 @@ fn a_perturbation_beyond_the_grain_radius_is_refused_by_the_engine() {
         &setup.model,
         drive,
         &cfg,
+        setup.time_step_for(&RunOptions::summary_only()),
         &opts,
         &mut Vec::<DemSample>::new(),
     )
@@ -208,6 +209,7 @@ fn first_separation_is_of_order_delta0() {
         &setup.model,
         drive,
         &cfg,
+        setup.time_step_for(&RunOptions::summary_only()),
         &opts,
         &mut Vec::<DemSample>::new(),
     )

@@ -22,6 +22,8 @@ fn check_run(p: &DemParams, duration: f64) -> pdamp::dem::DemSummary {
     let cfg = DemRunConfig {
         duration_s: duration,
         sample_interval_s: 1e-3,
+        // the fraction these runs were written for (the default was 1/50 then)
+        dt_fraction: 1.0 / 50.0,
         ..Default::default()
     };
     let mut samples: Vec<DemSample> = Vec::new();
@@ -84,6 +86,8 @@ fn scene_b_kinematic_box_ledger_balances() {
         duration_s: 0.2,
         sample_interval_s: 1e-3,
         steady_fraction: 0.5,
+        // the fraction this run was written for (the default was 1/50 then)
+        dt_fraction: 1.0 / 50.0,
         ..Default::default()
     };
     let mut samples: Vec<DemSample> = Vec::new();

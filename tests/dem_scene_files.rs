@@ -89,6 +89,48 @@ fn simulate_cli_writes_dem_series_and_summary() {
     assert!(js["energy_balance_relative_error"].as_f64().unwrap() < 0.01);
 }
 
+/// `pdamp check-scene` prints the time step `pdamp simulate` then runs, to the last bit (the
+/// automatic step put on the sample clock; issue 40).
+#[test]
+fn check_scene_prints_the_time_step_the_run_takes() {
+    let dir = scratch::tempdir().unwrap();
+    let out = dir.path().join("o");
+    let set = [
+        "--set",
+        "run.duration=0.01",
+        "--set",
+        "damper.count=30",
+        "--set",
+        "run.sample_interval=1e-3",
+    ];
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_pdamp"))
+        .args(["check-scene", "data/scenes/thesis_b_soft.toml"])
+        .args(set)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8_lossy(&o.stdout);
+    let printed: f64 = text
+        .split("dt = ")
+        .find_map(|s| s.split(" s,").next()?.parse().ok())
+        .unwrap_or_else(|| panic!("no dt in {text}"));
+    let st = std::process::Command::new(env!("CARGO_BIN_EXE_pdamp"))
+        .args(["simulate", "data/scenes/thesis_b_soft.toml", "--out"])
+        .arg(&out)
+        .args(set)
+        .status()
+        .unwrap();
+    assert!(st.success());
+    let js: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let run = js["dt_s"].as_f64().unwrap();
+    assert_eq!(
+        printed.to_bits(),
+        run.to_bits(),
+        "check-scene {printed:e}, run {run:e}"
+    );
+}
+
 #[test]
 fn explicit_dt_above_the_limit_is_a_scene_error() {
     let text = std::fs::read_to_string("data/scenes/thesis_b.toml").unwrap();

@@ -25,6 +25,8 @@ fn run(p: &DemParams, f: f64, duration: f64) -> Result<(DemSummary, Vec<DemSampl
     let cfg = DemRunConfig {
         duration_s: duration,
         sample_interval_s: 1e-3,
+        // the fraction these runs were written for (the default was 1/50 then)
+        dt_fraction: 1.0 / 50.0,
         ..Default::default()
     };
     let mut v = Vec::new();

@@ -11,18 +11,33 @@ use nalgebra::storage::Owned;
 use nalgebra::{Dyn, Matrix2, OMatrix, OVector, Vector2, U2};
 
 use crate::error::AnalysisError;
-use crate::model::PrimarySystem;
 use crate::units::TWO_PI;
 
+/// Steady-state amplitude Z(Ω) (m) of a linear mass–spring–damper (M kg, K N/m, C N s/m)
+/// under base motion U cos(Ω t) (U m, Ω rad/s):
+///
+/// Z(Ω) = U sqrt( (K² + (CΩ)²) / ((K − MΩ²)² + (CΩ)²) )  (2.1.21).
+///
+/// The model of the fit, and the one implementation of (2.1.21):
+/// `crate::model::PrimarySystem::steady_amplitude_m` evaluates it too (the analysis knows
+/// nothing of the simulators, so the formula lives here, beneath them).
+pub fn base_excitation_amplitude(
+    mass_kg: f64,
+    stiffness_n_m: f64,
+    damping_n_s_m: f64,
+    base_amplitude_m: f64,
+    omega_rad_s: f64,
+) -> f64 {
+    let (m, k, c) = (mass_kg, stiffness_n_m, damping_n_s_m);
+    let co = c * omega_rad_s;
+    let det = k - m * omega_rad_s * omega_rad_s;
+    base_amplitude_m * ((k * k + co * co) / (det * det + co * co)).sqrt()
+}
+
 /// Z(Ω) of (2.1.21) at `frequency_hz` (Hz) for trial M (kg), C (N s/m), K (N/m), U (m): the
-/// model of the fit, evaluated by the one implementation [`PrimarySystem::steady_amplitude_m`].
+/// model of the fit ([`base_excitation_amplitude`]).
 fn model_amplitude(frequency_hz: f64, mass_kg: f64, damping_n_s_m: f64, k: f64, u: f64) -> f64 {
-    PrimarySystem {
-        mass_kg,
-        stiffness_n_m: k,
-        damping_n_s_m,
-    }
-    .steady_amplitude_at_hz(u, frequency_hz)
+    base_excitation_amplitude(mass_kg, k, damping_n_s_m, u, TWO_PI * frequency_hz)
 }
 
 /// How residuals are measured in [`fit_frf`].

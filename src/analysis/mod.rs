@@ -33,6 +33,7 @@ pub mod regime_forced;
 pub mod replica_test;
 pub mod return_map_lyapunov;
 pub mod rosenstein;
+pub mod scaling_region;
 pub mod section;
 pub mod section_dimension;
 pub mod section_lyapunov;

@@ -3,7 +3,7 @@
 //! included.
 //!
 //! # Formula
-//! The distance is the one of [`crate::analysis::section::dist2`]: `d² = Σ_d (q_d − x_d)²`
+//! The distance is the one of [`dist2`]: `d² = Σ_d (q_d − x_d)²`
 //! summed in coordinate order, reported either as d² ([`Metric::Squared`]) or as `√d²`
 //! ([`Metric::Euclidean`]). A node is skipped only when the lower bound of d² over its bounding
 //! box, `Σ_d gap_d²` (`gap_d` the distance of `q_d` to the box's interval, 0 inside), maps to a
@@ -22,8 +22,6 @@
 //! # Cost
 //! Building: O(n log n). A query: O(log n) for well-spread points, O(n) in the worst case
 //! (every point at the same distance).
-
-use crate::analysis::section::dist2;
 
 /// Points per leaf: below this a scan is cheaper than descending further.
 const LEAF: usize = 12;
@@ -204,6 +202,12 @@ impl PointTree {
             self.nearest_in(second, q, metric, admissible, best);
         }
     }
+}
+
+/// Squared Euclidean distance d² = Σ_d (a_d − b_d)² (the tree's and the section tests').
+#[inline]
+pub(crate) fn dist2(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
 }
 
 #[cfg(test)]

@@ -15,7 +15,7 @@
 
 use rayon::prelude::*;
 
-use crate::analysis::kantz::{fit_scaling_region, ScalingOptions, SlopeFit};
+use crate::analysis::scaling_region::{fit_scaling_region, ScalingOptions, SlopeFit};
 use crate::analysis::{outside_theiler_window, require_positive, rescale_unit, validate_series};
 use crate::error::AnalysisError;
 
@@ -101,7 +101,7 @@ pub struct RosensteinResult {
 ///   one mean period.
 /// - S rises linearly only between the neighbours' initial alignment and saturation at the
 ///   attractor size: fit there ([`rosenstein_exponent`] uses
-///   [`crate::analysis::kantz::fit_scaling_region`]). With few steps the
+///   [`crate::analysis::scaling_region::fit_scaling_region`]). With few steps the
 ///   linear part may be too short (< 6 points).
 /// - Noise adds a jump at small Δn and lowers the slope.
 ///

@@ -44,7 +44,7 @@
 //! (1989), ch. 6 (Poincaré maps, rotation numbers); H. Kantz, T. Schreiber, *Nonlinear Time
 //! Series Analysis*, 2nd ed., CUP (2004), §6.2 (determinism by local prediction).
 
-use crate::analysis::point_tree::{Metric, PointTree};
+use crate::analysis::point_tree::{dist2, Metric, PointTree};
 use crate::error::AnalysisError;
 use serde::{Deserialize, Serialize};
 
@@ -586,12 +586,6 @@ fn principal_plane(u: &[Vec<f64>]) -> Option<(Vec<f64>, Vec<f64>)> {
 #[inline]
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
-}
-
-/// Squared Euclidean distance.
-#[inline]
-pub(crate) fn dist2(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
 }
 
 #[cfg(test)]

@@ -45,8 +45,9 @@
 //! H. Kantz, Phys. Lett. A 185, 77–87 (1994), doi:10.1016/0375-9601(94)90991-1; H. Kantz,
 //! T. Schreiber, *Nonlinear Time Series Analysis*, CUP (2004), §5.3 and §9.3 (Poincaré maps).
 
+use crate::analysis::point_tree::dist2;
 use crate::analysis::point_tree::{Metric, PointTree};
-use crate::analysis::section::{dist2, normalise};
+use crate::analysis::section::normalise;
 use crate::error::AnalysisError;
 use serde::{Deserialize, Serialize};
 

@@ -16,10 +16,12 @@
 //! the sums are the same on any number of threads. A bed of fewer than 2 × [`MIN_BLOCK`]
 //! grains is one block: no cross pairs at all.
 
-use super::world::GRAIN_CHUNK;
 #[cfg(test)]
 use crate::neighbor::J_ROLE;
 use crate::neighbor::{index_by_grain, Pair};
+
+/// Grains per work unit of the per-grain phases (kick–drift; cross gathering, walls, kick).
+pub const GRAIN_CHUNK: usize = 512;
 
 /// Smallest number of grains in a block.
 pub const MIN_BLOCK: usize = 1500;

@@ -27,6 +27,7 @@ use crate::error::{ModelError, Quantity, SimError};
 
 use super::model::DemModel;
 use super::run::{interpolate_strobe, run_dem_stepped, DemRunConfig, DemSummary};
+use super::stability::TimeStep;
 use super::world::{BoxDrive, DemWorld};
 use crate::observe::Observer;
 
@@ -194,7 +195,7 @@ impl ReplicaTracker {
     }
 }
 
-/// Runs the DEM ([`super::run::run_dem`]) as replica A with a perturbed replica B stepped in
+/// Runs the DEM ([`super::run::run_dem_with_step`], time step `step`) as replica A with a perturbed replica B stepped in
 /// lockstep (see the module documentation). Samples and snapshots of A go to `obs`.
 ///
 /// # Errors
@@ -205,6 +206,7 @@ pub fn run_replica(
     model: &DemModel,
     drive: BoxDrive,
     cfg: &DemRunConfig,
+    step: TimeStep,
     opts: &ReplicaOptions,
     obs: &mut dyn Observer,
 ) -> Result<(DemSummary, ReplicaReport), SimError> {
@@ -221,7 +223,7 @@ pub fn run_replica(
         .into());
     }
     let mut tracker = ReplicaTracker::new(*opts, drive.frequency_hz);
-    let summary = run_dem_stepped(model, drive, cfg, obs, &mut |world| {
+    let summary = run_dem_stepped(model, drive, cfg, step, obs, &mut |world| {
         tracker.observe(world);
         Ok(())
     })?;

@@ -9,28 +9,21 @@ use crate::error::{ModelError, Quantity, SimError};
 use crate::packing::{advancing_front_packing, fcc_lattice, volume_fraction};
 use crate::units::G;
 
-use crate::model::StrobePoint;
+use crate::model::{
+    StrobePoint, DEFAULT_ANALYSIS_FRACTION, DEFAULT_SAMPLE_INTERVAL_S, DEFAULT_STEADY_FRACTION,
+};
 use crate::observe::{DemSampleState, ModelSample, Observer, Sample, SampleKind};
 
 use super::bed_impacts::BedImpacts;
 use super::energy::{balance, EnergyLedger};
 use super::model::{DemModel, Packing};
-use super::stability::{choose_dt, TimeStepScales, DEFAULT_DT_FRACTION};
+pub use super::stability::DtChoice;
+use super::stability::{TimeStep, TimeStepScales, DEFAULT_DT_FRACTION};
 use super::steady::{strobe_state, EnergyWatch, SteadyWindow, StrobeClock};
 use super::world::{BoxDrive, ContactsPerGrain, DemWorld};
 
 /// Relative ledger residual above which a run warns (stderr, `summary.json`) (1 %).
 pub const LEDGER_WARNING_LIMIT: f64 = 0.01;
-
-/// Time step choice: automatic (a fraction of the Hertz contact time) or explicit.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub enum DtChoice {
-    /// `dt = "auto"`: dt = `dt_fraction` × t_s at the largest expected impact speed.
-    #[default]
-    Auto,
-    /// Explicit time step (s), rejected above t_s/20.
-    Seconds(f64),
-}
 
 /// Run settings of a DEM simulation.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -46,7 +39,7 @@ pub struct DemRunConfig {
     pub analysis_fraction: f64,
     /// Time step.
     pub dt: DtChoice,
-    /// dt / t_s with `DtChoice::Auto` (default 1/50).
+    /// dt / t_s with `DtChoice::Auto` (default [`DEFAULT_DT_FRACTION`]).
     pub dt_fraction: f64,
     /// Send samples to the observer (false: summary only).
     pub samples: bool,
@@ -65,9 +58,9 @@ impl Default for DemRunConfig {
     fn default() -> Self {
         DemRunConfig {
             duration_s: 1.0,
-            sample_interval_s: 1e-3,
-            steady_fraction: 0.1,
-            analysis_fraction: 0.5,
+            sample_interval_s: DEFAULT_SAMPLE_INTERVAL_S,
+            steady_fraction: DEFAULT_STEADY_FRACTION,
+            analysis_fraction: DEFAULT_ANALYSIS_FRACTION,
             dt: DtChoice::Auto,
             dt_fraction: DEFAULT_DT_FRACTION,
             samples: true,
@@ -289,9 +282,12 @@ pub fn thread_cpu_time_s() -> Option<f64> {
     Some((utime + stime) / 100.0)
 }
 
-/// Runs a DEM damper: bed, settling, then `cfg.duration_s` of drive. `obs` receives
-/// [`Observer::start`] with [`SampleKind::Dem`], the samples, the stroboscopic points of the
-/// analysis window, the particle snapshots and [`Observer::finish`].
+/// Runs a DEM damper: bed, settling, then `cfg.duration_s` of drive, with the time step the
+/// rule chooses from `cfg.dt` and `cfg.dt_fraction` ([`TimeStep::choose`]) on the sample
+/// clock of `cfg.sample_interval_s`. `obs` receives [`Observer::start`] with
+/// [`SampleKind::Dem`], the samples, the stroboscopic points of the analysis window, the
+/// particle snapshots and [`Observer::finish`]. A resolved scene runs
+/// [`run_dem_with_step`] with the step it resolved.
 ///
 /// # Errors
 /// [`SimError::Model`] for a refused time step or run window; packing errors;
@@ -303,12 +299,29 @@ pub fn run_dem(
     cfg: &DemRunConfig,
     obs: &mut dyn Observer,
 ) -> Result<DemSummary, SimError> {
-    run_dem_stepped(model, drive, cfg, obs, &mut |_| Ok(()))
+    let step = TimeStep::choose(model, &drive, cfg.dt, cfg.dt_fraction)?;
+    run_dem_with_step(model, drive, cfg, step, obs)
 }
 
-/// [`run_dem`], calling `stepped` after every time step of the driven run with the state
-/// the step reached (the two-replica test steps its perturbed copy there; the time spent is
-/// left out of the run's wall and CPU times).
+/// [`run_dem`] with the time step already resolved (`cfg.dt` and `cfg.dt_fraction` are not
+/// read); `step` is put on the sample clock of `cfg.sample_interval_s`
+/// ([`TimeStep::on_sample_clock`], nothing for a step already on it).
+///
+/// # Errors
+/// As [`run_dem`].
+pub fn run_dem_with_step(
+    model: &DemModel,
+    drive: BoxDrive,
+    cfg: &DemRunConfig,
+    step: TimeStep,
+    obs: &mut dyn Observer,
+) -> Result<DemSummary, SimError> {
+    run_dem_stepped(model, drive, cfg, step, obs, &mut |_| Ok(()))
+}
+
+/// [`run_dem_with_step`], calling `stepped` after every time step of the driven run with the
+/// state the step reached (the two-replica test steps its perturbed copy there; the time
+/// spent is left out of the run's wall and CPU times).
 ///
 /// # Errors
 /// As [`run_dem`]; the errors of `stepped`.
@@ -316,10 +329,13 @@ pub(crate) fn run_dem_stepped(
     model: &DemModel,
     drive: BoxDrive,
     cfg: &DemRunConfig,
+    step: TimeStep,
     obs: &mut dyn Observer,
     stepped: &mut dyn FnMut(&DemWorld) -> Result<(), SimError>,
 ) -> Result<DemSummary, SimError> {
-    let (dt, ts) = time_step(model, &drive, cfg)?;
+    check_run_window(cfg)?;
+    let step = step.on_sample_clock(cfg.sample_interval_s);
+    let (dt, ts) = (step.dt_s, step.contact_time_s);
     let (mut world, bed) = settled_bed(model, drive, cfg, dt)?;
     world.start_drive();
     // the radius of grain 0 (its slot, once the grains are stored along the curve)
@@ -406,22 +422,8 @@ pub(crate) fn run_dem_stepped(
     })
 }
 
-/// The driven run's time step and the Hertz contact time t_s (s), after checking the run's
-/// lengths and fractions.
-fn time_step(
-    model: &DemModel,
-    drive: &BoxDrive,
-    cfg: &DemRunConfig,
-) -> Result<(f64, f64), SimError> {
-    let explicit = match cfg.dt {
-        DtChoice::Auto => None,
-        DtChoice::Seconds(s) => Some(s),
-    };
-    let (mut dt, ts) = choose_dt(model, drive, explicit, cfg.dt_fraction)?;
-    if explicit.is_none() && cfg.sample_interval_s > dt && cfg.sample_interval_s.is_finite() {
-        // automatic step: shrink it slightly so that samples fall on exact multiples of dt
-        dt = cfg.sample_interval_s / (cfg.sample_interval_s / dt).ceil();
-    }
+/// Checks the run's lengths and fractions.
+fn check_run_window(cfg: &DemRunConfig) -> Result<(), SimError> {
     for (q, v) in [
         (Quantity::Duration, cfg.duration_s),
         (Quantity::SampleInterval, cfg.sample_interval_s),
@@ -438,7 +440,7 @@ fn time_step(
         )
         .into());
     }
-    Ok((dt, ts))
+    Ok(())
 }
 
 /// The settled bed before the drive.

@@ -10,8 +10,10 @@ use crate::units::{G, TWO_PI};
 use super::model::{DemModel, Grains};
 use super::world::{BoxDrive, DemWorld};
 
-/// Default fraction of the contact duration used as time step with `dt = "auto"` (1/50).
-pub const DEFAULT_DT_FRACTION: f64 = 1.0 / 50.0;
+/// Default fraction of the contact duration used as time step with `dt = "auto"` (0.01,
+/// the thesis's δt ≈ t_s/100): the one default of `run.dt_fraction` and of
+/// [`super::DemRunConfig::dt_fraction`].
+pub const DEFAULT_DT_FRACTION: f64 = 0.01;
 /// Largest accepted explicit time step, as a fraction of the contact duration (1/20).
 pub const MAX_DT_FRACTION: f64 = 1.0 / 20.0;
 /// Largest time step, as a fraction of the viscous time scale [`viscous_time`], that the
@@ -174,6 +176,73 @@ pub fn contact_time(model: &DemModel, v: f64) -> Result<f64, ModelError> {
         })
     };
     Ok(time(model.contact.normal, &pp, false)?.min(time(model.contact.wall.normal, &pw, true)?))
+}
+
+/// Time step choice: automatic (a fraction of the Hertz contact time) or explicit.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum DtChoice {
+    /// `dt = "auto"`: dt = `dt_fraction` × t_s at the largest expected impact speed.
+    #[default]
+    Auto,
+    /// Explicit time step (s), rejected above t_s/20.
+    Seconds(f64),
+}
+
+/// The DEM's time step: the one rule ([`choose_dt`]) applied once, and then put on the run's
+/// sample clock ([`TimeStep::on_sample_clock`]). The resolve step computes it
+/// (`crate::setup::DemSetup::time_step`); the run, `check-scene`'s plan and the sweep's cost
+/// estimate all take the value [`TimeStep::on_sample_clock`] gives for the run's sampling,
+/// so that what is printed is what runs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TimeStep {
+    /// Time step dt (s).
+    pub dt_s: f64,
+    /// Shortest contact duration t_s (s) at the design impact speed ([`contact_time`]).
+    pub contact_time_s: f64,
+    /// An automatic step not yet put on a sample clock: [`TimeStep::on_sample_clock`] may
+    /// still shorten it (false for an explicit step and once the clock was applied).
+    pub snaps_to_samples: bool,
+}
+
+impl TimeStep {
+    /// The rule's step for `model` on `drive` ([`choose_dt`]).
+    ///
+    /// # Errors
+    /// As [`choose_dt`].
+    pub fn choose(
+        model: &DemModel,
+        drive: &BoxDrive,
+        dt: DtChoice,
+        fraction: f64,
+    ) -> Result<TimeStep, ModelError> {
+        let explicit = match dt {
+            DtChoice::Auto => None,
+            DtChoice::Seconds(s) => Some(s),
+        };
+        let (dt_s, contact_time_s) = choose_dt(model, drive, explicit, fraction)?;
+        Ok(TimeStep {
+            dt_s,
+            contact_time_s,
+            snaps_to_samples: explicit.is_none(),
+        })
+    }
+
+    /// The step a run sampling every `sample_interval_s` (s) takes: an automatic step longer
+    /// than nothing but shorter than the interval is shortened slightly, to
+    /// Δ / ⌈Δ/dt⌉, so that samples fall on exact multiples of dt; an explicit step, or one
+    /// already put on a clock, is kept as it is (the clock is applied once: in floating point
+    /// it is not idempotent).
+    pub fn on_sample_clock(self, sample_interval_s: f64) -> TimeStep {
+        let mut dt_s = self.dt_s;
+        if self.snaps_to_samples && sample_interval_s > dt_s && sample_interval_s.is_finite() {
+            dt_s = sample_interval_s / (sample_interval_s / dt_s).ceil();
+        }
+        TimeStep {
+            dt_s,
+            snaps_to_samples: false,
+            ..self
+        }
+    }
 }
 
 /// Chooses or checks the time step (s). `dt = None` means automatic: `fraction` × t_s.

@@ -32,8 +32,7 @@ pub const PAIR_CHUNK: usize = 1024;
 /// Cross pairs (pairs across grain blocks) per work unit: small, so that the few cross pairs
 /// of a two-block bed still divide between two threads.
 pub const CROSS_CHUNK: usize = 256;
-/// Grains per work unit of the per-grain phases (kick–drift; cross gathering, walls, kick).
-pub const GRAIN_CHUNK: usize = 512;
+pub use super::blocks::GRAIN_CHUNK;
 /// Default smallest grain count for which a step runs on several threads: two blocks
 /// ([`super::blocks::MIN_BLOCK`]). Results do not depend on it.
 pub const PARALLEL_MIN_GRAINS: usize = 2 * super::blocks::MIN_BLOCK;

@@ -14,4 +14,7 @@ pub mod summary;
 pub const PHYSICS_REVISION: u32 = 1;
 
 pub use primary::{base_motion, Anchor, BoxDrive, PrimarySystem, Sdof};
-pub use summary::{EnergyTotals, RunAnalysis, RunOptions, RunSummary, RunWindow, StrobePoint};
+pub use summary::{
+    EnergyTotals, RunAnalysis, RunOptions, RunSummary, RunWindow, StrobePoint,
+    DEFAULT_ANALYSIS_FRACTION, DEFAULT_SAMPLE_INTERVAL_S, DEFAULT_STEADY_FRACTION,
+};

@@ -42,10 +42,13 @@ impl PrimarySystem {
     /// assert!((p.steady_amplitude_m(0.01, 1e-6) - 0.01).abs() < 1e-12); // Ω → 0: Z → U
     /// ```
     pub fn steady_amplitude_m(&self, base_amplitude_m: f64, omega_rad_s: f64) -> f64 {
-        let (m, k, c) = (self.mass_kg, self.stiffness_n_m, self.damping_n_s_m);
-        let co = c * omega_rad_s;
-        let det = k - m * omega_rad_s * omega_rad_s;
-        base_amplitude_m * ((k * k + co * co) / (det * det + co * co)).sqrt()
+        crate::analysis::frf_fit::base_excitation_amplitude(
+            self.mass_kg,
+            self.stiffness_n_m,
+            self.damping_n_s_m,
+            base_amplitude_m,
+            omega_rad_s,
+        )
     }
 
     /// [`PrimarySystem::steady_amplitude_m`] at forcing frequency `frequency_hz` (Hz), (2.1.21).

@@ -6,6 +6,16 @@ use std::collections::BTreeMap;
 
 use crate::analysis::analyze::AnalysisReport;
 
+/// Default output sampling interval (s): `run.sample_interval` and the DEM engine's
+/// `DemRunConfig` (1e-4 s).
+pub const DEFAULT_SAMPLE_INTERVAL_S: f64 = 1e-4;
+/// Default fraction of the run treated as steady state (per-cycle figures):
+/// `run.steady_fraction` and the engine's (0.1).
+pub const DEFAULT_STEADY_FRACTION: f64 = 0.1;
+/// Default last fraction of the run that is analysed (stroboscopic section, analysed
+/// series): `run.analysis_fraction` and the engine's (0.5).
+pub const DEFAULT_ANALYSIS_FRACTION: f64 = 0.5;
+
 /// Options of one run that are not part of the physics.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RunOptions {

@@ -2,7 +2,7 @@
 
 use super::{Observer, Sample, SampleKind, FIXED_COLUMNS};
 use crate::error::SimError;
-use crate::io::CsvOut;
+use crate::files::CsvOut;
 use std::io::Write;
 
 /// CSV recorder: one row per sample; columns [`FIXED_COLUMNS`], the model's columns

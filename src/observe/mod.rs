@@ -301,6 +301,6 @@ impl Observer for Tee<'_> {
 /// for very small or large magnitudes (`3.1e-13` rather than `0.00000000000031`).
 pub fn fmt_num(x: f64) -> String {
     let mut s = String::new();
-    crate::io::csv_out::push_num(&mut s, x);
+    crate::files::csv_out::push_num(&mut s, x);
     s
 }

@@ -117,7 +117,7 @@ impl Observer for SnapshotWriter {
 /// I/O errors.
 pub fn write_csv(world: &GrainState<'_>, path: &Path) -> std::io::Result<()> {
     let file = std::io::BufWriter::new(std::fs::File::create(path)?);
-    let mut t = crate::io::CsvOut::new(file);
+    let mut t = crate::files::CsvOut::new(file);
     let mut header = vec![
         "id", "x_m", "y_m", "z_m", "vx_m_s", "vy_m_s", "vz_m_s", "wx_rad_s", "wy_rad_s",
         "wz_rad_s", "radius_m",

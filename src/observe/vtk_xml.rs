@@ -162,7 +162,7 @@ fn vector_array(s: &mut String, name: &str, v: &[[f64; 3]]) {
     s.push_str("        </DataArray>\n");
 }
 
-/// Writes `text` through [`crate::io::atomic_write`] (temporary sibling, synced, renamed).
+/// Writes `text` through [`crate::files::atomic_write`] (temporary sibling, synced, renamed).
 fn write_atomically(path: &Path, text: &str) -> std::io::Result<()> {
-    crate::io::atomic_write(path, text.as_bytes()).map_err(std::io::Error::other)
+    crate::files::atomic_write(path, text.as_bytes()).map_err(std::io::Error::other)
 }

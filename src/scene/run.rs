@@ -138,16 +138,16 @@ fn write_replica_choice<S: serde::Serializer>(c: &ReplicaChoice, s: S) -> Result
 }
 
 fn default_steady_fraction() -> f64 {
-    0.1
+    crate::model::DEFAULT_STEADY_FRACTION
 }
 fn default_analysis_fraction() -> f64 {
-    0.5
+    crate::model::DEFAULT_ANALYSIS_FRACTION
 }
 fn default_sample_interval() -> f64 {
-    1e-4
+    crate::model::DEFAULT_SAMPLE_INTERVAL_S
 }
 fn default_dt_fraction() -> f64 {
-    0.01
+    crate::dem::stability::DEFAULT_DT_FRACTION
 }
 fn default_energy_ledger() -> bool {
     true

@@ -9,8 +9,8 @@ use std::path::PathBuf;
 use crate::contact::{AttractionPolicy, ContactModel, NormalLaw, TangentialLaw, WallContact};
 use crate::dem::model::{DemModel, Grains, Packing};
 use crate::dem::replica::{run_replica, ReplicaOptions};
-use crate::dem::run::{run_dem, DemRunConfig, DtChoice};
-use crate::dem::stability::choose_dt;
+use crate::dem::run::{run_dem, run_dem_with_step, DemRunConfig, DtChoice};
+use crate::dem::stability::TimeStep;
 use crate::error::{SceneError, SimError};
 use crate::model::{BoxDrive, EnergyTotals, RunOptions, RunSummary, RunWindow};
 use crate::observe::{Observer, SnapshotWriter, StrobeCollector, Tee};
@@ -35,10 +35,13 @@ pub struct DemSetup {
     pub analysis_fraction: f64,
     /// Output sampling interval of `series.csv` (s).
     pub sample_interval_s: f64,
-    /// Time step: automatic or explicit (checked against the contact time here).
+    /// Time step as the scene asks for it: automatic or explicit (`run.dt`).
     pub dt: DtChoice,
-    /// dt / t_s with an automatic step (–).
+    /// dt / t_s with an automatic step (–) (`run.dt_fraction`).
     pub dt_fraction: f64,
+    /// The time step the rule chose for `dt` and `dt_fraction`, once, here (checked against
+    /// the contact time); a run takes it on its sample clock ([`DemSetup::time_step_for`]).
+    pub time_step: TimeStep,
     /// Snapshot directory and format, when snapshots are written.
     pub snapshots: Option<(PathBuf, SnapshotFormat)>,
     /// When the two-replica test runs (`run.replica`); see [`DemSetup::with_verdict`].
@@ -60,11 +63,26 @@ impl DemSetup {
         }
     }
 
+    /// The sample clock of a run with the sampling of `opts` (s): its interval, or
+    /// `run.sample_interval` for a run without samples.
+    pub fn sample_interval_for(&self, opts: &RunOptions) -> f64 {
+        opts.sample_interval_s.unwrap_or(self.sample_interval_s)
+    }
+
+    /// The time step (s) and contact time of a run with the sampling of `opts`: the resolved
+    /// [`DemSetup::time_step`] on that run's sample clock ([`TimeStep::on_sample_clock`]).
+    /// The run, [`super::RunPlan`] (`check-scene`) and the sweep's cost estimate all take it
+    /// from here.
+    pub fn time_step_for(&self, opts: &RunOptions) -> TimeStep {
+        self.time_step
+            .on_sample_clock(self.sample_interval_for(opts))
+    }
+
     /// The engine's run settings for the sampling of `opts`.
     pub fn config(&self, opts: &RunOptions) -> DemRunConfig {
         DemRunConfig {
             duration_s: self.window.duration_s,
-            sample_interval_s: opts.sample_interval_s.unwrap_or(self.sample_interval_s),
+            sample_interval_s: self.sample_interval_for(opts),
             steady_fraction: self.steady_fraction,
             analysis_fraction: self.analysis_fraction,
             dt: self.dt,
@@ -101,11 +119,8 @@ pub fn dem_setup(scene: &Scene) -> Result<DemSetup, SceneError> {
         Some(DtSpec::Seconds(s)) => DtChoice::Seconds(s),
         _ => DtChoice::Auto,
     };
-    let explicit = match dt {
-        DtChoice::Seconds(s) => Some(s),
-        DtChoice::Auto => None,
-    };
-    choose_dt(&model, &drive, explicit, scene.run.dt_fraction).map_err(super::scene_error)?;
+    let time_step =
+        TimeStep::choose(&model, &drive, dt, scene.run.dt_fraction).map_err(super::scene_error)?;
     Ok(DemSetup {
         model,
         drive,
@@ -116,6 +131,7 @@ pub fn dem_setup(scene: &Scene) -> Result<DemSetup, SceneError> {
         sample_interval_s: scene.run.sample_interval,
         dt,
         dt_fraction: scene.run.dt_fraction,
+        time_step,
         snapshots: params.snapshot_interval.map(|_| {
             (
                 PathBuf::from(
@@ -478,7 +494,7 @@ pub fn simulate(
     obs: &mut dyn Observer,
     opts: &RunOptions,
 ) -> Result<RunSummary, SimError> {
-    let (drive, cfg) = (setup.drive, setup.config(opts));
+    let (drive, cfg, step) = (setup.drive, setup.config(opts), setup.time_step_for(opts));
     let mut snapshots = setup.snapshots.as_ref().map(|(dir, format)| {
         SnapshotWriter::new(
             dir.clone(),
@@ -496,10 +512,13 @@ pub fn simulate(
     let (s, replica) = match setup.replica.delta_m(false) {
         Some(delta_m) => {
             let opts = ReplicaOptions::at_analysis_start(&cfg, delta_m);
-            let (s, r) = run_replica(&setup.model, drive, &cfg, &opts, &mut fwd)?;
+            let (s, r) = run_replica(&setup.model, drive, &cfg, step, &opts, &mut fwd)?;
             (s, Some(r))
         }
-        None => (run_dem(&setup.model, drive, &cfg, &mut fwd)?, None),
+        None => (
+            run_dem_with_step(&setup.model, drive, &cfg, step, &mut fwd)?,
+            None,
+        ),
     };
     drop(fwd);
     for w in [&s.time_step_warning, &s.energy_balance_warning]
@@ -611,7 +630,10 @@ pub fn simulate(
 mod tests {
     use super::*;
     use crate::dem::run::run_dem_stepped;
-    use crate::dem::stability::DEFAULT_DT_FRACTION;
+    use crate::dem::stability::choose_dt;
+
+    /// The fraction these tests were written for (the default was 1/50 then).
+    const DT_FRACTION: f64 = 1.0 / 50.0;
     use crate::dem::world::ContactsPerGrain;
 
     #[test]
@@ -670,11 +692,11 @@ mod tests {
             amplitude_m: 4.5e-3,
             frequency_hz: 15.0,
         };
-        let (dt, ts) = choose_dt(&p, &d, None, DEFAULT_DT_FRACTION).unwrap();
+        let (dt, ts) = choose_dt(&p, &d, None, DT_FRACTION).unwrap();
         assert!((dt - ts / 50.0).abs() < 1e-20);
         // steel, R = 3 mm, v ≈ 1.55 m/s (free fall over 0.1225 m): t_s ≈ 1.5e-5 s
         assert!(ts > 5e-6 && ts < 5e-5, "{ts}");
-        let e = choose_dt(&p, &d, Some(1e-4), DEFAULT_DT_FRACTION).unwrap_err();
+        let e = choose_dt(&p, &d, Some(1e-4), DT_FRACTION).unwrap_err();
         // the engine speaks of the time step; the resolve step names the key
         assert!(
             e.to_string().contains("time step") && e.to_string().contains("t_s/20"),
@@ -682,7 +704,7 @@ mod tests {
         );
         let e = super::super::scene_error(e).to_string();
         assert!(e.contains("run.dt") && e.contains("t_s/20"), "{e}");
-        assert!(choose_dt(&p, &d, Some(ts / 30.0), DEFAULT_DT_FRACTION).is_ok());
+        assert!(choose_dt(&p, &d, Some(ts / 30.0), DT_FRACTION).is_ok());
     }
 
     // (an engine figure, tested here because the engine's own tests may not build a scene)
@@ -697,7 +719,7 @@ mod tests {
             amplitude_m: 4.5e-3,
             frequency_hz: 15.0,
         };
-        let (dt, _) = choose_dt(&model, &drive, None, DEFAULT_DT_FRACTION).unwrap();
+        let (dt, _) = choose_dt(&model, &drive, None, DT_FRACTION).unwrap();
         let per_sample = 25;
         let cfg = DemRunConfig {
             duration_s: 1000.0 * dt,
@@ -709,7 +731,8 @@ mod tests {
         };
         // the counts after every driven step, taken here apart from the run's own count
         let mut seen = Vec::new();
-        let summary = run_dem_stepped(&model, drive, &cfg, &mut Vec::new(), &mut |w| {
+        let step = TimeStep::choose(&model, &drive, cfg.dt, cfg.dt_fraction).unwrap();
+        let summary = run_dem_stepped(&model, drive, &cfg, step, &mut Vec::new(), &mut |w| {
             seen.push(ContactsPerGrain::of(w.contact_counts(), w.len()));
             Ok(())
         })

@@ -132,7 +132,7 @@ impl RunPlan {
         };
         let mut plan = match &resolved.setup {
             Setup::Impact(_) => impact_plan(resolved, duration_s),
-            Setup::Dem(d) => dem_plan(d, duration_s)?,
+            Setup::Dem(d) => dem_plan(d, opts, duration_s)?,
         };
         plan.samples = samples;
         plan.sample_interval_s = opts.sample_interval_s.unwrap_or(dt_sample);
@@ -218,8 +218,10 @@ impl RunPlan {
         let fill = self
             .fill_fraction
             .map_or(String::new(), |f| format!(", fill fraction {f:.3}"));
+        // dt in full (the shortest text that reads back to the same number): the step the
+        // run takes, to the last bit
         format!(
-            "{ts}dt = {:.3e} s, {:.3e} steps, {:.3e} samples, {:.0} snapshot files{fill}; \
+            "{ts}dt = {:e} s, {:.3e} steps, {:.3e} samples, {:.0} snapshot files{fill}; \
              output ≈ {}, run time ≈ {} on one core (rough)",
             self.dt_s,
             self.steps,
@@ -256,19 +258,16 @@ fn impact_plan(resolved: &Resolved, duration_s: f64) -> RunPlan {
     }
 }
 
-/// The DEM: the step chosen for the contact time, settling and drive steps, the packing
+/// The DEM: the step the run takes (the resolved step on the sample clock of `opts`,
+/// [`super::DemSetup::time_step_for`]), settling and drive steps, the packing
 /// built once to check that the grains fit.
-fn dem_plan(d: &super::DemSetup, duration_s: f64) -> Result<RunPlan, SceneError> {
-    let (dt_s, ts) = crate::dem::stability::choose_dt(
-        &d.model,
-        &d.drive,
-        match d.dt {
-            crate::dem::DtChoice::Seconds(s) => Some(s),
-            crate::dem::DtChoice::Auto => None,
-        },
-        d.dt_fraction,
-    )
-    .map_err(super::scene_error)?;
+fn dem_plan(
+    d: &super::DemSetup,
+    opts: &RunOptions,
+    duration_s: f64,
+) -> Result<RunPlan, SceneError> {
+    let step = d.time_step_for(opts);
+    let (dt_s, ts) = (step.dt_s, step.contact_time_s);
     if !(dt_s > 0.0 && dt_s.is_finite() && ts.is_finite()) {
         return Err(SceneError::invalid(
             keys::DAMPER_YOUNGS_MODULUS,

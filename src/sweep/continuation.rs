@@ -37,9 +37,11 @@
 //! reported beside but do not mark by themselves (a slowly converging orbit can be
 //! `undetermined` on one branch and `periodic` on the other).
 
-use super::runner::{point_scene, run_point, write_point, PointRecord, SweepReport, SweepSpec};
+use super::point::{
+    out_err, point_path, point_scene, run_point, write_point, PointRecord, SweepReport, SweepSpec,
+};
 use super::shard::Shard;
-use super::tables::{out_err, point_path, read_record, stream_name, StreamLog};
+use super::tables::{read_record, stream_name, Row, StreamLog};
 use crate::error::{SceneError, SimError};
 use crate::io::CsvOut;
 use crate::observe::fmt_num;
@@ -537,9 +539,6 @@ fn continue_point(
 }
 
 // ---------------------------------------------------------------- tables
-
-/// One row of `sweep.csv` as the tables hold it: (point, values, cells).
-pub(super) type Row = (usize, Vec<String>, BTreeMap<String, String>);
 
 /// Writes `hysteresis.csv` (with `both`) and `seams.csv` (with more than one block) into
 /// `out` from the sweep's rows and the warm-up records found in `dirs`.

@@ -8,7 +8,7 @@
 //!   with the analysis.
 //! - DEM (SPEC §2): t = N · (T/dt + T_settle/dt) / r, with N grains, dt the scene's time step
 //!   (automatic: the fraction of the Hertz contact time at the largest expected impact speed,
-//!   [`crate::dem::stability::choose_dt`]) and r = [`DEM_PARTICLE_STEPS_PER_S`].
+//!   [`crate::setup::DemSetup::time_step_for`]) and r = [`DEM_PARTICLE_STEPS_PER_S`].
 //!
 //! # Units
 //! Seconds of one core, bytes.
@@ -21,6 +21,7 @@ use super::continuation::{shard_value_runs, Continuation};
 use super::runner::SweepSpec;
 use super::shard::Shard;
 use crate::error::SceneError;
+use crate::model::RunOptions;
 use crate::scene::Scene;
 use crate::setup::Setup;
 
@@ -61,13 +62,13 @@ pub fn point_cost(scene: &Scene, analyze: bool) -> Result<PointCost, SceneError>
             memory_bytes: BASE_MEMORY,
         },
         Setup::Dem(d) => {
-            let explicit = match d.dt {
-                crate::dem::DtChoice::Auto => None,
-                crate::dem::DtChoice::Seconds(s) => Some(s),
+            // the sampling the sweep's run takes (`super::run::run_resolved`)
+            let sampling = if analyze {
+                crate::setup::steady_series(scene)
+            } else {
+                RunOptions::summary_only()
             };
-            let (dt, _) =
-                crate::dem::stability::choose_dt(&d.model, &d.drive, explicit, d.dt_fraction)
-                    .map_err(crate::setup::scene_error)?;
+            let dt = d.time_step_for(&sampling).dt_s;
             let grains = d.model.grains.len() as f64;
             let steps = (d.window.duration_s + d.model.settle_time_s) / dt;
             PointCost {
@@ -102,7 +103,7 @@ pub fn sweep_cost(spec: &SweepSpec, shards: usize) -> Result<SweepCost, SceneErr
     let mut per_shard = vec![0.0; shards];
     let mut memory: f64 = 0.0;
     for i in 0..n {
-        let c = point_cost(&super::runner::point_scene(spec, i)?, spec.analyze)?;
+        let c = point_cost(&super::point::point_scene(spec, i)?, spec.analyze)?;
         per_shard[i % shards] += c.cpu_s;
         memory = memory.max(c.memory_bytes);
     }
@@ -132,7 +133,7 @@ pub fn sweep_cost_of(
     let mut per_value = Vec::with_capacity(values);
     for v in 0..values {
         per_value.push(point_cost(
-            &super::runner::point_scene(spec, v)?,
+            &super::point::point_scene(spec, v)?,
             spec.analyze,
         )?);
     }

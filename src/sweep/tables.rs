@@ -1,12 +1,12 @@
 //! The sweep's files besides the point records: the append-only stream logs written while a
 //! sweep runs, and `sweep.csv`, `strobe.csv` and `timings.csv` rebuilt in point order from
-//! the point records (at the end of an unsharded run, or by [`merge`] over the directories of
+//! the point records (at the end of an unsharded run, or by [`merge`](super::merge) over the directories of
 //! a sharded one).
 //!
 //! `sweep.csv` and `strobe.csv` hold only simulated quantities, so they are byte-identical for
 //! any thread count, shard count and machine; wall times and throughputs go to `timings.csv`.
 
-use super::runner::{Manifest, PointRecord};
+use super::point::{out_err, PointRecord};
 use crate::error::SimError;
 use crate::io::csv_out::{record_line, table_text, CsvOut};
 use std::collections::{BTreeMap, BTreeSet};
@@ -69,15 +69,6 @@ fn is_timing(key: &str) -> bool {
     TIMING_KEYS.iter().any(|(k, _)| *k == key)
 }
 
-pub(super) fn out_err(path: &Path, e: impl std::fmt::Display) -> SimError {
-    SimError::Output(format!("{}: {e}", path.display()))
-}
-
-/// `points/<i>.json` of `dir`.
-pub(super) fn point_path(dir: &Path, i: usize) -> PathBuf {
-    dir.join("points").join(format!("{i}.json"))
-}
-
 /// The point record of `path`, if it is a complete record of point `i`.
 ///
 /// The cells are re-derived from the stored typed summary (the source of truth), so that a
@@ -89,7 +80,7 @@ pub(super) fn read_record(path: &Path, i: usize) -> Option<PointRecord> {
         .ok()
         .filter(|r| r.point == i)?;
     if let Ok(s) = serde_json::from_value::<crate::model::RunSummary>(rec.summary.clone()) {
-        rec.cells = super::runner::cells_of(&s);
+        rec.cells = super::point::cells_of(&s);
     }
     Some(rec)
 }
@@ -238,6 +229,9 @@ impl AtomicFile {
     }
 }
 
+/// One row of `sweep.csv` as the tables hold it: (point, values, cells).
+pub(super) type Row = (usize, Vec<String>, BTreeMap<String, String>);
+
 /// Writes `sweep.csv`, `strobe.csv` and `timings.csv` into `out` from the point records
 /// `present` (point index and file, increasing), for a sweep whose varied keys are `keys`.
 /// Each point file is read once; only its `sweep.csv` cells stay in memory. Returns the rows
@@ -250,7 +244,7 @@ pub(super) fn write_tables(
     present: &[(usize, PathBuf)],
     stream_dirs: &[PathBuf],
     out: &Path,
-) -> Result<Vec<super::continuation::Row>, SimError> {
+) -> Result<Vec<Row>, SimError> {
     let mut strobe = AtomicFile::create(&out.join("strobe.csv"))?;
     strobe.write(&strobe_header(keys))?;
     let mut rows: Vec<(usize, Vec<String>, BTreeMap<String, String>)> =
@@ -362,76 +356,6 @@ fn strobe_rows(r: &PointRecord) -> String {
 }
 
 // ---------------------------------------------------------------- merge
-
-/// What [`merge`] wrote.
-#[derive(Debug, Clone, PartialEq)]
-pub struct MergeReport {
-    /// Points in the sweep's grid.
-    pub points: usize,
-    /// How many points each directory contributed (in the order given).
-    pub per_dir: Vec<usize>,
-}
-
-/// Merges the shards of one sweep: checks that every directory in `dirs` holds the same
-/// sweep (its `sweep.json` manifest), that every point of the grid is finished in one of
-/// them, and writes `sweep.csv`, `strobe.csv` and `timings.csv` (and the manifest) into `out`
-/// — byte-identical `sweep.csv` and `strobe.csv` to an unsharded run of the same sweep.
-///
-/// # Errors
-/// [`SimError::Output`] if a directory has no manifest or a different one, if points are
-/// missing (listing them, nothing is written), or for file-system errors.
-pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<MergeReport, SimError> {
-    let Some(first) = dirs.first() else {
-        return Err(SimError::Output("merge: no sweep directories given".into()));
-    };
-    let manifest = Manifest::read(first)?;
-    for d in &dirs[1..] {
-        if Manifest::read(d)? != manifest {
-            return Err(SimError::Output(format!(
-                "{} holds a different sweep than {} (scene, --set, --vary or --no-analysis \
-                 differ): only shards of one sweep can be merged",
-                d.display(),
-                first.display()
-            )));
-        }
-    }
-    let n = manifest.points();
-    let mut per_dir = vec![0; dirs.len()];
-    let mut missing = Vec::new();
-    for i in 0..n {
-        let found = dirs
-            .iter()
-            .enumerate()
-            .find(|(_, d)| point_path(d, i).is_file());
-        match found {
-            Some((k, _)) => per_dir[k] += 1,
-            None => missing.push(i),
-        }
-    }
-    let whose = if manifest.continuation().is_some() {
-        "a continuation sweep's shard K of N holds a contiguous range of blocks"
-    } else {
-        "point i belongs to shard i mod N of --shard K/N"
-    };
-    if !missing.is_empty() {
-        return Err(SimError::Output(format!(
-            "{} of {n} points are not finished in {}: {}; run (or rerun) the shards that \
-             hold them — {whose} — then merge again",
-            missing.len(),
-            dirs.iter()
-                .map(|d| d.display().to_string())
-                .collect::<Vec<_>>()
-                .join(", "),
-            ranges(&missing)
-        )));
-    }
-    std::fs::create_dir_all(out).map_err(|e| out_err(out, e))?;
-    if !out.join("sweep.json").is_file() {
-        manifest.write(out)?;
-    }
-    super::runner::write_all_tables(&manifest, dirs, out)?;
-    Ok(MergeReport { points: n, per_dir })
-}
 
 /// `0-3, 7, 9-12`.
 pub(super) fn ranges(points: &[usize]) -> String {
