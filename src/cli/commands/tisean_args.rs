@@ -1,5 +1,6 @@
 //! The TISEAN flags that several verbs share, declared once and flattened into each verb's
-//! arguments (`#[command(flatten)]`): the delay `-d` and the radius range `-r -R -#`.
+//! arguments (`#[command(flatten)]`): the delay `-d` (d2, lyap-k, lyap-r, fnn, cao, rqa) and
+//! the radius range `-r -R -#` (d2, lyap-k).
 //!
 //! A verb whose default for one of them differs in meaning (the largest radius of `d2` and
 //! `lyap-k`) states it in its own help with `mut_arg`, so every verb's flags, defaults and help
@@ -76,6 +77,15 @@ mod tests {
         for verb in ["d2", "lyap-k", "lyap-r"] {
             assert_eq!(help_of(verb, "tau"), "Delay τ in samples (TISEAN -d)");
         }
+        assert_eq!(
+            help_of("fnn", "tau"),
+            "Delay τ in samples (TISEAN -d); use the first minimum of `pdamp mutual`"
+        );
+        assert_eq!(
+            help_of("cao", "tau"),
+            "Delay τ in samples; use the first minimum of `pdamp mutual`"
+        );
+        assert_eq!(help_of("rqa", "tau"), "Delay τ in samples");
         let default_count = |verb: &str| {
             let cmd = Cli::command();
             let sub = cmd.find_subcommand(verb).unwrap();
