@@ -93,7 +93,14 @@ fi
 echo "TISEAN built in $TB from $SRC"
 
 # --- pdamp and the series -------------------------------------------------------------------
-(cd "$ROOT" && cargo build --release --quiet --example gen_series)
+# the series generator is built only if a series is missing (a build of the crate can take
+# minutes on a loaded machine)
+for n in $LENGTHS; do
+  if [[ ! -s "$WORK/lorenz_x_n$n.dat" ]]; then
+    (cd "$ROOT" && cargo build --release --quiet --example gen_series)
+    break
+  fi
+done
 if [[ -z "${PDAMP:-}" ]]; then
   (cd "$ROOT" && cargo build --release --quiet --bin pdamp)
   PDAMP="$ROOT/target/release/pdamp"

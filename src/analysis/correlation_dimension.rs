@@ -302,6 +302,9 @@ struct BinTable {
     shift: u32,
     key0: u64,
     table: Vec<u32>,
+    /// Whether one comparison corrects every table entry (buckets finer than the ε spacing):
+    /// then [`BinTable::bin`] has no data-dependent branch.
+    one_step: bool,
 }
 
 impl BinTable {
@@ -320,28 +323,36 @@ impl BinTable {
             }
             b -= 1;
         }
-        let table = (key0..=key1)
+        let table: Vec<u32> = (key0..=key1)
             .map(|k| {
                 let lower = f64::from_bits(k << shift);
                 eps.partition_point(|&e| e < lower).min(n - 1) as u32
             })
             .collect();
+        // the largest value of each bucket must lie at most one ε above the bucket's entry
+        let one_step = table.iter().enumerate().all(|(k, &l)| {
+            let top = f64::from_bits(((key0 + k as u64 + 1) << shift) - 1);
+            eps.partition_point(|&e| e < top).min(n - 1) <= l as usize + 1
+        });
         Self {
             eps: eps.to_vec(),
             shift,
             key0,
             table,
+            one_step,
         }
     }
 
     /// Bin of a distance `0 ≤ d ≤ ε_max`.
     #[inline]
     fn bin(&self, d: f64) -> usize {
-        if d <= self.eps[0] {
-            return 0;
+        // below ε_0 the key saturates to the first bucket, whose entry is 0 (ε_0 lies in it)
+        let k = ((d.to_bits() >> self.shift).saturating_sub(self.key0) as usize)
+            .min(self.table.len() - 1);
+        let mut l = self.table[k] as usize;
+        if self.one_step {
+            return l + usize::from(d > self.eps[l]);
         }
-        let k = ((d.to_bits() >> self.shift) - self.key0) as usize;
-        let mut l = self.table[k.min(self.table.len() - 1)] as usize;
         while d > self.eps[l] {
             l += 1;
         }
@@ -397,18 +408,40 @@ fn sum_hists(parts: Vec<Vec<u64>>, len: usize) -> Vec<u64> {
     out
 }
 
+/// Cells per ε_max along each grid axis of [`count_grid`]: cells of side ≥ ε_max/`SUB`, so a
+/// pair closer than ε_max lies at most `SUB` cells apart per axis. Finer cells visit fewer
+/// pairs that are then rejected (the scanned area falls from 9 ε² to (2·SUB + 1)²/SUB² ε²).
+const SUB: usize = 2;
+
 /// m ≥ 2: box-assisted search on the first two delay coordinates (s_i, s_{i+τ}), cells of
-/// side ≥ ε_max, so every pair closer than ε_max lies in neighbouring cells.
+/// side ≥ ε_max/[`SUB`], vectors stored in cell order. Each pair is visited once, from the
+/// vector that comes first in cell order ("half shell": the rest of its own cell and the
+/// cells above it in its column, then the next `SUB` columns), so every pair closer than
+/// ε_max is counted exactly once.
 fn count_grid(job: &Job) -> Vec<u64> {
+    macro_rules! dispatch {
+        ($($k:literal),*) => {
+            match job.opts.m_max {
+                $($k => count_grid_dim::<$k>(job),)*
+                _ => count_grid_dim::<0>(job),
+            }
+        };
+    }
+    dispatch!(2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12)
+}
+
+/// [`count_grid`] for `m_max = K` (`K = 0`: any `m_max`, read at run time).
+fn count_grid_dim<const K: usize>(job: &Job) -> Vec<u64> {
     let o = job.opts;
     let (s, tau, nv) = (job.s, o.tau, job.vectors);
-    let mm = o.m_max;
+    let mm = if K == 0 { o.m_max } else { K };
     let m_lo = o.m_min.max(2);
     let n_eps = job.bins.eps.len();
     let n_dims = o.m_max - o.m_min + 1;
     let (_, hi) = min_max(s);
     let range = hi - job.lo;
-    let g = ((range / job.eps_max).floor() as usize).clamp(1, 1024);
+    // the margin keeps the cell side strictly above ε_max/SUB whatever the rounding
+    let g = ((SUB as f64 * range / job.eps_max * (1.0 - 1e-9)).floor() as usize).clamp(1, 1024);
     let cell_of = |v: f64| (((v - job.lo) / range * g as f64) as usize).min(g - 1);
     let key = |i: usize| cell_of(s[i]) * g + cell_of(s[i + tau]);
     let mut start = vec![0u32; g * g + 1];
@@ -436,20 +469,25 @@ fn count_grid(job: &Job) -> Vec<u64> {
         .into_par_iter()
         .map(|c| {
             let mut h = vec![0u64; n_dims * n_eps];
-            for a in c * CHUNK..((c + 1) * CHUNK).min(nv) {
+            let visit = |a: usize, run: std::ops::Range<usize>, h: &mut [u64]| {
                 let i = index[a] as usize;
                 let p = &vecs[a * mm..(a + 1) * mm];
-                let (cx, cy) = (cell_of(p[0]), cell_of(p[1]));
-                for x in cx.saturating_sub(1)..=(cx + 1).min(g - 1) {
-                    let (y0, y1) = (cy.saturating_sub(1), (cy + 1).min(g - 1));
-                    let run = start[x * g + y0] as usize..start[x * g + y1 + 1] as usize;
-                    for b in run {
-                        let j = index[b] as usize;
-                        if j <= i + w {
-                            continue;
-                        }
-                        pair(p, &vecs[b * mm..(b + 1) * mm], job, m_lo, &mut h);
+                for b in run {
+                    let j = index[b] as usize;
+                    if i.abs_diff(j) > w {
+                        pair::<K>(p, &vecs[b * mm..(b + 1) * mm], job, m_lo, h);
                     }
+                }
+            };
+            for a in c * CHUNK..((c + 1) * CHUNK).min(nv) {
+                let p = &vecs[a * mm..(a + 1) * mm];
+                let (cx, cy) = (cell_of(p[0]), cell_of(p[1]));
+                let (y0, y1) = (cy.saturating_sub(SUB), (cy + SUB).min(g - 1));
+                // the rest of the own cell and the cells above it in the same column
+                visit(a, a + 1..start[cx * g + y1 + 1] as usize, &mut h);
+                for x in cx + 1..=(cx + SUB).min(g - 1) {
+                    let run = start[x * g + y0] as usize..start[x * g + y1 + 1] as usize;
+                    visit(a, run, &mut h);
                 }
             }
             h
@@ -458,28 +496,24 @@ fn count_grid(job: &Job) -> Vec<u64> {
     sum_hists(parts, n_dims * n_eps)
 }
 
-/// Adds one pair to the histogram of every dimension m ≥ m_lo in which it is within ε_max.
-#[inline]
-fn pair(p: &[f64], q: &[f64], job: &Job, m_lo: usize, h: &mut [u64]) {
+/// Adds one pair to the histogram of every dimension m ≥ m_lo in which it is within ε_max
+/// (`K` coordinates, or `p.len()` for `K = 0`).
+#[inline(always)]
+fn pair<const K: usize>(p: &[f64], q: &[f64], job: &Job, m_lo: usize, h: &mut [u64]) {
     let n_eps = job.bins.eps.len();
     let m_min = job.opts.m_min;
+    let mm = if K == 0 { p.len() } else { K };
+    let (p, q) = (&p[..mm], &q[..mm]);
+    // branch-free but for the exit: the running maximum and one table lookup per m
     let mut d = 0.0f64;
-    let mut bin = usize::MAX;
-    for (k, (a, b)) in p.iter().zip(q).enumerate() {
-        let dk = (a - b).abs();
-        if dk > d {
-            d = dk;
-            if d > job.eps_max {
-                return;
-            }
-            bin = usize::MAX;
+    for k in 0..mm {
+        d = d.max((p[k] - q[k]).abs());
+        if d > job.eps_max {
+            return;
         }
         let m = k + 1;
         if m >= m_lo {
-            if bin == usize::MAX {
-                bin = job.bins.bin(d);
-            }
-            h[(m - m_min) * n_eps + bin] += 1;
+            h[(m - m_min) * n_eps + job.bins.bin(d)] += 1;
         }
     }
 }

@@ -400,12 +400,18 @@ fn neighbourhood_means(
 #[derive(Debug, Clone, Copy)]
 enum Simd {
     #[cfg(target_arch = "x86_64")]
+    Avx512,
+    #[cfg(target_arch = "x86_64")]
     Avx2,
     Baseline,
 }
 
 impl Simd {
     fn detect() -> Self {
+        #[cfg(target_arch = "x86_64")]
+        if std::is_x86_feature_detected!("avx512f") {
+            return Simd::Avx512;
+        }
         #[cfg(target_arch = "x86_64")]
         if std::is_x86_feature_detected!("avx2") {
             return Simd::Avx2;
@@ -419,11 +425,23 @@ impl Simd {
     fn scan(self, t: &CellTable, q: &[f64], lo: usize, hi: usize, acc: &mut [f64]) -> u64 {
         match self {
             #[cfg(target_arch = "x86_64")]
+            // SAFETY: `Simd::Avx512` is only constructed after
+            // `is_x86_feature_detected!("avx512f")`.
+            Simd::Avx512 => unsafe { scan_avx512(t, q, lo, hi, acc) },
+            #[cfg(target_arch = "x86_64")]
             // SAFETY: `Simd::Avx2` is only constructed after `is_x86_feature_detected!("avx2")`.
             Simd::Avx2 => unsafe { scan_avx2(t, q, lo, hi, acc) },
             Simd::Baseline => scan_impl(t, q, lo, hi, acc),
         }
     }
+}
+
+/// [`scan_impl`] compiled for AVX-512 (a lane group of 8 f64 in one register; no FMA: the same
+/// sums as the baseline build).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn scan_avx512(t: &CellTable, q: &[f64], lo: usize, hi: usize, acc: &mut [f64]) -> u64 {
+    scan_impl(t, q, lo, hi, acc)
 }
 
 /// [`scan_impl`] compiled for AVX2 (no FMA: the same sums as the baseline build).

@@ -195,6 +195,7 @@ fn run<const K: usize>(s: &[f64], o: &RosensteinOptions, eps0: f64) -> Result<Su
         .collect();
     let tree = ExclusionTree::new(&pts);
     let len = o.steps + 1;
+    let span_k = len + (K - 1) * tau;
     let eps0_2 = eps0 * eps0;
     let parts: Vec<Sums> = (0..n_ref.div_ceil(CHUNK))
         .into_par_iter()
@@ -207,10 +208,12 @@ fn run<const K: usize>(s: &[f64], o: &RosensteinOptions, eps0: f64) -> Result<Su
             let mut tiny = vec![0.0f64; len];
             let mut count = vec![0u64; len];
             let mut d2s = vec![0.0f64; len];
+            let mut e2s = vec![0.0f64; span_k];
             let mut since = 0u32;
             let mut refs = 0usize;
             let mut stack = Vec::with_capacity(64);
             let mut hint = None;
+            let mut prev: Option<(usize, usize)> = None;
             for n in c * CHUNK..((c + 1) * CHUNK).min(n_ref) {
                 let found = tree.nearest(&pts, n, o.theiler, hint, &mut stack);
                 // the previous reference's neighbour, one step on, seeds the next search
@@ -224,17 +227,35 @@ fn run<const K: usize>(s: &[f64], o: &RosensteinOptions, eps0: f64) -> Result<Su
                     continue;
                 }
                 refs += 1;
-                // squared distances of the pair at every Δn, coordinate by coordinate
-                // (contiguous in Δn)
-                d2s.iter_mut().for_each(|v| *v = 0.0);
-                for k in 0..K {
-                    let a = &s[n + k * tau..n + k * tau + len];
-                    let b = &s[j + k * tau..j + k * tau + len];
-                    for ((d, &u), &v) in d2s.iter_mut().zip(a).zip(b) {
-                        let e = u - v;
-                        *d += e * e;
+                // squared distances of the pair at every Δn (contiguous in Δn), each summed in
+                // coordinate order. When the pair is the previous pair one step on (a flow's
+                // neighbours stay neighbours), its distances are the previous ones shifted by
+                // one: the same sums, so only the last is new.
+                if prev == Some((n.wrapping_sub(1), j.wrapping_sub(1))) {
+                    d2s.copy_within(1.., 0);
+                    let t = len - 1;
+                    let mut d = 0.0;
+                    for k in 0..K {
+                        let e = s[n + t + k * tau] - s[j + t + k * tau];
+                        d += e * e;
+                    }
+                    d2s[t] = d;
+                } else {
+                    // the squared differences of the samples once, then summed
+                    let a = &s[n..n + span_k];
+                    let b = &s[j..j + span_k];
+                    for ((e, &u), &v) in e2s.iter_mut().zip(a).zip(b) {
+                        let e1 = u - v;
+                        *e = e1 * e1;
+                    }
+                    d2s.copy_from_slice(&e2s[..len]);
+                    for k in 1..K {
+                        for (d, &e) in d2s.iter_mut().zip(&e2s[k * tau..k * tau + len]) {
+                            *d += e;
+                        }
                     }
                 }
+                prev = Some((n, j));
                 let mut rare = false;
                 for ((p, &d), c) in prod.iter_mut().zip(&d2s).zip(count.iter_mut()) {
                     let ok = d >= PROD_LO;
@@ -304,9 +325,11 @@ const LEAF: usize = 16;
 /// reference's Theiler window and zero distances itself (one descent, pruned by the best
 /// admissible distance so far), instead of asking a general kd-tree for 4, 16, 64, …
 /// neighbours until one lies outside the window.
-struct ExclusionTree {
+struct ExclusionTree<const K: usize> {
     /// Point indices, permuted so that every node's points are contiguous.
     perm: Vec<u32>,
+    /// The points in `perm` order: a leaf's points are read contiguously.
+    sorted: Vec<[f64; K]>,
     nodes: Vec<Node>,
 }
 
@@ -322,10 +345,11 @@ struct Node {
     split: f64,
 }
 
-impl ExclusionTree {
-    fn new<const K: usize>(pts: &[[f64; K]]) -> Self {
+impl<const K: usize> ExclusionTree<K> {
+    fn new(pts: &[[f64; K]]) -> Self {
         let mut t = Self {
             perm: (0..pts.len() as u32).collect(),
+            sorted: Vec::new(),
             nodes: Vec::with_capacity(2 * pts.len() / LEAF + 2),
         };
         let mut lo = [f64::INFINITY; K];
@@ -337,19 +361,13 @@ impl ExclusionTree {
             }
         }
         t.build(pts, 0, pts.len(), lo, hi);
+        t.sorted = t.perm.iter().map(|&j| pts[j as usize]).collect();
         t
     }
 
     /// Builds the node of points `lo..hi` of `perm`, inside the box `bl..bh` (the parent's
     /// box cut at the splits: the widest side of it chooses the split coordinate).
-    fn build<const K: usize>(
-        &mut self,
-        pts: &[[f64; K]],
-        lo: usize,
-        hi: usize,
-        bl: [f64; K],
-        bh: [f64; K],
-    ) -> u32 {
+    fn build(&mut self, pts: &[[f64; K]], lo: usize, hi: usize, bl: [f64; K], bh: [f64; K]) -> u32 {
         let id = self.nodes.len() as u32;
         self.nodes.push(Node {
             lo: lo as u32,
@@ -390,7 +408,7 @@ impl ExclusionTree {
     /// The nearest point j of reference n with `|n − j| > w` and a distance > 0 (squared
     /// Euclidean; ties: the smallest index), its squared distance, and whether an admissible
     /// point lies at distance 0 (an exact duplicate). `hint`: a likely good neighbour.
-    fn nearest<const K: usize>(
+    fn nearest(
         &self,
         pts: &[[f64; K]],
         n: usize,
@@ -399,8 +417,7 @@ impl ExclusionTree {
         stack: &mut Vec<(u32, f64)>,
     ) -> Option<(usize, f64, bool)> {
         let q = &pts[n];
-        let dist = |j: usize| -> f64 {
-            let p = &pts[j];
+        let dist = |p: &[f64; K]| -> f64 {
             let mut d = 0.0;
             for k in 0..K {
                 let e = q[k] - p[k];
@@ -410,7 +427,7 @@ impl ExclusionTree {
         };
         let (mut best, mut best_j) = (f64::INFINITY, usize::MAX);
         if let Some(h) = hint.filter(|&h| h < pts.len() && outside_theiler_window(n, h, w)) {
-            let d = dist(h);
+            let d = dist(&pts[h]);
             if d > 0.0 {
                 (best, best_j) = (d, h);
             }
@@ -424,12 +441,13 @@ impl ExclusionTree {
             }
             let node = self.nodes[id as usize];
             if node.left == 0 {
-                for &j in &self.perm[node.lo as usize..node.hi as usize] {
+                let (lo, hi) = (node.lo as usize, node.hi as usize);
+                for (&j, p) in self.perm[lo..hi].iter().zip(&self.sorted[lo..hi]) {
                     let j = j as usize;
                     if !outside_theiler_window(n, j, w) {
                         continue;
                     }
-                    let d = dist(j);
+                    let d = dist(p);
                     if d == 0.0 {
                         duplicate = true;
                     } else if d < best || (d == best && j < best_j) {

@@ -299,8 +299,10 @@ impl Prepared {
         let mut fwd_scratch = self.forward.make_scratch_vec();
         let mut inv_scratch = self.inverse.make_scratch_vec();
         let mut s = vec![0.0; n];
-        let mut order: Vec<usize> = (0..n).collect();
-        let mut previous: Vec<usize> = Vec::new();
+        // (order key of s_i, i): unique keys, so an unstable sort gives the one order; u32
+        // indices: a series of 2^32 samples would need 32 GB for its spectrum alone
+        let mut keyed: Vec<(u64, u32)> = (0..n as u32).map(|i| (0, i)).collect();
+        let mut previous: Vec<u32> = vec![u32::MAX; n];
         let scale = 1.0 / n as f64;
         let last = spec.len() - 1;
         let mut iterations = 0;
@@ -326,7 +328,8 @@ impl Prepared {
                     *c = Complex::new(sign * a, 0.0);
                     continue;
                 }
-                let norm = c.norm();
+                // |c| without hypot's care for overflow (|c|² is far below f64::MAX here)
+                let norm = (c.re * c.re + c.im * c.im).sqrt();
                 *c = if norm > 0.0 {
                     *c * (a / norm)
                 } else {
@@ -338,15 +341,21 @@ impl Prepared {
                 .expect("DC and Nyquist bins are real");
             s.iter_mut().for_each(|v| *v *= scale);
             // 2. rank-order: the data's values in the order of s
-            order.sort_by(|&i, &j| s[i].total_cmp(&s[j]).then(i.cmp(&j)));
-            for (rank, &i) in order.iter().enumerate() {
-                r[i] = self.sorted[rank];
+            // (ties: the smaller index first)
+            for e in &mut keyed {
+                e.0 = total_order_key(s[e.1 as usize]);
             }
-            if order == previous {
+            keyed.sort_unstable();
+            let mut same = true;
+            for (rank, (&(_, i), p)) in keyed.iter().zip(&mut previous).enumerate() {
+                r[i as usize] = self.sorted[rank];
+                same &= *p == i;
+                *p = i;
+            }
+            if same {
                 converged = true;
                 break;
             }
-            previous.clone_from(&order);
         }
         let rms = (s
             .iter()
@@ -362,6 +371,12 @@ impl Prepared {
             discrepancy: rms / self.std,
         }
     }
+}
+
+/// A `u64` whose unsigned order is [`f64::total_cmp`]'s order of `v`.
+fn total_order_key(v: f64) -> u64 {
+    let b = v.to_bits();
+    b ^ ((((b as i64) >> 63) as u64) | (1 << 63))
 }
 
 /// A Fisher–Yates permutation of `x` drawn from `rng`.
@@ -524,6 +539,29 @@ mod tests {
         let mut s = v.to_vec();
         s.sort_by(f64::total_cmp);
         s
+    }
+
+    #[test]
+    fn order_key_is_total_cmp() {
+        let v = [
+            f64::NEG_INFINITY,
+            -3.5,
+            -1e-300,
+            -0.0,
+            0.0,
+            1e-300,
+            2.0,
+            f64::INFINITY,
+        ];
+        for a in v {
+            for b in v {
+                assert_eq!(
+                    total_order_key(a).cmp(&total_order_key(b)),
+                    a.total_cmp(&b),
+                    "{a} {b}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -278,7 +278,8 @@ pub fn parse_table(
     let mut rows = 0usize;
     let mut line = String::new();
     let mut lineno = 0usize;
-    let mut fields: Vec<String> = Vec::new();
+    // byte ranges of the fields of the current line (no allocation per line)
+    let mut fields: Vec<(usize, usize)> = Vec::new();
     loop {
         line.clear();
         let read = reader
@@ -314,7 +315,7 @@ pub fn parse_table(
                 layout.as_ref().expect("set above")
             }
         };
-        split_into(trimmed, lay.delimiter, &mut fields);
+        field_ranges(trimmed, lay.delimiter, &mut fields);
         if fields.len() != lay.fields {
             return Err(malformed(
                 lineno,
@@ -323,7 +324,8 @@ pub fn parse_table(
         }
         for (k, column) in raw.iter_mut().enumerate() {
             if let Some(column) = column {
-                column.push(parse_field(&fields[k], k, opts).map_err(|m| malformed(lineno, m))?);
+                let field = &trimmed[fields[k].0..fields[k].1];
+                column.push(parse_field(field, k, opts).map_err(|m| malformed(lineno, m))?);
             }
         }
         rows += 1;
@@ -423,6 +425,22 @@ fn split_into(line: &str, d: Delimiter, out: &mut Vec<String>) {
         Delimiter::Comma => out.extend(line.split(',').map(|f| f.trim().to_string())),
         Delimiter::Semicolon => out.extend(line.split(';').map(|f| f.trim().to_string())),
         Delimiter::Tab => out.extend(line.split('\t').map(|f| f.trim().to_string())),
+    }
+}
+
+/// The byte ranges in `line` of the fields [`split_into`] would give.
+fn field_ranges(line: &str, d: Delimiter, out: &mut Vec<(usize, usize)>) {
+    out.clear();
+    let base = line.as_ptr() as usize;
+    let range = |f: &str| {
+        let at = f.as_ptr() as usize - base;
+        (at, at + f.len())
+    };
+    match d {
+        Delimiter::Whitespace => out.extend(line.split_whitespace().map(range)),
+        Delimiter::Comma => out.extend(line.split(',').map(|f| range(f.trim()))),
+        Delimiter::Semicolon => out.extend(line.split(';').map(|f| range(f.trim()))),
+        Delimiter::Tab => out.extend(line.split('\t').map(|f| range(f.trim()))),
     }
 }
 
@@ -585,6 +603,23 @@ fn resolve_column(c: &Column, header: Option<&[String]>, fields: usize) -> Resul
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn field_ranges_are_the_fields() {
+        let cases = [
+            ("1.5  -2e3\t7", Delimiter::Whitespace),
+            ("1.5, -2e3 ,,7", Delimiter::Comma),
+            (" a ;b;  c", Delimiter::Semicolon),
+            ("1\t 2 \t3", Delimiter::Tab),
+        ];
+        for (line, d) in cases {
+            let (mut want, mut got) = (Vec::new(), Vec::new());
+            split_into(line, d, &mut want);
+            field_ranges(line, d, &mut got);
+            let got: Vec<&str> = got.iter().map(|&(a, b)| &line[a..b]).collect();
+            assert_eq!(got, want, "{line:?}");
+        }
+    }
 
     fn opts(cols: &[&str]) -> SeriesReadOptions {
         SeriesReadOptions {

@@ -6,6 +6,7 @@ use std::io::Write;
 use anyhow::Context;
 
 use crate::cli::commands::mutual::SeriesInput;
+use crate::cli::commands::tisean_args::Delay;
 use pdamp::analysis::cao::{cao, CaoOptions};
 
 /// Arguments of `pdamp cao`.
@@ -15,6 +16,7 @@ use pdamp::analysis::cao::{cao, CaoOptions};
 /// with E1 ≥ --saturation and a change < --flatness to the next m) goes to stderr, with a
 /// note when E2 stays near 1 (no evidence of determinism).
 #[derive(Debug, clap::Args)]
+#[command(mut_arg("tau", |a| a.help("Delay τ in samples; use the first minimum of `pdamp mutual`")))]
 pub struct Args {
     /// Input series.
     #[command(flatten)]
@@ -27,14 +29,9 @@ pub struct Args {
         help_heading = "Estimator"
     )]
     pub m_max: usize,
-    /// Delay τ in samples; use the first minimum of `pdamp mutual`.
-    #[arg(
-        short = 'd',
-        long = "delay",
-        default_value_t = 1,
-        help_heading = "Estimator"
-    )]
-    pub tau: usize,
+    /// Delay τ (-d; help below).
+    #[command(flatten)]
+    pub delay: Delay,
     /// Theiler window in samples (neighbours must be more than this apart in time). Use at
     /// least τ for flows.
     #[arg(
@@ -57,7 +54,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let x = args.input.read()?;
     let opts = CaoOptions {
         m_max: args.m_max,
-        tau: args.tau,
+        tau: args.delay.tau,
         theiler: args.theiler,
         saturation: args.saturation,
         flatness: args.flatness,

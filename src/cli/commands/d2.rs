@@ -7,6 +7,7 @@ use anyhow::Context;
 
 use crate::cli::commands::fnn::parse_max_dim;
 use crate::cli::commands::mutual::SeriesInput;
+use crate::cli::commands::tisean_args::{Delay, Radii};
 use pdamp::analysis::correlation_dimension::{
     correlation_sum, estimate_d2, D2Options, PlateauOptions,
 };
@@ -24,6 +25,15 @@ use pdamp::analysis::correlation_dimension::{
 /// -M1,10 -d1 -t0, ε from interval/1000 to interval in 100 steps), except that every pair
 /// is counted (TISEAN's -N0).
 #[derive(Debug, clap::Args)]
+#[command(
+    mut_arg("eps_min", |a| a.help("Smallest ε in data units (TISEAN -r). Default: interval/1000")),
+    mut_arg("eps_max", |a| a.help(
+        "Largest ε in data units (TISEAN -R). Default: the data interval max − min"
+    )),
+    mut_arg("eps_count", |a| a
+        .help("Number of ε, log-spaced (TISEAN -#)")
+        .default_value("100"))
+)]
 pub struct Args {
     /// Input series.
     #[command(flatten)]
@@ -44,14 +54,9 @@ pub struct Args {
         help_heading = "Estimator"
     )]
     pub m_max: String,
-    /// Delay τ in samples (TISEAN -d).
-    #[arg(
-        short = 'd',
-        long = "delay",
-        default_value_t = 1,
-        help_heading = "Estimator"
-    )]
-    pub tau: usize,
+    /// Delay τ (TISEAN -d).
+    #[command(flatten)]
+    pub delay: Delay,
     /// Theiler window in samples: pairs closer in time are not counted (TISEAN -t). Use at
     /// least the autocorrelation time for flows.
     #[arg(
@@ -61,20 +66,9 @@ pub struct Args {
         help_heading = "Estimator"
     )]
     pub theiler: usize,
-    /// Smallest ε in data units (TISEAN -r). Default: interval/1000.
-    #[arg(short = 'r', long = "eps-min", help_heading = "Estimator")]
-    pub eps_min: Option<f64>,
-    /// Largest ε in data units (TISEAN -R). Default: the data interval max − min.
-    #[arg(short = 'R', long = "eps-max", help_heading = "Estimator")]
-    pub eps_max: Option<f64>,
-    /// Number of ε, log-spaced (TISEAN -#).
-    #[arg(
-        short = '#',
-        long = "eps-count",
-        default_value_t = 100,
-        help_heading = "Estimator"
-    )]
-    pub eps_count: usize,
+    /// Radii -r -R -# (TISEAN), 100 by default.
+    #[command(flatten)]
+    pub radii: Radii,
     /// Plateau search: radii with fewer pairs are ignored.
     #[arg(long, default_value_t = 1000, help_heading = "Plateau")]
     pub min_pairs: u64,
@@ -92,11 +86,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let opts = D2Options {
         m_min: args.m_min,
         m_max: parse_max_dim(&args.m_max)?,
-        tau: args.tau,
+        tau: args.delay.tau,
         theiler: args.theiler,
-        eps_min: args.eps_min,
-        eps_max: args.eps_max,
-        eps_count: args.eps_count,
+        eps_min: args.radii.eps_min,
+        eps_max: args.radii.eps_max,
+        eps_count: args.radii.count(),
     };
     let sums = correlation_sum(&x, &opts)
         .with_context(|| format!("correlation sum of {}", args.input.file))?;

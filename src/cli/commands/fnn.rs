@@ -5,6 +5,7 @@ use std::io::Write;
 use anyhow::{bail, Context};
 
 use crate::cli::commands::mutual::SeriesInput;
+use crate::cli::commands::tisean_args::Delay;
 use pdamp::analysis::false_nearest_neighbors::suggested_dimension;
 use pdamp::analysis::{false_nearest_neighbors, FnnOptions};
 
@@ -22,6 +23,7 @@ use pdamp::analysis::{false_nearest_neighbors, FnnOptions};
 /// shortens the index ranges). `--tisean` switches to TISEAN's defaults and its vectors
 /// (explicit flags still win), and then the numbers match TISEAN's.
 #[derive(Debug, clap::Args)]
+#[command(mut_arg("tau", |a| a.help("Delay τ in samples (TISEAN -d); use the first minimum of `pdamp mutual`")))]
 pub struct Args {
     /// Input series.
     #[command(flatten)]
@@ -33,14 +35,9 @@ pub struct Args {
     /// Default 6 (TISEAN: 5).
     #[arg(short = 'M', long = "max-dim", help_heading = "Estimator")]
     pub m_max: Option<String>,
-    /// Delay τ in samples (TISEAN -d); use the first minimum of `pdamp mutual`.
-    #[arg(
-        short = 'd',
-        long = "delay",
-        default_value_t = 1,
-        help_heading = "Estimator"
-    )]
-    pub tau: usize,
+    /// Delay τ (-d; help below).
+    #[command(flatten)]
+    pub delay: Delay,
     /// Escape ratio f: the neighbour is false if the distance grows by more than f. Default
     /// 10 (Kennel et al.); TISEAN: 2.
     #[arg(short = 'f', long = "ratio", help_heading = "Estimator")]
@@ -84,7 +81,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             Some(s) => parse_max_dim(s)?,
             None => base.m_max,
         },
-        tau: args.tau,
+        tau: args.delay.tau,
         ratio: args.ratio.unwrap_or(base.ratio),
         theiler: args.theiler.or(base.theiler),
         vectors: base.vectors,

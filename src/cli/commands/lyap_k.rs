@@ -5,6 +5,7 @@ use std::io::Write;
 use anyhow::Context;
 
 use crate::cli::commands::mutual::SeriesInput;
+use crate::cli::commands::tisean_args::{Delay, Radii};
 use pdamp::analysis::kantz::{
     estimate_from_curves, fit_scaling_region, kantz, KantzDefinition, KantzOptions, ScalingOptions,
 };
@@ -31,6 +32,12 @@ pub enum Definition {
 /// window of one delay (TISEAN: 0) and the mean of distances (TISEAN: RMS); `--tisean`
 /// restores TISEAN's choices, after which S matches TISEAN number for number.
 #[derive(Debug, clap::Args)]
+#[command(
+    mut_arg("eps_max", |a| a.help(
+        "Largest radius ε in data units (TISEAN -R). Default: (max − min)/100"
+    )),
+    mut_arg("eps_count", |a| a.default_value("5"))
+)]
 pub struct Args {
     /// Input series.
     #[command(flatten)]
@@ -51,28 +58,12 @@ pub struct Args {
         help_heading = "Estimator"
     )]
     pub m_max: usize,
-    /// Delay τ in samples (TISEAN -d).
-    #[arg(
-        short = 'd',
-        long = "delay",
-        default_value_t = 1,
-        help_heading = "Estimator"
-    )]
-    pub tau: usize,
-    /// Smallest radius ε in data units (TISEAN -r). Default: (max − min)/1000.
-    #[arg(short = 'r', long = "eps-min", help_heading = "Estimator")]
-    pub eps_min: Option<f64>,
-    /// Largest radius ε in data units (TISEAN -R). Default: (max − min)/100.
-    #[arg(short = 'R', long = "eps-max", help_heading = "Estimator")]
-    pub eps_max: Option<f64>,
-    /// Number of radii, log-spaced (TISEAN -#).
-    #[arg(
-        short = '#',
-        long = "eps-count",
-        default_value_t = 5,
-        help_heading = "Estimator"
-    )]
-    pub eps_count: usize,
+    /// Delay τ (TISEAN -d).
+    #[command(flatten)]
+    pub delay: Delay,
+    /// Radii -r -R -# (TISEAN), 5 by default.
+    #[command(flatten)]
+    pub radii: Radii,
     /// Largest Δn in samples (TISEAN -s).
     #[arg(
         short = 's',
@@ -125,10 +116,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let opts = KantzOptions {
         m_min,
         m_max,
-        tau: args.tau,
-        eps_min: args.eps_min,
-        eps_max: args.eps_max,
-        eps_count: args.eps_count,
+        tau: args.delay.tau,
+        eps_min: args.radii.eps_min,
+        eps_max: args.radii.eps_max,
+        eps_count: args.radii.count(),
         references: args.references,
         steps: args.steps,
         theiler: args.theiler.or(base.theiler),

@@ -5,6 +5,7 @@ use std::io::Write;
 use anyhow::Context;
 
 use crate::cli::commands::mutual::SeriesInput;
+use crate::cli::commands::tisean_args::Delay;
 use pdamp::analysis::kantz::{fit_scaling_region, ScalingOptions};
 use pdamp::analysis::rosenstein::{rosenstein, RosensteinOptions};
 
@@ -31,14 +32,9 @@ pub struct Args {
         help_heading = "Estimator"
     )]
     pub m: usize,
-    /// Delay τ in samples (TISEAN -d).
-    #[arg(
-        short = 'd',
-        long = "delay",
-        default_value_t = 1,
-        help_heading = "Estimator"
-    )]
-    pub tau: usize,
+    /// Delay τ (TISEAN -d).
+    #[command(flatten)]
+    pub delay: Delay,
     /// Theiler window in samples (TISEAN -t); about one mean period for flows.
     #[arg(
         short = 't',
@@ -72,7 +68,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let x = args.input.read()?;
     let opts = RosensteinOptions {
         m: args.m,
-        tau: args.tau,
+        tau: args.delay.tau,
         theiler: args.theiler,
         eps0: args.eps0,
         steps: args.steps,

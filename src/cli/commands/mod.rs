@@ -23,5 +23,6 @@ pub mod spectrum;
 pub mod surrogate_test;
 pub mod surrogates;
 pub mod sweep;
+pub mod tisean_args;
 pub mod tisean_flags;
 pub mod tradeoff;

@@ -5,6 +5,7 @@ use std::io::Write;
 use anyhow::{bail, Context};
 
 use crate::cli::commands::mutual::SeriesInput;
+use crate::cli::commands::tisean_args::Delay;
 use pdamp::analysis::recurrence::{rqa, RecurrenceOptions, RecurrenceThreshold, DEFAULT_MAX_LEN};
 
 /// Arguments of `pdamp rqa`.
@@ -15,6 +16,7 @@ use pdamp::analysis::recurrence::{rqa, RecurrenceOptions, RecurrenceThreshold, D
 /// matrix is never stored (O(N) memory, O(N²) time); series longer than --max-len are
 /// refused.
 #[derive(Debug, clap::Args)]
+#[command(mut_arg("tau", |a| a.help("Delay τ in samples")))]
 pub struct Args {
     /// Input series.
     #[command(flatten)]
@@ -27,14 +29,9 @@ pub struct Args {
         help_heading = "Estimator"
     )]
     pub m: usize,
-    /// Delay τ in samples.
-    #[arg(
-        short = 'd',
-        long = "delay",
-        default_value_t = 1,
-        help_heading = "Estimator"
-    )]
-    pub tau: usize,
+    /// Delay τ (-d; help below).
+    #[command(flatten)]
+    pub delay: Delay,
     /// Theiler window w: entries with |i − j| ≤ w are excluded (0: the line of identity).
     #[arg(
         short = 't',
@@ -86,7 +83,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let x = args.input.read()?;
     let opts = RecurrenceOptions {
         m: args.m,
-        tau: args.tau,
+        tau: args.delay.tau,
         theiler: args.theiler,
         threshold: threshold(args.eps, args.rate)?,
         l_min: args.l_min,
