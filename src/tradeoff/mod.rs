@@ -2,10 +2,10 @@
 //! is against a converged reference, measured on stored sweep points; the Pareto fronts; and
 //! `[damper] kind = "auto"`, which picks the cheapest setting that meets a scene's `[outputs]`.
 //!
-//! Pipeline: [`ladder`] (the settings, each one change to the reference scene) → [`plan`]
+//! Pipeline: [`ladder`](mod@ladder) (the settings, each one change to the reference scene) → [`plan`]
 //! (frequencies, where points live) → [`compute`] (the missing points, as resumable sweeps)
 //! → [`observed`] (each rung's stored point at each frequency, or why there is none) →
-//! [`study`] (errors, resonance, M_ef/C_ef, verdicts, cost; [`metrics`], [`pareto`]) →
+//! [`study`](mod@study) (errors, resonance, M_ef/C_ef, verdicts, cost; [`metrics`], [`pareto`]) →
 //! [`table`] (`tradeoff.csv`, `tradeoff_settings.csv`) → [`auto`] (model choice) →
 //! [`report`] (`TRADEOFF.md`: what to use for what).
 
