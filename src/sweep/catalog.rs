@@ -124,6 +124,15 @@ impl Catalog {
     }
 }
 
+/// The values of the varied key `key` of the sweep stored in `dir` (its `sweep.json`), in sweep
+/// order; `None` if `dir` holds no sweep or `key` was not varied there.
+pub fn stored_values(dir: &Path, key: &str) -> Option<Vec<toml::Value>> {
+    let manifest = Manifest::read(dir).ok()?;
+    let (_, keys, _) = manifest.identity().ok()?;
+    let i = keys.iter().position(|k| k == key)?;
+    manifest.values().into_iter().nth(i)
+}
+
 fn collect_sweep_dirs(dir: &Path, depth: usize, out: &mut Vec<PathBuf>) {
     if dir.join("sweep.json").is_file() {
         out.push(dir.to_path_buf());

@@ -86,16 +86,9 @@ fn sweep_dir(home: &Path, missing: &[f64]) -> (PathBuf, Vec<f64>) {
 
 /// The frequencies of the sweep stored in `dir` (`sweep.json`), if there is one.
 fn stored_frequencies(dir: &Path) -> Option<Vec<f64>> {
-    let text = std::fs::read_to_string(dir.join("sweep.json")).ok()?;
-    let v: serde_json::Value = serde_json::from_str(&text).ok()?;
-    let vary = v.get("vary")?.as_array()?;
-    let (_, values) = vary
+    crate::sweep::catalog::stored_values(dir, super::plan::FREQUENCY_KEY)?
         .iter()
-        .filter_map(|kv| Some((kv.get(0)?.as_str()?, kv.get(1)?.as_array()?)))
-        .find(|(k, _)| *k == super::plan::FREQUENCY_KEY)?;
-    values
-        .iter()
-        .map(|x| x.as_str()?.parse::<f64>().ok())
+        .map(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
         .collect()
 }
 
