@@ -3,7 +3,8 @@
 //!
 //! A contact is a [`ContactGeometry`] (overlap ζ, unit normal n, relative velocity) plus a
 //! normal law and a tangential law. The kernels are pure functions of the geometry; the laws'
-//! coefficients for a pair (k_n, damping) come from [`material`] mixing. The hot loop of
+//! coefficients for a pair (k_n, damping) come from [`material`] mixing ([`mixing`]:
+//! [`ContactModel::coefficients`]). The hot loop of
 //! [`crate::dem`] matches the enums once per step and runs a monomorphised loop.
 
 pub mod coulomb_viscous;
@@ -11,6 +12,7 @@ pub mod hertz_kuwabara_kono;
 pub mod lanes;
 pub mod linear_spring_dashpot;
 pub mod material;
+pub mod mixing;
 pub mod response;
 pub mod restitution;
 
