@@ -13,48 +13,13 @@
 //! R_i + R_j + skin; it stays valid while every grain has moved less than skin/2 relative to
 //! a common shift (the box displacement), because a common translation does not change any
 //! pair distance: |Δr_ij| ≤ |d_i − s| + |d_j − s|.
+//!
+//! Here the list and its cells; the pair search in `pair_search.rs`, the Morton codes and
+//! hash tables in `morton.rs`, [`Pair`] in `pair.rs`.
 
-/// One candidate pair of grains (indices into the grain arrays), i ≠ j.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Pair {
-    /// First grain.
-    pub i: u32,
-    /// Second grain.
-    pub j: u32,
-}
+pub use super::pair::{index_by_grain, Pair, J_ROLE};
 
-/// Bit set in the entries of [`index_by_grain`] where the grain is the pair's `j`.
-pub const J_ROLE: u32 = 1 << 31;
-
-/// Per-grain index of `pairs` of `n` grains (counting sort, pair order kept): grain g's
-/// entries are `items[start[g]..start[g + 1]]`, each a pair index with [`J_ROLE`] set where g
-/// is the pair's `j`. Reuses the buffers.
-pub fn index_by_grain(pairs: &[Pair], n: usize, start: &mut Vec<u32>, items: &mut Vec<u32>) {
-    start.clear();
-    start.resize(n + 1, 0);
-    for p in pairs {
-        start[p.i as usize + 1] += 1;
-        start[p.j as usize + 1] += 1;
-    }
-    for g in 0..n {
-        start[g + 1] += start[g];
-    }
-    items.clear();
-    items.resize(2 * pairs.len(), 0);
-    // fill, using start[g] as g's cursor, then shift the ends back into starts
-    for (k, p) in pairs.iter().enumerate() {
-        let (i, j) = (p.i as usize, p.j as usize);
-        items[start[i] as usize] = k as u32;
-        start[i] += 1;
-        items[start[j] as usize] = k as u32 | J_ROLE;
-        start[j] += 1;
-    }
-    // start[g] now holds the end of g = the start of g + 1: shift back
-    for g in (1..=n).rev() {
-        start[g] = start[g - 1];
-    }
-    start[0] = 0;
-}
+use super::morton::{compact2, compact3, fill_hash, find_hashed, spread2, spread3};
 
 /// Verlet neighbour list built with a sorted (hashed) cell list: only occupied cells are
 /// stored, so its memory is O(N) whatever the box volume.
@@ -62,31 +27,31 @@ pub fn index_by_grain(pairs: &[Pair], n: usize, start: &mut Vec<u32>, items: &mu
 pub struct NeighborList {
     /// Candidate pairs (valid until [`NeighborList::needs_rebuild`] says otherwise).
     pub pairs: Vec<Pair>,
-    skin_m: f64,
-    box_m: [f64; 3],
-    dims: [usize; 3],
-    inv_cell: [f64; 3],
+    pub(super) skin_m: f64,
+    pub(super) box_m: [f64; 3],
+    pub(super) dims: [usize; 3],
+    pub(super) inv_cell: [f64; 3],
     /// (cell key, grain) sorted by key then grain.
-    keyed: Vec<(u64, u32)>,
+    pub(super) keyed: Vec<(u64, u32)>,
     /// Keys of the occupied cells, ascending.
-    cell_keys: Vec<u64>,
+    pub(super) cell_keys: Vec<u64>,
     /// Start of each occupied cell's grains in `keyed` (one more entry than cells).
-    cell_start: Vec<u32>,
+    pub(super) cell_start: Vec<u32>,
     /// Open-addressing hash table of the occupied cells (a power of two ≥ 2 × cells
     /// slots): a slot holds 1 + the cell's index in `cell_keys`, 0 when empty.
-    cell_table: Vec<u32>,
+    pub(super) cell_table: Vec<u32>,
     /// [`Curve::Columns`] only: the occupied columns' codes (key >> 21), ascending, and the
     /// start of each column's cells in `cell_keys` (one more entry than columns).
-    col_keys: Vec<u64>,
-    col_start: Vec<u32>,
+    pub(super) col_keys: Vec<u64>,
+    pub(super) col_start: Vec<u32>,
     /// Open-addressing hash table of the occupied columns (as `cell_table`).
-    col_table: Vec<u32>,
-    ref_pos: Vec<[f64; 3]>,
-    ref_shift: [f64; 3],
+    pub(super) col_table: Vec<u32>,
+    pub(super) ref_pos: Vec<[f64; 3]>,
+    pub(super) ref_shift: [f64; 3],
     /// Number of (re)builds so far.
     pub builds: u64,
     /// The space-filling curve of the cell keys.
-    curve: Curve,
+    pub(super) curve: Curve,
 }
 
 /// The space-filling curve the cells (and grains) are stored along.
@@ -182,7 +147,7 @@ impl NeighborList {
 
     /// Key of cell `c` along the list's [`Curve`].
     #[inline]
-    fn key(&self, c: [usize; 3]) -> u64 {
+    pub(super) fn key(&self, c: [usize; 3]) -> u64 {
         match self.curve {
             Curve::Morton => {
                 spread3(c[0] as u64) | (spread3(c[1] as u64) << 1) | (spread3(c[2] as u64) << 2)
@@ -196,7 +161,7 @@ impl NeighborList {
 
     /// The cell of `key` (inverse of [`NeighborList::key`]).
     #[inline]
-    fn cell_of(&self, key: u64) -> [usize; 3] {
+    pub(super) fn cell_of(&self, key: u64) -> [usize; 3] {
         match self.curve {
             Curve::Morton => [compact3(key), compact3(key >> 1), compact3(key >> 2)],
             Curve::Columns => [compact2(key >> 21), compact2(key >> 22), key & 0x1f_ffff],
@@ -320,160 +285,6 @@ impl NeighborList {
         out.push(cells);
     }
 
-    /// Appends to `out` the candidate pairs whose first grain lies in the occupied cells
-    /// `cells` (indices in curve order, after [`NeighborList::prepare`]), in list order: the
-    /// lists of consecutive runs of cells, concatenated, are the list of the whole.
-    pub fn pairs_of_cells(
-        &self,
-        cells: std::ops::Range<usize>,
-        pos: &[[f64; 3]],
-        radius: &[f64],
-        out: &mut Vec<Pair>,
-    ) {
-        match self.curve {
-            Curve::Morton => self.pairs_by_hash(cells, pos, radius, out),
-            Curve::Columns => self.pairs_by_columns(cells, pos, radius, out),
-        }
-    }
-
-    /// [`NeighborList::pairs_of_cells`] with one hash lookup per neighbour cell.
-    fn pairs_by_hash(
-        &self,
-        cells: std::ops::Range<usize>,
-        pos: &[[f64; 3]],
-        radius: &[f64],
-        out: &mut Vec<Pair>,
-    ) {
-        let [nx, ny, nz] = self.dims;
-        for c in cells {
-            let key = self.cell_keys[c];
-            let [cx, cy, cz] = self.cell_of(key);
-            for (dx, dy, dz) in HALF_STENCIL {
-                let (x, y, z) = (cx as isize + dx, cy as isize + dy, cz as isize + dz);
-                if x < 0 || y < 0 || z < 0 {
-                    continue;
-                }
-                let (x, y, z) = (x as usize, y as usize, z as usize);
-                if x >= nx || y >= ny || z >= nz {
-                    continue;
-                }
-                let same = (dx, dy, dz) == (0, 0, 0);
-                let c2 = if same {
-                    c
-                } else {
-                    match self.find_cell(self.key([x, y, z])) {
-                        Some(c2) => c2,
-                        None => continue,
-                    }
-                };
-                self.cell_pairs(c, c2, (pos, radius), out);
-            }
-        }
-    }
-
-    /// [`NeighborList::pairs_of_cells`] for [`Curve::Columns`]: one hash lookup per
-    /// neighbour *column* (9 per column), then each neighbour cell found by a cursor that
-    /// walks up its column as the cells of this column go up. The same pairs in the same
-    /// order as [`NeighborList::pairs_by_hash`] (unit test), for a fraction of the lookups.
-    fn pairs_by_columns(
-        &self,
-        cells: std::ops::Range<usize>,
-        pos: &[[f64; 3]],
-        radius: &[f64],
-        out: &mut Vec<Pair>,
-    ) {
-        if cells.is_empty() {
-            return;
-        }
-        let [nx, ny, _] = self.dims;
-        let z_of = |c: usize| self.cell_keys[c] & Z_MASK;
-        // the column of the run's first cell
-        let mut col = self
-            .col_start
-            .partition_point(|&s| s as usize <= cells.start)
-            - 1;
-        while col + 1 < self.col_start.len() && (self.col_start[col] as usize) < cells.end {
-            let (c0, c1) = (
-                (self.col_start[col] as usize).max(cells.start),
-                (self.col_start[col + 1] as usize).min(cells.end),
-            );
-            let [cx, cy, _] = self.cell_of(self.cell_keys[c0]);
-            // per (dx, dy) ∈ {−1, 0, 1}²: the neighbour column's cells, as [cursor, end)
-            let mut cursor = [(0usize, 0usize); 9];
-            for (k, cur) in cursor.iter_mut().enumerate() {
-                let (x, y) = (
-                    cx as isize + k as isize % 3 - 1,
-                    cy as isize + k as isize / 3 - 1,
-                );
-                if x < 0 || y < 0 || x as usize >= nx || y as usize >= ny {
-                    continue;
-                }
-                let code = spread2(x as u64) | (spread2(y as u64) << 1);
-                if let Some(q) = self.find_column(code) {
-                    *cur = (self.col_start[q] as usize, self.col_start[q + 1] as usize);
-                }
-            }
-            for c in c0..c1 {
-                let z = z_of(c);
-                for (dx, dy, dz) in HALF_STENCIL {
-                    let c2 = if (dx, dy, dz) == (0, 0, 0) {
-                        c
-                    } else {
-                        let (cur, end) = &mut cursor[((dy + 1) * 3 + dx + 1) as usize];
-                        while *cur < *end && z_of(*cur) < z {
-                            *cur += 1;
-                        }
-                        // the first cell at z or above; one further for z + 1
-                        let mut q = *cur;
-                        if dz == 1 && q < *end && z_of(q) == z {
-                            q += 1;
-                        }
-                        if q >= *end || z_of(q) != z + dz as u64 {
-                            continue;
-                        }
-                        q
-                    };
-                    self.cell_pairs(c, c2, (pos, radius), out);
-                }
-            }
-            col += 1;
-        }
-    }
-
-    /// The candidate pairs (i in cell `c`, j in cell `c2`; i before j when `c2 == c`).
-    #[inline]
-    fn cell_pairs(
-        &self,
-        c: usize,
-        c2: usize,
-        (pos, radius): (&[[f64; 3]], &[f64]),
-        out: &mut Vec<Pair>,
-    ) {
-        let skin = self.skin_m;
-        let same = c == c2;
-        let (a0, a1) = (self.cell_start[c] as usize, self.cell_start[c + 1] as usize);
-        let (b0, b1) = (
-            self.cell_start[c2] as usize,
-            self.cell_start[c2 + 1] as usize,
-        );
-        for a in a0..a1 {
-            let i = self.keyed[a].1 as usize;
-            let (pi, ri) = (pos[i], radius[i]);
-            let start = if same { a + 1 } else { b0 };
-            for b in start..b1 {
-                let j = self.keyed[b].1 as usize;
-                let d = [pi[0] - pos[j][0], pi[1] - pos[j][1], pi[2] - pos[j][2]];
-                let cut = ri + radius[j] + skin;
-                if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < cut * cut {
-                    out.push(Pair {
-                        i: i as u32,
-                        j: j as u32,
-                    });
-                }
-            }
-        }
-    }
-
     /// Fills the column list and its table from `cell_keys` ([`Curve::Columns`] only).
     fn fill_columns(&mut self) {
         self.col_keys.clear();
@@ -494,7 +305,7 @@ impl NeighborList {
 
     /// Index in `col_keys` of the occupied column `code`, if any.
     #[inline]
-    fn find_column(&self, code: u64) -> Option<usize> {
+    pub(super) fn find_column(&self, code: u64) -> Option<usize> {
         find_hashed(&self.col_keys, &self.col_table, code)
     }
 
@@ -506,7 +317,7 @@ impl NeighborList {
     /// Index in `cell_keys` of the occupied cell of key `key`, if any (expected O(1): the
     /// table is at most half full).
     #[inline]
-    fn find_cell(&self, key: u64) -> Option<usize> {
+    pub(super) fn find_cell(&self, key: u64) -> Option<usize> {
         find_hashed(&self.cell_keys, &self.cell_table, key)
     }
 
@@ -515,112 +326,6 @@ impl NeighborList {
         self.box_m
     }
 }
-
-/// The height bits of a [`Curve::Columns`] key.
-const Z_MASK: u64 = 0x1f_ffff;
-
-/// An open-addressing hash table of the distinct `keys` (a power of two ≥ 2 × keys slots):
-/// a slot holds 1 + the key's index in `keys`, 0 when empty.
-fn fill_hash(keys: &[u64], table: &mut Vec<u32>) {
-    let slots = (2 * keys.len()).next_power_of_two().max(2);
-    table.clear();
-    table.resize(slots, 0);
-    let mask = slots - 1;
-    for (c, &k) in keys.iter().enumerate() {
-        let mut s = slot_of(k, mask);
-        while table[s] != 0 {
-            s = (s + 1) & mask;
-        }
-        table[s] = c as u32 + 1;
-    }
-}
-
-/// Index in `keys` of `key` through its [`fill_hash`] table, if present.
-#[inline]
-fn find_hashed(keys: &[u64], table: &[u32], key: u64) -> Option<usize> {
-    let mask = table.len() - 1;
-    let mut s = slot_of(key, mask);
-    loop {
-        match table[s] {
-            0 => return None,
-            e if keys[e as usize - 1] == key => return Some(e as usize - 1),
-            _ => s = (s + 1) & mask,
-        }
-    }
-}
-
-/// Home slot of cell key `key` in a table of `mask + 1` slots (Fibonacci hashing: the high
-/// bits of key × 2⁶⁴/φ, which spread the Morton codes of neighbouring cells).
-#[inline]
-fn slot_of(key: u64, mask: usize) -> usize {
-    (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 32) as usize & mask
-}
-
-/// The 21 low bits of `x` spread to every second bit (from bit 0).
-#[inline]
-fn spread2(x: u64) -> u64 {
-    let mut x = x & 0x1f_ffff;
-    x = (x | (x << 16)) & 0x0000_ffff_0000_ffff;
-    x = (x | (x << 8)) & 0x00ff_00ff_00ff_00ff;
-    x = (x | (x << 4)) & 0x0f0f_0f0f_0f0f_0f0f;
-    x = (x | (x << 2)) & 0x3333_3333_3333_3333;
-    x = (x | (x << 1)) & 0x5555_5555_5555_5555;
-    x
-}
-
-/// Inverse of [`spread2`]: every second bit of `x` (from bit 0) packed into 21 bits.
-#[inline]
-fn compact2(x: u64) -> u64 {
-    let mut x = x & 0x5555_5555_5555_5555;
-    x = (x | (x >> 1)) & 0x3333_3333_3333_3333;
-    x = (x | (x >> 2)) & 0x0f0f_0f0f_0f0f_0f0f;
-    x = (x | (x >> 4)) & 0x00ff_00ff_00ff_00ff;
-    x = (x | (x >> 8)) & 0x0000_ffff_0000_ffff;
-    x = (x | (x >> 16)) & 0x0000_0000_ffff_ffff;
-    x & 0x1f_ffff
-}
-
-/// The low 21 bits of `x` spread to every third bit (bit k → bit 3k).
-#[inline]
-fn spread3(x: u64) -> u64 {
-    let mut x = x & 0x1f_ffff;
-    x = (x | (x << 32)) & 0x001f_0000_0000_ffff;
-    x = (x | (x << 16)) & 0x001f_0000_ff00_00ff;
-    x = (x | (x << 8)) & 0x100f_00f0_0f00_f00f;
-    x = (x | (x << 4)) & 0x10c3_0c30_c30c_30c3;
-    x = (x | (x << 2)) & 0x1249_2492_4924_9249;
-    x
-}
-
-/// Inverse of [`spread3`]: every third bit of `x` (from bit 0) packed into 21 bits.
-#[inline]
-fn compact3(x: u64) -> u64 {
-    let mut x = x & 0x1249_2492_4924_9249;
-    x = (x | (x >> 2)) & 0x10c3_0c30_c30c_30c3;
-    x = (x | (x >> 4)) & 0x100f_00f0_0f00_f00f;
-    x = (x | (x >> 8)) & 0x001f_0000_ff00_00ff;
-    x = (x | (x >> 16)) & 0x001f_0000_0000_ffff;
-    x = (x | (x >> 32)) & 0x1f_ffff;
-    x
-}
-
-/// Own cell plus the 13 forward neighbours: each unordered cell pair is visited once.
-const HALF_STENCIL: [(isize, isize, isize); 14] = [
-    (0, 0, 0),
-    (1, 0, 0),
-    (-1, 1, 0),
-    (0, 1, 0),
-    (1, 1, 0),
-    (-1, -1, 1),
-    (0, -1, 1),
-    (1, -1, 1),
-    (-1, 0, 1),
-    (0, 0, 1),
-    (1, 0, 1),
-    (-1, 1, 1),
-    (0, 1, 1),
-    (1, 1, 1),
-];
 
 #[cfg(test)]
 mod tests {
@@ -689,144 +394,5 @@ mod tests {
             }
             assert_eq!(found, nl.occupied_cells());
         }
-    }
-
-    #[test]
-    fn column_cursors_find_the_pairs_of_the_hash_lookups_in_their_order() {
-        // a dense layer and a sparse gas above it, with empty cells and gaps in the columns
-        let bx = [0.031, 0.023, 0.05];
-        let mut s = 99u64;
-        let mut rnd = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
-        let n = 900;
-        let pos: Vec<[f64; 3]> = (0..n)
-            .map(|k| {
-                let z = if k % 4 == 0 {
-                    0.05 * rnd()
-                } else {
-                    0.012 * rnd()
-                };
-                [rnd() * bx[0], rnd() * bx[1], z + 0.003]
-            })
-            .collect();
-        let rad: Vec<f64> = (0..n).map(|_| 0.0008 + 0.0004 * rnd()).collect();
-        for curve in [Curve::Morton, Curve::Columns] {
-            let mut nl = NeighborList::new(bx, 0.0012, 0.0003).with_curve(curve);
-            nl.rebuild(&pos, &rad, [0.0, 0.0, 0.003]);
-            let whole = nl.pairs.clone();
-            assert!(whole.len() > n);
-            // every pair closer than R_i + R_j + skin, once (brute force)
-            let mut got: Vec<(u32, u32)> =
-                whole.iter().map(|p| (p.i.min(p.j), p.i.max(p.j))).collect();
-            got.sort_unstable();
-            let mut want = Vec::new();
-            for i in 0..n {
-                for j in i + 1..n {
-                    let d2: f64 = (0..3).map(|k| (pos[i][k] - pos[j][k]).powi(2)).sum();
-                    let cut = rad[i] + rad[j] + 0.0003;
-                    if d2 < cut * cut {
-                        want.push((i as u32, j as u32));
-                    }
-                }
-            }
-            assert_eq!(got, want, "{curve:?}");
-            let mut by_hash = Vec::new();
-            nl.pairs_by_hash(0..nl.occupied_cells(), &pos, &rad, &mut by_hash);
-            assert_eq!(whole, by_hash, "{curve:?}");
-            // runs of cells, listed one after the other, give the whole list
-            let mut runs = Vec::new();
-            for units in [1, 2, 3, 7, 64, 5000] {
-                nl.cell_runs(units, &mut runs);
-                assert_eq!(runs.len(), units + 1);
-                assert!(runs.windows(2).all(|w| w[0] <= w[1]));
-                assert_eq!(*runs.last().unwrap(), nl.occupied_cells());
-                let mut cat = Vec::new();
-                for w in runs.windows(2) {
-                    nl.pairs_of_cells(w[0]..w[1], &pos, &rad, &mut cat);
-                }
-                assert_eq!(cat, whole, "{curve:?}, {units} runs");
-            }
-            // the runs share the grains out about evenly
-            nl.cell_runs(4, &mut runs);
-            for w in runs.windows(2) {
-                let g = (nl.cell_start[w[1]] - nl.cell_start[w[0]]) as usize;
-                assert!(
-                    g > n / 8 && g < n / 2,
-                    "{curve:?}: {g} grains in a run of 4"
-                );
-            }
-        }
-    }
-
-    #[test]
-    fn grid_finds_exactly_the_brute_force_pairs() {
-        // pseudo-random cloud (LCG, fixed) in a 3×2×5 cm box
-        let mut s = 12345u64;
-        let mut rnd = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
-        let bx = [0.03, 0.02, 0.05];
-        let n = 400;
-        let pos: Vec<[f64; 3]> = (0..n)
-            .map(|_| [rnd() * bx[0], rnd() * bx[1], 0.01 + rnd() * bx[2]])
-            .collect();
-        let rad: Vec<f64> = (0..n).map(|_| 0.001 + 0.001 * rnd()).collect();
-        let mut nl = NeighborList::new(bx, 0.002, 0.0005);
-        nl.rebuild(&pos, &rad, [0.0, 0.0, 0.01]);
-        let mut got: Vec<(u32, u32)> = nl
-            .pairs
-            .iter()
-            .map(|p| (p.i.min(p.j), p.i.max(p.j)))
-            .collect();
-        got.sort();
-        let mut want = vec![];
-        for i in 0..n {
-            for j in i + 1..n {
-                let d: f64 = (0..3)
-                    .map(|k| (pos[i][k] - pos[j][k]).powi(2))
-                    .sum::<f64>()
-                    .sqrt();
-                if d < rad[i] + rad[j] + 0.0005 {
-                    want.push((i as u32, j as u32));
-                }
-            }
-        }
-        assert_eq!(got, want);
-        assert!(!want.is_empty());
-        // the per-grain index lists every pair of each grain once, in pair order
-        let (mut start, mut items) = (Vec::new(), Vec::new());
-        index_by_grain(&nl.pairs, n, &mut start, &mut items);
-        for g in 0..n {
-            let mine: Vec<usize> = items[start[g] as usize..start[g + 1] as usize]
-                .iter()
-                .map(|&e| {
-                    let k = (e & !J_ROLE) as usize;
-                    let p = nl.pairs[k];
-                    assert_eq!(if e & J_ROLE != 0 { p.j } else { p.i } as usize, g);
-                    k
-                })
-                .collect();
-            let want: Vec<usize> = (0..nl.pairs.len())
-                .filter(|&k| nl.pairs[k].i as usize == g || nl.pairs[k].j as usize == g)
-                .collect();
-            assert_eq!(mine, want);
-        }
-        // memory does not follow the box volume: a 1 km box holds no more than the grains need
-        let mut big = NeighborList::new([1e3, 1e3, 1e3], 0.002, 0.0005);
-        big.rebuild(&pos, &rad, [0.0; 3]);
-        assert!(big.memory_bytes() < 200 * n + 16 * big.pairs.len() + 4096);
-        // a common translation does not invalidate the list; a single grain moving does
-        let moved: Vec<[f64; 3]> = pos.iter().map(|p| [p[0], p[1], p[2] + 0.01]).collect();
-        assert!(!nl.needs_rebuild(&moved, [0.0, 0.0, 0.02]));
-        let mut one = pos.clone();
-        one[7][0] += 0.0003;
-        assert!(nl.needs_rebuild(&one, [0.0, 0.0, 0.01]));
     }
 }

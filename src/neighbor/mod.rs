@@ -2,5 +2,8 @@
 //! skin, rebuilt only when some grain has moved more than half the skin relative to the box.
 
 pub mod cell_grid;
+mod morton;
+mod pair;
+mod pair_search;
 
 pub use cell_grid::{index_by_grain, Curve, NeighborList, Pair, J_ROLE};
