@@ -93,22 +93,6 @@ const CYCLES_FOR_NOW: &[(&str, &str, &str)] = &[
         "src/study/ is being rewritten with the trade-off (issue 38)",
     ),
     (
-        "setup/mod.rs",
-        "setup/dem.rs",
-        "setup/mod.rs holds the key-naming of engine errors its children use; move it to its \
-         own file (the `auto` part of setup/mod.rs is being rewritten, issue 38)",
-    ),
-    (
-        "setup/mod.rs",
-        "setup/impact.rs",
-        "as setup/mod.rs ↔ setup/dem.rs",
-    ),
-    (
-        "setup/mod.rs",
-        "setup/plan.rs",
-        "as setup/mod.rs ↔ setup/dem.rs",
-    ),
-    (
         "scene/mod.rs",
         "scene/damper.rs",
         "scene/mod.rs defines Scene and its children's parts refer back to it (issue 40, left)",

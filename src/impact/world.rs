@@ -1,8 +1,6 @@
 //! [`ImpactWorld`]: the event-driven model built from a resolved setup (time scales, the free
 //! and loaded box motions, the initial state), its energy and its run summary.
 
-use std::collections::BTreeMap;
-
 use crate::error::SimError;
 use crate::model::primary::base_motion;
 use crate::model::{EnergyTotals, RunOptions, RunSummary, Sdof, StrobePoint};
@@ -243,7 +241,8 @@ impl ImpactWorld {
             energy_totals: totals,
             impacts_total: led.impacts,
             events_total: led.events,
-            extra: BTreeMap::new(),
+            dem: None,
+            warnings: Vec::new(),
             strobe,
             analysis: None,
             analysis_error: None,

@@ -2,6 +2,7 @@
 //! system under harmonic base excitation (2.1.2), its closed-form solution between events and
 //! its analytic steady-state amplitude (2.1.21); and what every run reports ([`summary`]).
 
+pub mod dem_extras;
 pub mod primary;
 pub mod summary;
 
@@ -13,6 +14,7 @@ pub mod summary;
 /// and says when that happened.
 pub const PHYSICS_REVISION: u32 = 1;
 
+pub use dem_extras::DemExtras;
 pub use primary::{base_motion, Anchor, BoxDrive, PrimarySystem, Sdof};
 pub use summary::{
     EnergyTotals, RunAnalysis, RunOptions, RunSummary, RunWindow, StrobePoint,

@@ -1,10 +1,10 @@
 //! What a run reports: [`RunSummary`] (written as `summary.json`), and how it is run
 //! ([`RunOptions`]). Shared by every simulator (impact, DEM).
 
-use serde::{Deserialize, Serialize};
-use std::collections::BTreeMap;
-
 use crate::analysis::analyze::AnalysisReport;
+use serde::{Deserialize, Serialize};
+
+use super::dem_extras::DemExtras;
 
 /// Default output sampling interval (s): `run.sample_interval` and the DEM engine's
 /// `DemRunConfig` (1e-4 s).
@@ -159,11 +159,15 @@ pub struct RunSummary {
     pub impacts_total: u64,
     /// Events (impacts, detachments) over the whole run.
     pub events_total: u64,
-    /// Model-specific extra values, flattened into the JSON (e.g. DEM's
-    /// `energy_friction_j_per_cycle`).
-    /// Not-a-number values are written as JSON `null` and read back as absent.
-    #[serde(flatten, deserialize_with = "extra_without_nulls")]
-    pub extra: BTreeMap<String, f64>,
+    /// The DEM's own figures (none for the other models), flattened into the JSON: one key
+    /// per field of [`DemExtras`] (e.g. `energy_friction_j_per_cycle`).
+    #[serde(flatten)]
+    pub dem: Option<DemExtras>,
+    /// What the run warns about (a time step too long for the viscous time, an energy
+    /// ledger residual above 1 %), for the caller to show (the CLI prints `warning: …`); not
+    /// in the JSON.
+    #[serde(skip)]
+    pub warnings: Vec<String>,
     /// Stroboscopic samples of the steady state (written to strobe.csv, not to the JSON).
     #[serde(skip)]
     pub strobe: Vec<StrobePoint>,
@@ -182,16 +186,6 @@ pub struct RunSummary {
 /// both ways (the sweep tables, the study and the figures read its fields, checked at compile
 /// time; a `summary.json` or `points/<i>.json` reads back into the same report).
 pub type RunAnalysis = AnalysisReport;
-
-/// Reads [`RunSummary::extra`], leaving out the entries written as `null` (a value that was not
-/// a number, e.g. a CPU time that could not be measured).
-fn extra_without_nulls<'de, D>(d: D) -> Result<BTreeMap<String, f64>, D::Error>
-where
-    D: serde::Deserializer<'de>,
-{
-    let m = BTreeMap::<String, Option<f64>>::deserialize(d)?;
-    Ok(m.into_iter().filter_map(|(k, v)| Some((k, v?))).collect())
-}
 
 #[cfg(test)]
 mod tests {
@@ -232,7 +226,7 @@ mod tests {
     }
 
     #[test]
-    fn a_null_extra_value_reads_back_as_absent() {
+    fn a_null_cpu_figure_reads_back_as_absent() {
         // a committed sweep point with its CPU-time figure written as null (not measurable
         // on a loaded machine): the summary reads, without that key
         let path = concat!(
@@ -243,8 +237,26 @@ mod tests {
             serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
         let mut v = point["summary"].clone();
         v["particle_steps_per_cpu_s"] = serde_json::Value::Null;
-        let s: RunSummary = serde_json::from_value(v).unwrap();
-        assert!(!s.extra.contains_key("particle_steps_per_cpu_s"));
-        assert!(s.extra["bed_floor_impacts_per_cycle"].is_finite());
+        let s: RunSummary = serde_json::from_value(v.clone()).unwrap();
+        let dem = s.dem.as_ref().expect("a DEM point");
+        assert!(dem.particle_steps_per_cpu_s.is_none());
+        assert!(dem.bed_floor_impacts_per_cycle.is_finite());
+        // written back, the DEM's figures are the stored keys and values (the null one left
+        // out)
+        let back = serde_json::to_value(&s).unwrap();
+        let keys = serde_json::to_value(dem).unwrap();
+        let keys = keys.as_object().unwrap();
+        assert_eq!(keys.len(), 21);
+        for k in keys.keys() {
+            assert_eq!(back[k], v[k], "{k}");
+        }
+        assert!(back.get("particle_steps_per_cpu_s").is_none());
+        // a summary without them (an impact run) reads without
+        let mut impact = v.clone();
+        for k in keys.keys() {
+            impact.as_object_mut().unwrap().remove(k);
+        }
+        let s: RunSummary = serde_json::from_value(impact).unwrap();
+        assert!(s.dem.is_none());
     }
 }

@@ -3,20 +3,30 @@
 //! the box drive and the run settings — and running it (series columns and `summary.json`
 //! keys of the shared contract).
 
-use std::collections::BTreeMap;
 use std::path::PathBuf;
 
-use crate::contact::{AttractionPolicy, ContactModel, NormalLaw, TangentialLaw, WallContact};
 use crate::dem::model::{DemModel, Grains, Packing};
 use crate::dem::replica::{run_replica, ReplicaOptions};
 use crate::dem::run::{run_dem, run_dem_with_step, DemRunConfig, DtChoice};
 use crate::dem::stability::TimeStep;
 use crate::error::{SceneError, SimError};
-use crate::model::{BoxDrive, EnergyTotals, RunOptions, RunSummary, RunWindow};
+use crate::model::{BoxDrive, DemExtras, EnergyTotals, RunOptions, RunSummary, RunWindow};
 use crate::observe::{Observer, SnapshotWriter, StrobeCollector, Tee};
-use crate::scene::dem::{ContactKind, DemParams, PackingKind, SnapshotFormat, TangentialKind};
+use crate::scene::dem::{DemParams, PackingKind, SnapshotFormat};
 use crate::scene::run::ReplicaChoice;
 use crate::scene::{Damper, DtSpec, Scene};
+
+use super::keys::{keyed, scene_error};
+use super::window::window;
+
+mod contact;
+mod memory;
+
+pub use contact::{
+    contact_model, hertz_kk_gamma_n, hertz_kk_gamma_s, DEFAULT_RESTITUTION_SPEED,
+    GAMMA_S_PER_GAMMA_N,
+};
+pub use memory::{check_memory, memory_estimate, MemoryEstimate, PACKING_BYTES_PER_CELL};
 
 /// A resolved DEM scene: the damper, its drive, gravity, the run settings and outputs.
 #[derive(Debug, Clone, PartialEq)]
@@ -120,12 +130,12 @@ pub fn dem_setup(scene: &Scene) -> Result<DemSetup, SceneError> {
         _ => DtChoice::Auto,
     };
     let time_step =
-        TimeStep::choose(&model, &drive, dt, scene.run.dt_fraction).map_err(super::scene_error)?;
+        TimeStep::choose(&model, &drive, dt, scene.run.dt_fraction).map_err(scene_error)?;
     Ok(DemSetup {
         model,
         drive,
         gravity_m_s2: scene.gravity,
-        window: super::window(scene),
+        window: window(scene),
         steady_fraction: scene.run.steady_fraction,
         analysis_fraction: scene.run.analysis_fraction,
         sample_interval_s: scene.run.sample_interval,
@@ -182,285 +192,8 @@ pub fn dem_model(params: &DemParams) -> Result<DemModel, SceneError> {
         snapshot_interval_s: params.snapshot_interval,
     };
     // the linear law's parameters (e, Y) and the contact time are checked once, here
-    crate::dem::stability::contact_time(&model, 1.0).map_err(super::scene_error)?;
+    crate::dem::stability::contact_time(&model, 1.0).map_err(scene_error)?;
     Ok(model)
-}
-
-/// Bytes per cell of the advancing-front packer's search grid (one `Vec` header per cell of
-/// one grain diameter, over the whole box: `src/packing/advancing_front.rs`).
-pub const PACKING_BYTES_PER_CELL: f64 = 24.0;
-
-/// What a DEM scene's run will hold in memory, by cause (bytes).
-#[derive(Debug, Clone, PartialEq)]
-pub struct MemoryEstimate {
-    /// Grains: [`crate::dem::world::memory_estimate_bytes`] (grain arrays, neighbour list).
-    pub grains_bytes: f64,
-    /// Grain count.
-    pub count: usize,
-    /// The packer's grid over the box (advancing front; 0 for the lattice, whose memory is
-    /// that of its grains).
-    pub packing_bytes: f64,
-    /// Cells of that grid (grain diameters in the box's volume).
-    pub packing_cells: f64,
-    /// Largest grain radius (m).
-    pub r_max_m: f64,
-}
-
-impl MemoryEstimate {
-    /// Total (bytes).
-    pub fn total_bytes(&self) -> f64 {
-        self.grains_bytes + self.packing_bytes
-    }
-}
-
-/// The memory estimate of `params` with largest radius `r_max` (m), computed before anything
-/// is allocated: the grains' arrays and neighbour list (O(N): the cell list is sorted, not a
-/// grid over the box) and, for `packing = "advancing-front"`, the packer's grid of one cell
-/// per grain diameter over the box volume.
-pub fn memory_estimate(params: &DemParams, r_max: f64) -> MemoryEstimate {
-    let packing_cells = match params.packing {
-        PackingKind::Lattice => 0.0,
-        PackingKind::AdvancingFront => params
-            .r#box
-            .iter()
-            .map(|l| (l / (2.0 * r_max)).ceil().max(1.0))
-            .product(),
-    };
-    MemoryEstimate {
-        grains_bytes: crate::dem::world::memory_estimate_bytes(params.count),
-        count: params.count,
-        packing_bytes: packing_cells * PACKING_BYTES_PER_CELL,
-        packing_cells,
-        r_max_m: r_max,
-    }
-}
-
-/// The one memory check of a DEM scene: refuses, before anything is allocated, a run whose
-/// [`MemoryEstimate`] exceeds `available` bytes (the machine's free memory; no check when
-/// unknown) or whose packer's grid exceeds the packer's own budget
-/// ([`crate::packing::advancing_front::MAX_GRID_CELLS`] cells), naming the key of the larger
-/// part — `damper.count` for the grains, `damper.radius` for the packer's grid over the box —
-/// and the estimate.
-///
-/// # Errors
-/// [`SceneError`] on that key with the estimate, its parts and what is available.
-pub fn check_memory(est: &MemoryEstimate, available: Option<f64>) -> Result<(), SceneError> {
-    use crate::packing::advancing_front::MAX_GRID_CELLS;
-    let need = est.total_bytes();
-    let grid_budget = MAX_GRID_CELLS * PACKING_BYTES_PER_CELL;
-    let over_grid = est.packing_cells.is_nan() || est.packing_cells > MAX_GRID_CELLS;
-    let over_machine = available.is_some_and(|have| need.is_nan() || need > have);
-    if !over_grid && !over_machine {
-        return Ok(());
-    }
-    let parts = format!(
-        "{:.1} GB for {} grains at {:.0} bytes each (grain arrays and neighbour list){}",
-        est.grains_bytes / 1e9,
-        est.count,
-        crate::dem::world::BYTES_PER_GRAIN,
-        if est.packing_bytes > 0.0 {
-            format!(
-                " + {:.1} GB for the advancing-front packer's grid of {:.1e} cells (one per \
-                 grain diameter 2 × {:e} m over the box)",
-                est.packing_bytes / 1e9,
-                est.packing_cells,
-                est.r_max_m
-            )
-        } else {
-            String::new()
-        }
-    );
-    let (key, value, fix) = if est.packing_bytes > est.grains_bytes {
-        (
-            "damper.radius",
-            format!("{:e} m (largest)", est.r_max_m),
-            "use larger grains, a smaller box, or packing = \"lattice\"",
-        )
-    } else {
-        ("damper.count", est.count.to_string(), "use fewer grains")
-    };
-    let limit = match available {
-        Some(have) if over_machine => format!("the machine has {:.1} GB available", have / 1e9),
-        _ => format!(
-            "the packer's grid is limited to {MAX_GRID_CELLS:.0e} cells ({:.1} GB)",
-            grid_budget / 1e9
-        ),
-    };
-    Err(SceneError::invalid(
-        key,
-        value,
-        format!(
-            "the run needs about {:.1} GB of memory ({parts}), but {limit}; {fix}",
-            need / 1e9
-        ),
-    ))
-}
-
-/// Default impact speed (m/s) at which a `hertz-kk` scene's `restitution` holds.
-pub const DEFAULT_RESTITUTION_SPEED: f64 = 1.0;
-
-/// γ_n of the Hertz–Kuwabara–Kono law for grain–grain (`wall = false`) or grain–wall
-/// contacts (kg s⁻¹ m^-1/2): the scene's `gamma_n` / `wall_gamma_n`, or, when the scene gives
-/// a restitution instead, the damping that gives it at `restitution_speed`
-/// ([`crate::contact::restitution::kuwabara_kono_gamma_n`]) for two grains of the
-/// distribution's middle radius (r_min + r_max)/2, or such a grain and the wall.
-///
-/// # Errors
-/// A bad radius distribution, or a restitution the inversion cannot reach.
-pub fn hertz_kk_gamma_n(params: &DemParams, wall: bool) -> Result<f64, SceneError> {
-    use crate::contact::material::{Material, PairProperties};
-    let (explicit, e, key) = if wall {
-        (
-            params.wall_gamma_n,
-            params.wall_restitution.or(params.restitution),
-            "damper.wall_restitution",
-        )
-    } else {
-        (None, params.restitution, "damper.restitution")
-    };
-    if let Some(g) = explicit {
-        return Ok(g);
-    }
-    let Some(e) = e else {
-        return Ok(params.gamma_n);
-    };
-    let dist = params.radius_distribution()?;
-    let r = 0.5 * (dist.r_min() + dist.r_max());
-    let m = params.density * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
-    let grain = Material {
-        youngs_modulus: params.youngs_modulus,
-        poisson: params.poisson,
-    };
-    let pair = if wall {
-        let w = Material {
-            youngs_modulus: params.wall_youngs_modulus.unwrap_or(params.youngs_modulus),
-            poisson: params.wall_poisson.unwrap_or(params.poisson),
-        };
-        PairProperties::new(r, m, &grain, f64::INFINITY, f64::INFINITY, &w)
-    } else {
-        PairProperties::new(r, m, &grain, r, m, &grain)
-    };
-    let k_n = crate::contact::hertz_stiffness(pair.e_star, pair.r_star);
-    let v = params
-        .restitution_speed
-        .unwrap_or(DEFAULT_RESTITUTION_SPEED);
-    crate::contact::restitution::kuwabara_kono_gamma_n(k_n, pair.m_star, v, e).ok_or_else(|| {
-        SceneError::invalid(
-            key,
-            e,
-            "no Kuwabara–Kono damping gives this restitution: use 0 < e ≤ 1",
-        )
-    })
-}
-
-/// Ratio γ_s/γ_n of the thesis's parameter sets (10980/3660 and 59.76/19.99, SPEC §6): the
-/// tangential damping of a `hertz-kk` scene that gives a restitution and no `gamma_s`.
-pub const GAMMA_S_PER_GAMMA_N: f64 = 3.0;
-
-/// γ_s of the Hertz–Kuwabara–Kono law's Coulomb–viscous tangential force for grain–grain
-/// (`wall = false`) or grain–wall contacts (kg s⁻¹ m^-1/2): the scene's `gamma_s` /
-/// `wall_gamma_s` when given (> 0); for a scene whose γ_n comes from a restitution
-/// ([`hertz_kk_gamma_n`]), [`GAMMA_S_PER_GAMMA_N`] × γ_n, so that its friction acts;
-/// otherwise 0 (no tangential force).
-///
-/// # Errors
-/// Those of [`hertz_kk_gamma_n`].
-pub fn hertz_kk_gamma_s(params: &DemParams, wall: bool) -> Result<f64, SceneError> {
-    let explicit = if wall {
-        params.wall_gamma_s.unwrap_or(params.gamma_s)
-    } else {
-        params.gamma_s
-    };
-    let from_restitution = if wall {
-        params.wall_gamma_n.is_none()
-            && (params.wall_restitution.is_some() || params.restitution.is_some())
-    } else {
-        params.restitution.is_some()
-    };
-    if explicit > 0.0 || !from_restitution || params.contact != ContactKind::HertzKk {
-        return Ok(explicit);
-    }
-    Ok(GAMMA_S_PER_GAMMA_N * hertz_kk_gamma_n(params, wall)?)
-}
-
-/// The contact model of `params` ([`DemParams::validate`] passed): grain–grain and
-/// grain–wall laws selected by `damper.contact`, wall values defaulting to the grains'.
-///
-/// # Errors
-/// `damper.restitution` / `damper.yield_strength` missing for `contact = "linear"`.
-pub fn contact_model(params: &DemParams) -> Result<ContactModel, SceneError> {
-    let normal = |wall: bool| -> Result<NormalLaw, SceneError> {
-        Ok(match params.contact {
-            ContactKind::HertzKk => NormalLaw::HertzKuwabaraKono {
-                gamma_n: hertz_kk_gamma_n(params, wall)?,
-            },
-            ContactKind::Linear => {
-                let e = params.restitution.ok_or_else(|| SceneError::Missing {
-                    field: "damper.restitution".into(),
-                    hint: "contact = \"linear\" needs the coefficient of restitution e in (0, 1]"
-                        .into(),
-                })?;
-                NormalLaw::LinearSpringDashpot {
-                    restitution: if wall {
-                        params.wall_restitution.unwrap_or(e)
-                    } else {
-                        e
-                    },
-                    yield_strength: params.yield_strength.ok_or_else(|| SceneError::Missing {
-                        field: "damper.yield_strength".into(),
-                        hint: "contact = \"linear\" needs the grains' yield strength (Pa)".into(),
-                    })?,
-                }
-            }
-        })
-    };
-    let gamma_s = [
-        hertz_kk_gamma_s(params, false)?,
-        hertz_kk_gamma_s(params, true)?,
-    ];
-    let tangential = |wall: bool| -> TangentialLaw {
-        let mu = if wall {
-            params.wall_friction.unwrap_or(params.friction)
-        } else {
-            params.friction
-        };
-        if mu <= 0.0 {
-            return TangentialLaw::None;
-        }
-        let gamma_s = gamma_s[usize::from(wall)];
-        match (params.contact, params.tangential) {
-            (_, TangentialKind::Mindlin) => TangentialLaw::MindlinSpring {
-                gamma_s,
-                friction: mu,
-            },
-            (_, TangentialKind::LinearSpring) => TangentialLaw::LinearSpring { friction: mu },
-            (ContactKind::HertzKk, _) => {
-                if gamma_s > 0.0 {
-                    TangentialLaw::CoulombViscous {
-                        gamma_s,
-                        friction: mu,
-                    }
-                } else {
-                    TangentialLaw::None
-                }
-            }
-            (ContactKind::Linear, _) => TangentialLaw::LinearDashpotCoulomb { friction: mu },
-        }
-    };
-    Ok(ContactModel {
-        normal: normal(false)?,
-        tangential: tangential(false),
-        wall: WallContact {
-            material: params.wall_material(),
-            normal: normal(true)?,
-            tangential: tangential(true),
-        },
-        attraction: if params.attractive_normal_force {
-            AttractionPolicy::Allow
-        } else {
-            AttractionPolicy::Clamp
-        },
-    })
 }
 
 /// Runs the DEM for `params` on `drive` with the engine settings `cfg` (the scene-level
@@ -476,13 +209,14 @@ pub fn run_params(
     obs: &mut dyn Observer,
 ) -> Result<crate::dem::DemSummary, SimError> {
     let model = dem_model(params)?;
-    run_dem(&model, drive, cfg, obs).map_err(super::keyed)
+    run_dem(&model, drive, cfg, obs).map_err(keyed)
 }
 
 /// Runs a DEM scene: samples go to `obs` (model part [`crate::observe::ModelSample::Dem`]),
 /// snapshots to a [`SnapshotWriter`], the stroboscopic points to the summary; the summary follows `summary.json`'s keys; the DEM's own figures
 /// (`energy_collision_j_per_cycle`, `energy_friction_j_per_cycle`, `steps`, `wall_time_s`,
-/// `particle_steps_per_s`, `dt_s`, `contact_time_s`, `volume_fraction`, …) are in `extra`.
+/// `particle_steps_per_s`, `dt_s`, `contact_time_s`, `volume_fraction`, …) are in `dem`
+/// ([`DemExtras`]), the run's warnings in `warnings`.
 /// Without `[primary]` the box moves kinematically with the base. With `run.replica` the
 /// two-replica test ([`crate::dem::replica`]) runs alongside and its report is in `replica`.
 ///
@@ -521,73 +255,44 @@ pub fn simulate(
         ),
     };
     drop(fwd);
-    for w in [&s.time_step_warning, &s.energy_balance_warning]
+    // what the run warns about goes back to the caller (the CLI prints `warning: …`)
+    let warnings = [&s.time_step_warning, &s.energy_balance_warning]
         .into_iter()
         .flatten()
-    {
-        eprintln!("warning: {w}");
-    }
+        .cloned()
+        .collect();
     let cycles = (cfg.duration_s - s.steady_start_s) * drive.frequency_hz;
     let l = s.ledger;
-    let mut extra = BTreeMap::new();
     let opt = |v: Option<f64>| v.unwrap_or(f64::NAN);
-    for (k, v) in [
-        (
-            "energy_collision_j_per_cycle",
-            opt(s.energy_collision_j_per_cycle),
-        ),
-        (
-            "energy_friction_j_per_cycle",
-            opt(s.energy_friction_j_per_cycle),
-        ),
-        (
-            "bed_floor_impacts_per_cycle",
-            s.bed_impacts.floor as f64 / s.cycles_steady,
-        ),
-        (
-            "bed_ceiling_impacts_per_cycle",
-            s.bed_impacts.ceiling as f64 / s.cycles_steady,
-        ),
-        ("steps", s.steps as f64),
-        ("wall_time_s", s.wall_time_s),
-        ("particle_steps_per_s", s.particle_steps_per_s),
-        ("dt_s", s.dt_s),
-        ("contact_time_s", s.contact_time_s),
-        ("viscous_time_s", s.viscous_time_s),
-        // 1 when the ledger's residual exceeds 1 % (the run also said so on stderr)
-        (
-            "energy_balance_warning",
-            f64::from(u8::from(s.energy_balance_warning.is_some())),
-        ),
-        ("settle_time_s", s.settle_time_s),
-        ("settle_steps", s.settle_steps as f64),
-        ("neighbor_builds", s.neighbor_builds as f64),
+    let dem = DemExtras {
+        energy_collision_j_per_cycle: opt(s.energy_collision_j_per_cycle),
+        energy_friction_j_per_cycle: opt(s.energy_friction_j_per_cycle),
+        bed_floor_impacts_per_cycle: s.bed_impacts.floor as f64 / s.cycles_steady,
+        bed_ceiling_impacts_per_cycle: s.bed_impacts.ceiling as f64 / s.cycles_steady,
+        steps: s.steps as f64,
+        wall_time_s: s.wall_time_s,
+        particle_steps_per_s: s.particle_steps_per_s,
+        // a machine figure, left out when the thread's CPU time was not measurable (a JSON
+        // null would make the point unreadable)
+        particle_steps_per_cpu_s: s.particle_steps_per_cpu_s,
+        dt_s: s.dt_s,
+        contact_time_s: s.contact_time_s,
+        viscous_time_s: s.viscous_time_s,
+        // 1 when the ledger's residual exceeds 1 % (the run also warns)
+        energy_balance_warning: f64::from(u8::from(s.energy_balance_warning.is_some())),
+        settle_time_s: s.settle_time_s,
+        settle_steps: s.settle_steps as f64,
+        neighbor_builds: s.neighbor_builds as f64,
         // contacts per grain, mean over the steady window's samples (cost of a step: see
         // bench/README.md)
-        (
-            "candidate_pairs_per_grain",
-            s.contacts_per_grain.candidate_pairs,
-        ),
-        (
-            "pair_contacts_per_grain",
-            s.contacts_per_grain.pair_contacts,
-        ),
-        (
-            "wall_contacts_per_grain",
-            s.contacts_per_grain.wall_contacts,
-        ),
-        ("grains", s.grains as f64),
-        ("grain_mass_kg", s.grain_mass_kg),
-        ("bed_height_m", s.bed_height_m),
-        ("volume_fraction", s.volume_fraction),
-    ] {
-        extra.insert(k.to_string(), v);
-    }
-    // a machine figure, left out when the thread's CPU time was not measurable (a JSON null
-    // would make the point unreadable)
-    if let Some(c) = s.particle_steps_per_cpu_s {
-        extra.insert("particle_steps_per_cpu_s".to_string(), c);
-    }
+        candidate_pairs_per_grain: s.contacts_per_grain.candidate_pairs,
+        pair_contacts_per_grain: s.contacts_per_grain.pair_contacts,
+        wall_contacts_per_grain: s.contacts_per_grain.wall_contacts,
+        grains: s.grains as f64,
+        grain_mass_kg: s.grain_mass_kg,
+        bed_height_m: s.bed_height_m,
+        volume_fraction: s.volume_fraction,
+    };
     Ok(RunSummary {
         model: "dem".into(),
         frequency_hz: drive.frequency_hz,
@@ -618,7 +323,8 @@ pub fn simulate(
         },
         impacts_total: s.bed_impacts.total(),
         events_total: 0,
-        extra,
+        dem: Some(dem),
+        warnings,
         strobe: strobe.points,
         analysis: None,
         analysis_error: None,
@@ -635,54 +341,6 @@ mod tests {
     /// The fraction these tests were written for (the default was 1/50 then).
     const DT_FRACTION: f64 = 1.0 / 50.0;
     use crate::dem::world::ContactsPerGrain;
-
-    #[test]
-    fn a_grain_count_beyond_memory_is_refused_naming_the_key_and_the_estimate() {
-        let mut p = DemParams::thesis_b_softened(1000.0);
-        p.count = 1_000_000_000;
-        let e = check_memory(&memory_estimate(&p, 0.003), Some(24e9))
-            .unwrap_err()
-            .to_string();
-        assert!(
-            e.starts_with("damper.count = 1000000000") && e.contains("2048.0 GB"),
-            "{e}"
-        );
-        p.count = 64_000;
-        assert!(check_memory(&memory_estimate(&p, 0.003), Some(24e9)).is_ok());
-        p.count = usize::MAX;
-        assert!(check_memory(&memory_estimate(&p, 0.003), None).is_ok());
-    }
-
-    #[test]
-    fn tiny_grains_are_judged_by_the_memory_estimate_alone() {
-        // damper.radius = 3e-5 in scene B's box: 7.7e8 grain diameters in volume
-        let mut p = DemParams::thesis_b_softened(1000.0);
-        p.radius = Some(3e-5);
-        // lattice: 250 grains need 0.5 MB whatever the box (the cell list is O(N))
-        p.packing = PackingKind::Lattice;
-        let est = memory_estimate(&p, 3e-5);
-        assert!(est.total_bytes() < 1e6, "{est:?}");
-        assert!(check_memory(&est, Some(24e9)).is_ok());
-        // advancing front: its grid over the box (7.7e8 cells, 18 GB) decides, on damper.radius
-        p.packing = PackingKind::AdvancingFront;
-        let est = memory_estimate(&p, 3e-5);
-        let e = check_memory(&est, Some(8e9)).unwrap_err().to_string();
-        assert!(
-            e.starts_with("damper.radius = 3e-5 m (largest)")
-                && e.contains("about 18.4 GB")
-                && e.contains("7.7e8 cells")
-                && e.contains("8.0 GB available"),
-            "{e}"
-        );
-        // with the memory at hand, the packer's own budget of 1e8 cells (2.4 GB) refuses it
-        let e = check_memory(&est, Some(64e9)).unwrap_err().to_string();
-        assert!(
-            e.starts_with("damper.radius") && e.contains("limited to 1e8 cells (2.4 GB)"),
-            "{e}"
-        );
-        p.radius = Some(3e-4);
-        assert!(check_memory(&memory_estimate(&p, 3e-4), Some(8e9)).is_ok());
-    }
 
     #[test]
     fn explicit_dt_above_limit_is_rejected_with_the_limit() {
@@ -702,7 +360,7 @@ mod tests {
             e.to_string().contains("time step") && e.to_string().contains("t_s/20"),
             "{e}"
         );
-        let e = super::super::scene_error(e).to_string();
+        let e = super::super::keys::scene_error(e).to_string();
         assert!(e.contains("run.dt") && e.contains("t_s/20"), "{e}");
         assert!(choose_dt(&p, &d, Some(ts / 30.0), DT_FRACTION).is_ok());
     }

@@ -8,6 +8,9 @@ use crate::impact::{
 use crate::model::BoxDrive;
 use crate::scene::{Damper, Scene};
 
+use super::keys::keyed;
+use super::window::window;
+
 /// The event-driven model's setup of a validated scene with damper `none` or `impact`.
 ///
 /// # Errors
@@ -40,7 +43,7 @@ pub fn impact_setup(scene: &Scene) -> Result<ImpactSetup, SceneError> {
         particle,
         initial_box_z_m: scene.primary.as_ref().and_then(|p| p.initial_displacement),
         initial_box_v_m_s: scene.primary.as_ref().and_then(|p| p.initial_velocity),
-        window: super::window(scene),
+        window: window(scene),
     })
 }
 
@@ -139,7 +142,7 @@ fn impact_lyapunov(
     }
     estimate(&ImpactWorld::new(&scene.resolve_impact()?), opts)
         .map(Some)
-        .map_err(super::keyed)
+        .map_err(keyed)
 }
 
 #[cfg(test)]
@@ -171,7 +174,7 @@ mod tests {
         let w = ImpactWorld::new(&s.resolve_impact().unwrap());
         let err = w
             .model_lyapunov(&ModelLyapunovOptions::default())
-            .map_err(super::super::keyed)
+            .map_err(super::super::keys::keyed)
             .unwrap_err();
         assert!(err.to_string().contains("run.steady_fraction"), "{err}");
         let bad = ModelLyapunovOptions {

@@ -13,98 +13,24 @@
 
 pub mod dem;
 pub mod impact;
+mod keys;
 pub mod plan;
+mod resolved;
+mod window;
 
 pub use dem::{dem_model, DemSetup};
 pub use impact::{model_lyapunov_of_scene, two_trajectory_lyapunov_of_scene};
+pub use keys::{keyed, scene_error, scene_key};
 pub use plan::RunPlan;
+pub use resolved::{Resolved, Setup};
+pub use window::{full_series, steady_series, window};
 
-use crate::error::{ModelError, Quantity, SceneError, SimError};
+use crate::error::{SceneError, SimError};
 use crate::impact::ImpactSetup;
-use crate::model::{RunOptions, RunSummary, RunWindow};
+use crate::model::{RunOptions, RunSummary};
 use crate::observe::Observer;
 use crate::scene::{Damper, Scene};
-use crate::tradeoff::AutoChoice;
-
-/// What a scene resolves to: the engine's input for one of the two simulators.
-// a DemSetup holds the grains' arrays; a setup is built once per run, so the size of the
-// enum does not matter
-#[allow(clippy::large_enum_variant)]
-#[derive(Debug, Clone, PartialEq)]
-pub enum Setup {
-    /// Damper `none` or `impact`: the event-driven model (SPEC §1, §3).
-    Impact(ImpactSetup),
-    /// Damper `dem`: the discrete element model (SPEC §2).
-    Dem(DemSetup),
-}
-
-/// A resolved scene: the concrete scene that is simulated (for `kind = "auto"` the one the
-/// choice wrote), the choice itself, and the engine's setup.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Resolved {
-    /// The concrete scene (damper `none`, `impact` or `dem`).
-    pub scene: Scene,
-    /// For `kind = "auto"`: which model and settings were chosen, and why.
-    pub auto: Option<AutoChoice>,
-    /// The engine's input.
-    pub setup: Setup,
-}
-
-impl Resolved {
-    /// Name of the model in `summary.json` (`"impact"`, `"dem"`, … ; `"auto:…"` for an
-    /// automatic choice) given the simulator's own name.
-    pub fn model_name(&self, simulator: &str) -> String {
-        match self.auto {
-            Some(_) => format!("auto:{simulator}"),
-            None => simulator.to_string(),
-        }
-    }
-
-    /// The run windows (s) of the concrete scene.
-    pub fn window(&self) -> RunWindow {
-        window(&self.scene)
-    }
-
-    /// Places the run's own files under its output directory `dir`: a relative
-    /// `damper.snapshot_dir` (default `snapshots`) becomes `dir/…`; an absolute one is kept
-    /// as the user gave it. Without this call snapshots go to the relative path as given
-    /// (from the current directory), as a library caller without an output directory expects.
-    pub fn place_outputs_in(&mut self, dir: &std::path::Path) {
-        self.place_snapshots(dir, false);
-    }
-
-    /// As [`Resolved::place_outputs_in`] for one point of a sweep, whose directory `dir` is
-    /// the point's own: an absolute `damper.snapshot_dir` gets `dir`'s last component
-    /// appended, so that two points never share snapshot files.
-    pub fn place_point_outputs_in(&mut self, dir: &std::path::Path) {
-        self.place_snapshots(dir, true);
-    }
-
-    fn place_snapshots(&mut self, dir: &std::path::Path, per_point: bool) {
-        if let Setup::Dem(DemSetup {
-            snapshots: Some((snap, _)),
-            ..
-        }) = &mut self.setup
-        {
-            if !snap.is_absolute() {
-                *snap = dir.join(&*snap);
-            } else if per_point {
-                *snap = snap.join(dir.file_name().unwrap_or_default());
-            }
-        }
-    }
-
-    /// The directory snapshots go to, if the run writes any.
-    pub fn snapshot_dir(&self) -> Option<&std::path::Path> {
-        match &self.setup {
-            Setup::Dem(DemSetup {
-                snapshots: Some((snap, _)),
-                ..
-            }) => Some(snap),
-            _ => None,
-        }
-    }
-}
+use keys::dem_instability_keys;
 
 impl Scene {
     /// Resolve the scene once: validate it, make the `kind = "auto"` choice
@@ -164,30 +90,6 @@ impl Scene {
     }
 }
 
-/// The run windows of a scene (s): duration, steady-state start, analysis start.
-pub fn window(scene: &Scene) -> RunWindow {
-    RunWindow {
-        duration_s: scene.duration_s(),
-        steady_start_s: scene.steady_start_s(),
-        analysis_start_s: scene.analysis_start_s(),
-    }
-}
-
-/// Samples every `run.sample_interval` from t = 0 (what `pdamp simulate` writes).
-pub fn full_series(scene: &Scene) -> RunOptions {
-    RunOptions::full_series(scene.run.sample_interval)
-}
-
-/// Samples of the analysis window only (`run.analysis_fraction`), decimated so that at most
-/// `run.analysis_max_samples` are produced (input of the nonlinear analysis).
-pub fn steady_series(scene: &Scene) -> RunOptions {
-    RunOptions::steady_series(
-        &window(scene),
-        scene.run.sample_interval,
-        scene.run.analysis_max_samples,
-    )
-}
-
 /// Run a resolved scene, sending samples to `obs`: the event-driven model for an
 /// [`ImpactSetup`], the DEM for a [`DemSetup`]. Engine errors about a quantity are named by
 /// their scene key ([`keyed`]).
@@ -208,73 +110,4 @@ pub fn simulate(
         s.model = resolved.model_name(&s.model);
     }
     Ok(s)
-}
-
-/// The DEM's instabilities (non-finite state, escaped grains, energy created) all come from
-/// a time step too long for the contact stiffness: name the keys that set it.
-fn dem_instability_keys(e: SimError) -> SimError {
-    match e {
-        SimError::Unstable { t_s, reason } => SimError::Unstable {
-            t_s,
-            reason: format!(
-                "{reason} (in the scene: lower run.dt or run.dt_fraction, or damper.youngs_modulus)"
-            ),
-        },
-        other => other,
-    }
-}
-
-/// The scene key that sets an engine quantity.
-pub fn scene_key(q: Quantity) -> &'static str {
-    match q {
-        Quantity::TimeStep => "run.dt",
-        Quantity::TimeStepFraction => "run.dt_fraction",
-        Quantity::Duration => "run.duration",
-        Quantity::SampleInterval => "run.sample_interval",
-        Quantity::SteadyFraction => "run.steady_fraction",
-        Quantity::Restitution => "damper.restitution",
-        Quantity::WallRestitution => "damper.wall_restitution",
-        Quantity::YieldStrength => "damper.yield_strength",
-        Quantity::GrainCount => "damper.count",
-        Quantity::ReplicaPerturbation => "run.replica",
-    }
-}
-
-/// What to change in the scene file, for quantities whose fix involves several keys.
-fn scene_fix(q: Quantity) -> Option<&'static str> {
-    match q {
-        Quantity::TimeStep => {
-            Some("in the scene: lower run.dt, use dt = \"auto\", or lower damper.youngs_modulus")
-        }
-        Quantity::SteadyFraction => {
-            Some("in the scene: raise run.duration (or run.periods) or run.steady_fraction")
-        }
-        Quantity::GrainCount => Some(
-            "in the scene: lower damper.count, enlarge damper.box or use \
-             damper.packing = \"advancing-front\"",
-        ),
-        _ => None,
-    }
-}
-
-/// An engine error named by its scene key: `run.dt = 1e-4 s: is larger than t_s/20 …`.
-pub fn scene_error(e: ModelError) -> SceneError {
-    let hint = match scene_fix(e.quantity) {
-        Some(fix) => format!("{} ({}); {fix}", e.hint, e.quantity),
-        None => format!("{} ({})", e.hint, e.quantity),
-    };
-    SceneError::Invalid {
-        field: scene_key(e.quantity).into(),
-        value: e.value,
-        hint,
-    }
-}
-
-/// [`SimError::Model`] mapped to [`SimError::Scene`] with the scene key
-/// ([`scene_error`]); other errors unchanged.
-pub fn keyed(e: SimError) -> SimError {
-    match e {
-        SimError::Model(m) => SimError::Scene(scene_error(m)),
-        other => other,
-    }
 }

@@ -22,7 +22,9 @@ use crate::error::SceneError;
 use crate::model::RunOptions;
 use crate::scene::keys;
 
-use super::{Resolved, Setup};
+use super::dem::DemSetup;
+use super::keys::scene_error;
+use super::resolved::{Resolved, Setup};
 
 /// Most integration steps (event-driven steps, or DEM steps including settling) of one run.
 pub const MAX_STEPS: f64 = 1e11;
@@ -261,11 +263,7 @@ fn impact_plan(resolved: &Resolved, duration_s: f64) -> RunPlan {
 /// The DEM: the step the run takes (the resolved step on the sample clock of `opts`,
 /// [`super::DemSetup::time_step_for`]), settling and drive steps, the packing
 /// built once to check that the grains fit.
-fn dem_plan(
-    d: &super::DemSetup,
-    opts: &RunOptions,
-    duration_s: f64,
-) -> Result<RunPlan, SceneError> {
+fn dem_plan(d: &DemSetup, opts: &RunOptions, duration_s: f64) -> Result<RunPlan, SceneError> {
     let step = d.time_step_for(opts);
     let (dt_s, ts) = (step.dt_s, step.contact_time_s);
     if !(dt_s > 0.0 && dt_s.is_finite() && ts.is_finite()) {
@@ -280,7 +278,7 @@ fn dem_plan(
     }
     // memory (grains, neighbour list, the packer's grid) was judged once, by the memory
     // estimate, when the model was resolved (`super::dem::dem_model`)
-    crate::dem::initial_positions(&d.model).map_err(super::scene_error)?;
+    crate::dem::initial_positions(&d.model).map_err(scene_error)?;
     let n = d.model.grains.radius_m.len() as f64;
     let steps = (duration_s + d.model.settle_time_s) / dt_s;
     let [lx, ly, lz] = d.model.box_size_m;

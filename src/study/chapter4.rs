@@ -120,12 +120,15 @@ impl Point {
 
 fn point(step: &str, dir: &str, p: &crate::sweep::SweepPoint) -> Result<Point, StudyError> {
     let finite = |x: Option<f64>| x.filter(|v| v.is_finite());
-    let extra =
-        |key: &str| {
-            p.summary.extra.get(key).copied().ok_or_else(|| {
-                StudyError::step(step, format!("{dir}: point {}: no `{key}`", p.index))
-            })
-        };
+    // a DEM figure of the point (NaN: written as null, read as missing)
+    let extra = |key: &str, f: fn(&crate::model::DemExtras) -> f64| {
+        p.summary
+            .dem
+            .as_ref()
+            .map(f)
+            .filter(|v| !v.is_nan())
+            .ok_or_else(|| StudyError::step(step, format!("{dir}: point {}: no `{key}`", p.index)))
+    };
     let a = p.summary.analysis.as_ref();
     let r = p.summary.replica.as_ref();
     Ok(Point {
@@ -145,8 +148,12 @@ fn point(step: &str, dir: &str, p: &crate::sweep::SweepPoint) -> Result<Point, S
         replica_growth_per_s: r.and_then(|r| r.growth_rate_per_s().map(|g| g.0)),
         mle_per_s: finite(a.and_then(|a| a.data_mle_per_s)),
         mle_stderr_per_s: finite(a.and_then(|a| a.data_mle_stderr_per_s)),
-        floor_impacts: extra("bed_floor_impacts_per_cycle")?,
-        ceiling_impacts: extra("bed_ceiling_impacts_per_cycle")?,
+        floor_impacts: extra("bed_floor_impacts_per_cycle", |d| {
+            d.bed_floor_impacts_per_cycle
+        })?,
+        ceiling_impacts: extra("bed_ceiling_impacts_per_cycle", |d| {
+            d.bed_ceiling_impacts_per_cycle
+        })?,
     })
 }
 

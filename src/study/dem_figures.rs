@@ -235,12 +235,14 @@ fn energy_vs_frequency(
 /// The DEM's own dissipation entries (collision, friction …) of the points' summaries: every
 /// model-specific `energy_*_j_per_cycle`, by name.
 fn grain_energy_keys(pts: &SweepPoints) -> Vec<String> {
-    let keys: std::collections::BTreeSet<&String> = pts
+    let keys: std::collections::BTreeSet<&str> = pts
         .iter()
-        .flat_map(|p| p.summary.extra.keys())
-        .filter(|k| k.starts_with("energy_") && k.ends_with("_j_per_cycle"))
+        .filter_map(|p| p.summary.dem.as_ref())
+        .flat_map(|d| d.dissipation_j_per_cycle())
+        .filter(|(_, v)| !v.is_nan())
+        .map(|(k, _)| k)
         .collect();
-    keys.into_iter().cloned().collect()
+    keys.into_iter().map(String::from).collect()
 }
 
 /// Model-specific summary entry `key` of every point, or a study error naming the point.
@@ -248,9 +250,13 @@ fn extra_values(name: &str, pts: &SweepPoints, key: &str) -> Result<Vec<f64>, St
     pts.iter()
         .map(|p| {
             p.summary
-                .extra
-                .get(key)
-                .copied()
+                .dem
+                .as_ref()
+                .and_then(|d| {
+                    d.dissipation_j_per_cycle()
+                        .into_iter()
+                        .find_map(|(k, v)| (k == key).then_some(v))
+                })
                 .filter(|v| v.is_finite())
                 .ok_or_else(|| {
                     StudyError::step(name, format!("{}: point {}: no `{key}`", pts.dir, p.index))

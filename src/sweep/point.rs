@@ -197,8 +197,16 @@ pub(super) fn cells_of(s: &RunSummary) -> BTreeMap<String, String> {
         "energy_balance_relative_error".to_string(),
         fmt_opt(s.energy_balance_relative_error),
     );
-    for (k, v) in &s.extra {
-        cells.insert(k.clone(), fmt_opt(Some(*v)));
+    // the DEM's own figures, by their summary.json keys (a value written as null, e.g. an
+    // unmeasured CPU time, has no cell)
+    if let Some(serde_json::Value::Object(dem)) =
+        s.dem.as_ref().and_then(|d| serde_json::to_value(d).ok())
+    {
+        for (k, v) in dem {
+            if let Some(v) = v.as_f64() {
+                cells.insert(k, fmt_opt(Some(v)));
+            }
+        }
     }
     // the analysis's typed fields (RunAnalysis); no analysis: empty cells
     let a = s.analysis.as_ref();
@@ -262,6 +270,7 @@ fn run_in_point_dir(scene: &Scene, dir: &Path, analyze: bool) -> Result<RunSumma
     };
     let opts = RunOptions::summary_only();
     let s = super::run::run_resolved(&resolved, &mut NullObserver, &opts, analyze)?;
+    super::run::emit_warnings(&s);
     if let Some(d) = run_dir {
         d.finish().map_err(|e| out_err(dir, e))?;
     }

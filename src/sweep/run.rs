@@ -11,7 +11,8 @@ use crate::setup::{Resolved, Setup};
 
 /// Run one scene, sending samples to `obs`: resolves it once ([`Scene::resolve`], which
 /// makes the `kind = "auto"` choice) and runs the simulator it resolves to
-/// ([`crate::setup::simulate`]).
+/// ([`crate::setup::simulate`]). The run's warnings are in the summary and also emitted
+/// ([`emit_warnings`]).
 ///
 /// # Errors
 /// Scene errors naming the key; the model's own errors otherwise.
@@ -20,13 +21,25 @@ pub fn run_scene(
     obs: &mut dyn Observer,
     opts: &RunOptions,
 ) -> Result<RunSummary, SimError> {
-    crate::setup::simulate(&scene.resolve()?, obs, opts)
+    let s = crate::setup::simulate(&scene.resolve()?, obs, opts)?;
+    emit_warnings(&s);
+    Ok(s)
+}
+
+/// Emits a run's warnings ([`RunSummary::warnings`]) as `tracing` warnings, which the CLI
+/// prints as `warning: …`: for the runners whose summaries do not come back to the CLI one
+/// by one (a sweep's points, the studies).
+pub fn emit_warnings(s: &RunSummary) {
+    for w in &s.warnings {
+        tracing::warn!("{w}");
+    }
 }
 
 /// Run one scene and, if `analyze` is set, the nonlinear analysis of the steady-state grain
 /// series (stored in `summary.analysis`, or the reason in `summary.analysis_error`).
 /// `obs` receives the samples requested by `opts`; the steady-state series for the analysis is
-/// collected alongside.
+/// collected alongside. The run's warnings are in the summary and also emitted
+/// ([`emit_warnings`]).
 ///
 /// # Errors
 /// As [`run_scene`]. A failed analysis is not an error of the run.
@@ -36,10 +49,13 @@ pub fn run_with_analysis(
     opts: &RunOptions,
     analyze: bool,
 ) -> Result<RunSummary, SimError> {
-    run_resolved(&scene.resolve()?, obs, opts, analyze)
+    let s = run_resolved(&scene.resolve()?, obs, opts, analyze)?;
+    emit_warnings(&s);
+    Ok(s)
 }
 
-/// [`run_with_analysis`] for a scene already resolved.
+/// [`run_with_analysis`] for a scene already resolved; the run's warnings are only in the
+/// summary ([`RunSummary::warnings`]: `pdamp simulate` prints them).
 ///
 /// # Errors
 /// As [`run_scene`].

@@ -149,5 +149,6 @@ fn reference_bed_height(reference: &SceneSource, catalog: &Catalog) -> Option<f6
     let found = catalog.points_of(reference, true, FREQUENCY_KEY).ok()?;
     found
         .iter()
-        .find_map(|f| f.point.summary.extra.get("bed_height_m").copied())
+        .find_map(|f| f.point.summary.dem.as_ref().map(|d| d.bed_height_m))
+        .filter(|h| !h.is_nan())
 }

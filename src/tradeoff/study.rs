@@ -208,16 +208,20 @@ fn chaotic_mle(s: &RunSummary) -> Option<f64> {
 /// counted: the same share for every DEM rung). One particle: the recorded CPU time of the
 /// whole point (simulation and analysis).
 pub fn core_seconds(s: &RunSummary, cpu_s: Option<f64>) -> Option<f64> {
-    match (particle_steps(s), s.extra.get("particle_steps_per_cpu_s")) {
-        (Some(n), Some(&rate)) if rate > 0.0 => Some(n / rate),
+    let cpu_rate = s.dem.as_ref().and_then(|d| d.particle_steps_per_cpu_s);
+    match (particle_steps(s), cpu_rate) {
+        (Some(n), Some(rate)) if rate > 0.0 => Some(n / rate),
         (Some(_), _) => None,
         (None, _) => cpu_s,
     }
 }
 
 fn particle_steps(s: &RunSummary) -> Option<f64> {
-    let g = s.extra.get("grains")?;
-    let steps = s.extra.get("steps")? + s.extra.get("settle_steps").copied().unwrap_or(0.0);
+    // (NaN: a figure written as null, read as unknown)
+    let known = |x: f64| (!x.is_nan()).then_some(x);
+    let d = s.dem.as_ref()?;
+    let g = known(d.grains)?;
+    let steps = known(d.steps)? + known(d.settle_steps).unwrap_or(0.0);
     Some(g * steps)
 }
 
@@ -242,7 +246,10 @@ fn row(rung: &Rung, o: &Observed, re: &Observed, youngs: Option<f64>) -> Row {
         status: o.status.as_str().to_string(),
         message: o.status.message(),
         youngs_modulus_pa: youngs,
-        dt_s: s.and_then(|s| s.extra.get("dt_s").copied()),
+        dt_s: s
+            .and_then(|s| s.dem.as_ref())
+            .map(|d| d.dt_s)
+            .filter(|v| !v.is_nan()),
         periods: s.map(|s| (s.duration_s * s.frequency_hz).round()),
         amplitude_m: s.map(|s| s.amplitude_m),
         amplitude_rel_error: both(|s| s.amplitude_m),

@@ -108,6 +108,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             return Err(e);
         }
     };
+    // the run's warnings (the library returns them; printed as `warning: …`)
+    for w in &summary.warnings {
+        tracing::warn!("{w}");
+    }
     dir.write_outputs(&scene, &summary, auto_choice)?;
     println!(
         "{}: f = {} Hz, amplitude Z = {:.6e} m{}, impacts/cycle = {}, energy balance residual = {}",
