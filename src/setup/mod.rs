@@ -10,6 +10,8 @@
 //! `dem/`, `impact/` and `model/` never see a [`Scene`]: validation, the contact laws
 //! selected by the scene's enums, the softening rule ([`crate::scene::dem::DemParams::softened`]), the radii
 //! drawn from their distribution and the grains' masses are all fixed here.
+//!
+//! [`ModelError`]: crate::error::ModelError
 
 pub mod dem;
 pub mod impact;

@@ -25,6 +25,10 @@
 //! The vector is renormalised at every t = kT; the logarithms of the growth factors over the
 //! steady window (after the scene's `steady_start`) are averaged.
 //!
+//! [`ImpactWorld::model_lyapunov`]: super::ImpactWorld::model_lyapunov
+//! [`ImpactWorld::model_lyapunov_two_trajectory`]: super::ImpactWorld::model_lyapunov_two_trajectory
+//! [`ImpactWorld::run`]: super::ImpactWorld::run
+//!
 //! # Files
 //! `estimate.rs` (the result, the options, the norm and the batch means), `tangent.rs` (the
 //! tangent estimate and its saltation matrices), `two_trajectory.rs` (the cross-check).
