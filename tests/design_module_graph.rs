@@ -116,7 +116,7 @@ struct SourceFile {
     ast: syn::File,
 }
 
-/// The library's files with their module paths (`src/dem/world.rs` → `["dem", "world"]`).
+/// The library's files with their module paths (`src/dem/blocks.rs` → `["dem", "blocks"]`).
 fn library() -> Vec<SourceFile> {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
     let mut paths = Vec::new();

@@ -168,6 +168,11 @@ fn simulate<'py>(
         return Err(e);
     }
     let summary = result.map_err(errors::sim)?;
+    // the run's warnings (returned by the library), on standard error as `pdamp simulate`
+    // says them
+    for w in &summary.warnings {
+        eprintln!("warning: {w}");
+    }
     if let Some(d) = &dir {
         d.write_outputs(&scene, &summary, auto_choice.clone())
             .map_err(|e| errors::io(d.path(), e))?;

@@ -11,84 +11,111 @@
 //! selected by the scene's enums, the softening rule ([`crate::scene::dem::DemParams::softened`]), the radii
 //! drawn from their distribution and the grains' masses are all fixed here.
 //!
+//! Here what a scene resolves to ([`Resolved`]) and the run of it ([`simulate`]);
+//! `resolve.rs` holds [`Scene::resolve`], `keys.rs` the scene keys of the engine's errors,
+//! `window.rs` the run windows, [`dem`] and [`impact`] the two setups, [`plan`] the checks of
+//! a run's size.
+//!
 //! [`ModelError`]: crate::error::ModelError
 
 pub mod dem;
 pub mod impact;
 mod keys;
 pub mod plan;
-mod resolved;
+mod resolve;
 mod window;
 
 pub use dem::{dem_model, DemSetup};
 pub use impact::{model_lyapunov_of_scene, two_trajectory_lyapunov_of_scene};
 pub use keys::{keyed, scene_error, scene_key};
 pub use plan::RunPlan;
-pub use resolved::{Resolved, Setup};
 pub use window::{full_series, steady_series, window};
 
-use crate::error::{SceneError, SimError};
+use crate::error::SimError;
 use crate::impact::ImpactSetup;
-use crate::model::{RunOptions, RunSummary};
+use crate::model::{RunOptions, RunSummary, RunWindow};
 use crate::observe::Observer;
-use crate::scene::{Damper, Scene};
+use crate::scene::Scene;
+use crate::tradeoff::AutoChoice;
 use keys::dem_instability_keys;
 
-impl Scene {
-    /// Resolve the scene once: validate it, make the `kind = "auto"` choice
-    /// ([`crate::tradeoff::auto::choose`]), and build the engine's setup.
-    ///
-    /// # Errors
-    /// The first violated constraint, naming the scene key ([`SceneError`]).
-    pub fn resolve(&self) -> Result<Resolved, SceneError> {
-        self.validate()?;
-        let (scene, auto) = match &self.damper {
-            Damper::Auto(_) => {
-                let choice = crate::tradeoff::choose(self)?;
-                (choice.scene.clone(), Some(choice))
-            }
-            _ => (self.clone(), None),
-        };
-        let setup = match &scene.damper {
-            Damper::Dem(_) => Setup::Dem(dem::dem_setup(&scene)?),
-            _ => Setup::Impact(impact::impact_setup(&scene)?),
-        };
-        let resolved = Resolved { scene, auto, setup };
-        match &resolved.setup {
-            Setup::Dem(d) => tracing::debug!(
-                "resolved DEM scene: {} grains, dt {:?} (fraction {} of t_s), window {:?}",
-                d.model.grains.len(),
-                d.dt,
-                d.dt_fraction,
-                d.window
-            ),
-            Setup::Impact(_) => tracing::debug!(
-                "resolved event-driven scene ({}), window {:?}",
-                resolved.scene.damper.kind(),
-                resolved.window()
-            ),
+/// What a scene resolves to: the engine's input for one of the two simulators.
+// a DemSetup holds the grains' arrays; a setup is built once per run, so the size of the
+// enum does not matter
+#[allow(clippy::large_enum_variant)]
+#[derive(Debug, Clone, PartialEq)]
+pub enum Setup {
+    /// Damper `none` or `impact`: the event-driven model (SPEC §1, §3).
+    Impact(ImpactSetup),
+    /// Damper `dem`: the discrete element model (SPEC §2).
+    Dem(DemSetup),
+}
+
+/// A resolved scene: the concrete scene that is simulated (for `kind = "auto"` the one the
+/// choice wrote), the choice itself, and the engine's setup.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Resolved {
+    /// The concrete scene (damper `none`, `impact` or `dem`).
+    pub scene: Scene,
+    /// For `kind = "auto"`: which model and settings were chosen, and why.
+    pub auto: Option<AutoChoice>,
+    /// The engine's input.
+    pub setup: Setup,
+}
+
+impl Resolved {
+    /// Name of the model in `summary.json` (`"impact"`, `"dem"`, … ; `"auto:…"` for an
+    /// automatic choice) given the simulator's own name.
+    pub fn model_name(&self, simulator: &str) -> String {
+        match self.auto {
+            Some(_) => format!("auto:{simulator}"),
+            None => simulator.to_string(),
         }
-        // the bounds on derived quantities that do not depend on what is written
-        RunPlan::new(&resolved, &RunOptions::summary_only())?;
-        Ok(resolved)
     }
 
-    /// Resolve a scene whose damper is `none` or `impact` to the event-driven model's setup.
-    ///
-    /// # Errors
-    /// Validation errors; a damper `dem` / `auto` (named `damper.kind`).
-    pub fn resolve_impact(&self) -> Result<ImpactSetup, SceneError> {
-        self.validate()?;
-        impact::impact_setup(self)
+    /// The run windows (s) of the concrete scene.
+    pub fn window(&self) -> RunWindow {
+        window(&self.scene)
     }
 
-    /// Resolve a scene whose damper is `dem` to the DEM's setup.
-    ///
-    /// # Errors
-    /// Validation errors; a damper other than `dem` (named `damper.kind`).
-    pub fn resolve_dem(&self) -> Result<DemSetup, SceneError> {
-        self.validate()?;
-        dem::dem_setup(self)
+    /// Places the run's own files under its output directory `dir`: a relative
+    /// `damper.snapshot_dir` (default `snapshots`) becomes `dir/…`; an absolute one is kept
+    /// as the user gave it. Without this call snapshots go to the relative path as given
+    /// (from the current directory), as a library caller without an output directory expects.
+    pub fn place_outputs_in(&mut self, dir: &std::path::Path) {
+        self.place_snapshots(dir, false);
+    }
+
+    /// As [`Resolved::place_outputs_in`] for one point of a sweep, whose directory `dir` is
+    /// the point's own: an absolute `damper.snapshot_dir` gets `dir`'s last component
+    /// appended, so that two points never share snapshot files.
+    pub fn place_point_outputs_in(&mut self, dir: &std::path::Path) {
+        self.place_snapshots(dir, true);
+    }
+
+    fn place_snapshots(&mut self, dir: &std::path::Path, per_point: bool) {
+        if let Setup::Dem(DemSetup {
+            snapshots: Some((snap, _)),
+            ..
+        }) = &mut self.setup
+        {
+            if !snap.is_absolute() {
+                *snap = dir.join(&*snap);
+            } else if per_point {
+                *snap = snap.join(dir.file_name().unwrap_or_default());
+            }
+        }
+    }
+
+    /// The directory snapshots go to, if the run writes any.
+    pub fn snapshot_dir(&self) -> Option<&std::path::Path> {
+        match &self.setup {
+            Setup::Dem(DemSetup {
+                snapshots: Some((snap, _)),
+                ..
+            }) => Some(snap),
+            _ => None,
+        }
     }
 }
 

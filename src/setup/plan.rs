@@ -24,7 +24,7 @@ use crate::scene::keys;
 
 use super::dem::DemSetup;
 use super::keys::scene_error;
-use super::resolved::{Resolved, Setup};
+use super::{Resolved, Setup};
 
 /// Most integration steps (event-driven steps, or DEM steps including settling) of one run.
 pub const MAX_STEPS: f64 = 1e11;

@@ -17,7 +17,6 @@ use crate::units::G;
 
 use super::kernels::PairResponse;
 use super::laws::{Laws, Uniform};
-use super::order::{ById, SortScratch};
 
 /// Default smallest grain count for which a step runs on several threads: two blocks
 /// ([`crate::dem::blocks::MIN_BLOCK`]). Results do not depend on it.
@@ -337,4 +336,30 @@ impl DemWorld {
     pub fn is_empty(&self) -> bool {
         self.pos.is_empty()
     }
+}
+
+/// Buffers of the curve sort, kept between rebuilds.
+#[derive(Debug, Clone, Default)]
+pub(super) struct SortScratch {
+    /// Old slots in the new order.
+    pub(super) order: Vec<u32>,
+    /// New slot of each old slot.
+    pub(super) inv: Vec<u32>,
+    pub(super) v3: Vec<[f64; 3]>,
+    pub(super) v1: Vec<f64>,
+    pub(super) coef: Vec<ContactCoefficients>,
+    pub(super) hist: Vec<[[f64; 3]; 6]>,
+    pub(super) quat: Vec<UnitQuaternion<f64>>,
+    pub(super) ids: Vec<u32>,
+}
+
+/// Per-grain arrays in grain-id order, for snapshots.
+#[derive(Debug, Clone, Default)]
+pub(super) struct ById {
+    pub(super) pos: Vec<[f64; 3]>,
+    pub(super) vel: Vec<[f64; 3]>,
+    pub(super) omega: Vec<[f64; 3]>,
+    pub(super) force: Vec<[f64; 3]>,
+    pub(super) radius: Vec<f64>,
+    pub(super) orientation: Vec<UnitQuaternion<f64>>,
 }
