@@ -251,6 +251,11 @@ mod tests {
             assert_eq!(back[k], v[k], "{k}");
         }
         assert!(back.get("particle_steps_per_cpu_s").is_none());
+        // an earlier version's summary, without a figure added since, reads it as NaN
+        let mut older = v.clone();
+        older.as_object_mut().unwrap().remove("viscous_time_s");
+        let s: RunSummary = serde_json::from_value(older).unwrap();
+        assert!(s.dem.as_ref().unwrap().viscous_time_s.is_nan());
         // a summary without them (an impact run) reads without
         let mut impact = v.clone();
         for k in keys.keys() {
