@@ -66,12 +66,12 @@ pub struct DemExtras {
     /// figure).
     #[serde(default = "nan", deserialize_with = "nan_if_null")]
     pub particle_steps_per_s: f64,
-    /// Simulated settling time before the drive (s).
-    #[serde(default = "nan", deserialize_with = "nan_if_null")]
-    pub settle_time_s: f64,
     /// Settling steps (a count).
     #[serde(default = "nan", deserialize_with = "nan_if_null")]
     pub settle_steps: f64,
+    /// Simulated settling time before the drive (s).
+    #[serde(default = "nan", deserialize_with = "nan_if_null")]
+    pub settle_time_s: f64,
     /// Time steps of the driven run, settling excluded (a count).
     #[serde(default = "nan", deserialize_with = "nan_if_null")]
     pub steps: f64,
