@@ -9,12 +9,13 @@ mod scratch;
 
 use std::path::Path;
 
+use pdamp::choice::Change;
 use pdamp::scene::SceneSource;
 use pdamp::sweep::{run_sweep, Catalog, SweepSpec, Vary};
 use pdamp::tradeoff::compute::compute_missing;
 use pdamp::tradeoff::study::study;
 use pdamp::tradeoff::table::{rows_csv, settings_csv};
-use pdamp::tradeoff::{Change, StudyPlan};
+use pdamp::tradeoff::StudyPlan;
 
 const TINY: &str = r#"
 [primary]

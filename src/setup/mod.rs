@@ -19,12 +19,12 @@ pub use dem::{dem_model, DemSetup};
 pub use impact::{model_lyapunov_of_scene, two_trajectory_lyapunov_of_scene};
 pub use plan::RunPlan;
 
+use crate::choice::AutoChoice;
 use crate::error::{ModelError, Quantity, SceneError, SimError};
 use crate::impact::ImpactSetup;
 use crate::model::{RunOptions, RunSummary, RunWindow};
 use crate::observe::Observer;
 use crate::scene::{Damper, Scene};
-use crate::tradeoff::AutoChoice;
 
 /// What a scene resolves to: the engine's input for one of the two simulators.
 // a DemSetup holds the grains' arrays; a setup is built once per run, so the size of the
@@ -108,7 +108,7 @@ impl Resolved {
 
 impl Scene {
     /// Resolve the scene once: validate it, make the `kind = "auto"` choice
-    /// ([`crate::tradeoff::auto::choose`]), and build the engine's setup.
+    /// ([`crate::choice::auto::choose`]), and build the engine's setup.
     ///
     /// # Errors
     /// The first violated constraint, naming the scene key ([`SceneError`]).
@@ -116,7 +116,7 @@ impl Scene {
         self.validate()?;
         let (scene, auto) = match &self.damper {
             Damper::Auto(_) => {
-                let choice = crate::tradeoff::choose(self)?;
+                let choice = crate::choice::choose(self)?;
                 (choice.scene.clone(), Some(choice))
             }
             _ => (self.clone(), None),

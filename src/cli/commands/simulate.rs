@@ -94,7 +94,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let plan = plan_full_run(&resolved, args.max_output)?;
     tracing::info!("plan: {}", plan.describe());
     let auto_choice = resolved.auto.as_ref().map(|c| {
-        let why = pdamp::tradeoff::auto::describe(c);
+        let why = pdamp::choice::auto::describe(c);
         tracing::info!("{why}");
         why
     });
