@@ -99,3 +99,28 @@ fn doubling_with_the_same_analysis_clock_continues_the_trajectory() {
     let (dt_own, _) = run(&dir.path().join("p24_own"), &[("run.periods", 24)]);
     assert_ne!(dt.to_bits(), dt_own.to_bits(), "{dt}");
 }
+
+/// Amplitude (m) and strobed centre-of-mass heights of TINY run with the analysis, sampled as
+/// `opts` says.
+fn analysed(opts: &pdamp::model::RunOptions) -> (u64, Vec<u64>) {
+    let scene = SceneSource::parse(TINY).unwrap().scene(&[]).unwrap();
+    let mut obs = pdamp::observe::NullObserver;
+    let s = pdamp::sweep::run_with_analysis(&scene, &mut obs, opts, true).unwrap();
+    let z = s.strobe.iter().map(|p| p.grain_z_m.to_bits()).collect();
+    (s.amplitude_m.to_bits(), z)
+}
+
+#[test]
+fn a_run_sampled_on_the_analysis_clock_is_the_sweep_points_run() {
+    // what the chapter-4 panels do (`pdamp::setup::steady_series`): the same time step, so
+    // the same trajectory and verdict as the sweep's point (sampled on its own clock)
+    let scene = SceneSource::parse(TINY).unwrap().scene(&[]).unwrap();
+    let sweep_point = analysed(&pdamp::model::RunOptions::summary_only());
+    let panel = analysed(&pdamp::setup::steady_series(&scene));
+    assert_eq!(sweep_point, panel);
+    // sampled every run.sample_interval instead (`pdamp simulate`), the step moves
+    let fine = analysed(&pdamp::model::RunOptions::full_series(
+        scene.run.sample_interval,
+    ));
+    assert_ne!(sweep_point.0, fine.0);
+}

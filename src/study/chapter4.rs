@@ -21,7 +21,7 @@ use crate::analysis::mutual_information::{mutual_information, MutualInformationO
 use crate::analysis::regime::Regime;
 use crate::analysis::spectrum::{power_spectrum, SpectrumOptions};
 use crate::error::StudyError;
-use crate::model::{RunOptions, RunSummary};
+use crate::model::RunSummary;
 use crate::plot::bed_motion::BedMotionFigure;
 use crate::plot::bifurcation::BifurcationFigure;
 use crate::plot::frequency_panel::{FrequencyPanelFigure, ReconstructionGridFigure};
@@ -46,11 +46,11 @@ use super::pipeline::{
     DEM_B_SOFT,
 };
 use super::settings::{Chapter4Settings, DemSettings, Settings};
+use crate::model::summary::DEFAULT_ANALYSIS_MAX_SAMPLES;
 use crate::scene::keys::{
     DAMPER_SEED, EXCITATION_FREQUENCY, RUN_ANALYSIS_MAX_SAMPLES, RUN_DT_FRACTION, RUN_DURATION,
     RUN_PERIODS,
 };
-use crate::model::summary::DEFAULT_ANALYSIS_MAX_SAMPLES;
 use crate::sweep::SweepPoints;
 
 /// Scene B at Lz = 0.1225 m with softened grains and runs counted in periods
@@ -734,11 +734,11 @@ fn panel_run(d: &DemSettings, c: &Chapter4Settings, f: f64) -> Result<PanelRun, 
     let mut set = ch4_set(d, c, 1.0);
     set.push((EXCITATION_FREQUENCY, f.to_string()));
     let scene = scene_with(&step, DEM_CH4, &set)?;
-    let dt = scene.run.sample_interval;
-    let opts = RunOptions {
-        sample_interval_s: Some(dt),
-        sample_from_s: scene.analysis_start_s(),
-    };
+    // the sweep's own analysis series (every analysis window / run.analysis_max_samples s
+    // from the analysis start, ~170 samples a period here): the automatic time step is
+    // snapped to that clock, so the panel is the sweep point's run, trajectory and verdict
+    let opts = crate::setup::steady_series(&scene);
+    let dt = opts.sample_interval_s.unwrap_or(scene.run.sample_interval);
     let mut rec = Recorded::default();
     let summary = crate::sweep::run_with_analysis(&scene, &mut rec, &opts, true)
         .map_err(|e| StudyError::step(&step, e))?;
