@@ -190,24 +190,31 @@ pub fn analyze_section(
     let mut out = pattern(&u, &w, opts);
     if !matches!(out.pattern, SectionPattern::TooShort { .. }) {
         out.axis_scatter = axis_scatter(&u, out.best_period);
-        out.tight = tight_grouping(&u, &w, opts.noise_tol);
+        out.tight = tight_grouping(&u, &w, opts);
     }
     Ok(out)
 }
 
 /// The smallest period whose groups are tight ([`SectionAnalysis::tight`]), from the
 /// residue scatters `w[p − 1]` = W_p.
-fn tight_grouping(u: &[Vec<f64>], w: &[f64], noise_tol: f64) -> Option<Grouping> {
+fn tight_grouping(u: &[Vec<f64>], w: &[f64], opts: &SectionOptions) -> Option<Grouping> {
     // W_p² of n points in p groups of pure scatter is biased low by the factor (1 − p/n)
     // (p fitted centroids): compare periods on the corrected W_p / √(1 − p/n), or a long
     // period would always look "better" than the true one
     let n = u.len() as f64;
     let corrected = |p: usize| w[p - 1] / (1.0 - p as f64 / n).sqrt();
     let best = (1..=w.len()).map(corrected).fold(f64::INFINITY, f64::min);
+    // an exact period (W_p ≤ exact_tol, e.g. 1e-9 of the orbit) is tight whatever a longer
+    // period's still smaller residue: below the exact tolerance the ratio of two residues
+    // measures rounding and the last drift of the transient, not the orbit (a period-1 orbit
+    // at W_1 = 2e-9 was called period 3 because W_3 = 3e-13)
     (1..=w.len())
         .find(|&p| {
             let wp = w[p - 1];
-            wp <= noise_tol && corrected(p) <= 1.5 * best && groups_separated(u, p, wp)
+            wp <= opts.exact_tol
+                || (wp <= opts.noise_tol
+                    && corrected(p) <= 1.5 * best
+                    && groups_separated(u, p, wp))
         })
         .map(|p| Grouping {
             period: p,
@@ -620,6 +627,34 @@ mod tests {
         }
         let want = (ss / (n - 1) as f64).sqrt() / (std::f64::consts::SQRT_2 * 0.3);
         assert_eq!(determinism_ratio(&u, 0.3), Some(want));
+    }
+
+    #[test]
+    fn an_exact_fixed_point_is_period_one_whatever_a_longer_period_residue() {
+        // the chapter-4 bed at 7 Hz: the section is one point to 2e-9 of the orbit, with a
+        // drift whose period-3 residue is smaller still (3e-13); the tight grouping is the
+        // exact period 1, not 3 (the 1.5 × best rule compares residues above the exact
+        // tolerance only)
+        let pts: Vec<Vec<f64>> = (0..120)
+            .map(|k| {
+                let drift = 2e-9 * [0.0, 1.0, -1.0][k % 3];
+                vec![0.3 + drift, 0.7 - drift]
+            })
+            .collect();
+        let a = analyze_section(&pts, &[1.0, 1.0], &SectionOptions::default()).unwrap();
+        let w1 = residue_scatter(&normalise(&pts, &[1.0, 1.0]).unwrap(), 1);
+        let w3 = residue_scatter(&normalise(&pts, &[1.0, 1.0]).unwrap(), 3);
+        assert!(w1 < 1e-8 && w3 < 1.5e-3 * w1, "{w1} {w3}");
+        assert_eq!(a.tight.as_ref().map(|g| g.period), Some(1), "{a:?}");
+        // above the exact tolerance the same shape is a period-3 orbit
+        let pts3: Vec<Vec<f64>> = (0..120)
+            .map(|k| {
+                let c = [0.0, 0.4, 0.9][k % 3];
+                vec![0.3 + c, 0.7 - c]
+            })
+            .collect();
+        let a = analyze_section(&pts3, &[1.0, 1.0], &SectionOptions::default()).unwrap();
+        assert_eq!(a.tight.as_ref().map(|g| g.period), Some(3), "{a:?}");
     }
 
     #[test]
