@@ -532,5 +532,4 @@ fn round_if_close(p: f64) -> f64 {
     }
 }
 
-#[cfg(test)]
 mod tests;

@@ -439,5 +439,4 @@ fn outcome(n: usize, sat: f64, indep: f64, offset: f64) -> ReplicaOutcome {
     ))
 }
 
-#[cfg(test)]
 mod tests;

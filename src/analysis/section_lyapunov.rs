@@ -504,5 +504,4 @@ pub(crate) fn median(v: &[f64]) -> f64 {
     }
 }
 
-#[cfg(test)]
 mod tests;

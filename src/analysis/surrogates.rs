@@ -531,5 +531,4 @@ pub fn periodogram(x: &[f64]) -> Vec<f64> {
     out.iter().map(|c| c.norm_sqr() / n2).collect()
 }
 
-#[cfg(test)]
 mod tests;

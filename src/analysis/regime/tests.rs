@@ -1,5 +1,7 @@
 //! Tests of the regime classifier ([`super::classify`]).
 
+#![cfg(test)]
+
 use super::*;
 
 fn line(f: f64, p: f64) -> SpectralLine {

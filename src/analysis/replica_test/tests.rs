@@ -1,5 +1,7 @@
 //! Tests of the two-replica test ([`super::report`]).
 
+#![cfg(test)]
+
 use super::*;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;

@@ -1,5 +1,7 @@
 //! Tests of the section pattern test ([`super::analyze_section`]).
 
+#![cfg(test)]
+
 use super::*;
 use rand::{RngExt, SeedableRng};
 

@@ -1,5 +1,7 @@
 //! Tests of the section exponent ([`super::section_lyapunov`]).
 
+#![cfg(test)]
+
 use super::*;
 
 #[test]

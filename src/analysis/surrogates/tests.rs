@@ -1,5 +1,7 @@
 //! Tests of the surrogates ([`super::surrogate`], [`super::end_to_end_segment`]).
 
+#![cfg(test)]
+
 use super::*;
 
 fn sorted(v: &[f64]) -> Vec<f64> {

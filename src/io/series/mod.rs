@@ -33,5 +33,4 @@ pub use read::{
 };
 pub use types::{Column, Delimiter, SeriesReadOptions, SeriesTable, TimeAxis};
 
-#[cfg(test)]
 mod tests;

@@ -1,5 +1,7 @@
 //! Tests of the series reader.
 
+#![cfg(test)]
+
 use super::fields::{detect_delimiter, field_ranges, split_into};
 use super::*;
 

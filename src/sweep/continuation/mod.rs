@@ -54,5 +54,4 @@ pub(in crate::sweep) use chain::run_blocks;
 pub(in crate::sweep) use hysteresis::write_tables;
 pub(in crate::sweep) use plan::check;
 
-#[cfg(test)]
 mod tests;

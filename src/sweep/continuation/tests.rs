@@ -1,5 +1,7 @@
 //! Tests of the continuation sweep's blocks, hysteresis mark and carried state.
 
+#![cfg(test)]
+
 use super::chain::state_overrides;
 use super::hysteresis::marks_hysteresis;
 use super::plan::{blocks, shard_blocks, Continuation, Direction};
