@@ -23,7 +23,7 @@ use crate::error::AnalysisError;
 /// Runs the whole analysis chain on a series and classifies its regime.
 ///
 /// # Formula
-/// 1. Spectrum (Hann, power per bin) and lines ([`spectral_lines`], 20 dB over the local median);
+/// 1. Spectrum (Hann, power per bin) and lines ([`spectral_lines`](crate::analysis::spectrum::spectral_lines), 20 dB over the local median);
 ///    harmonic fundamental f₀ with tolerance 0.3 bin and f₀ ≥ 8 bins.
 /// 2. Exact recurrence ([`recurrence_period`], tolerance 1e−6 of the range, on the last half).
 ///    With a recurrence, or fewer than max(16, N/20) distinct values, steps 4–5 are skipped
@@ -34,7 +34,7 @@ use crate::error::AnalysisError;
 /// 4. Dimension: FNN (4.1.4, ratio 10, Theiler window τ), first m with fraction ≤ 0.05.
 /// 5. Kantz (4.1.7) with m and τ: an ε-scan upward from the noise floor, the series
 ///    decimated by a factor chosen from τ, the scaling region of every curve after the first
-///    delay and before saturation ([`kantz_scan`]); λ = median slope with an error bar.
+///    delay and before saturation ([`kantz_scan`](crate::analysis::kantz_scan::kantz_scan)); λ = median slope with an error bar.
 ///    Without a forcing frequency, nonlinear determinism from IAAFT surrogates (prediction
 ///    error, rank test, end-matched segment; see `surrogate_evidence`).
 /// 6. With a forcing frequency: section (s(t_k), s(t_k + τ)) with cubic interpolation; distinct

@@ -12,7 +12,7 @@
 //! given series leave their evidence empty and add a note; only non-finite data, a series
 //! shorter than [`MIN_SAMPLES`] or inconsistent options are errors.
 //!
-//! One file per part: the options and the report ([`report`]'s items, re-exported here), the
+//! One file per part: the options and the report (re-exported here), the
 //! evidence of each estimator, the chain on a series and the forced-run path.
 
 mod chain;

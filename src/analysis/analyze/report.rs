@@ -12,13 +12,13 @@ use crate::analysis::section_dimension::ChaosDimension;
 use crate::analysis::section_lyapunov::SectionLyapunov;
 use serde::{Deserialize, Serialize};
 
-/// Largest |x| [`analyze_series`] accepts (powers of larger values overflow f64).
+/// Largest |x| [`analyze_series`](super::analyze_series) accepts (powers of larger values overflow f64).
 pub const MAX_ABS_VALUE: f64 = 1e150;
 
-/// Shortest series [`analyze_series`] accepts.
+/// Shortest series [`analyze_series`](super::analyze_series) accepts.
 pub const MIN_SAMPLES: usize = 64;
 
-/// Options of [`analyze_series`]. `Default` gives the automatic choices documented per field.
+/// Options of [`analyze_series`](super::analyze_series). `Default` gives the automatic choices documented per field.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct AnalyzeOptions {
     /// Sampling interval in seconds (default `None`: results per sample, frequencies in
@@ -92,7 +92,7 @@ pub struct KantzFitReport {
     pub steps: usize,
 }
 
-/// Result of [`analyze_series`]: the verdict, the automatic choices and the evidence.
+/// Result of [`analyze_series`](super::analyze_series): the verdict, the automatic choices and the evidence.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct AnalysisReport {
     /// Number of samples analysed (the tail of the series).

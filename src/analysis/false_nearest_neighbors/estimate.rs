@@ -19,8 +19,8 @@ use crate::error::AnalysisError;
 /// `n` in the maximum norm with `|n − j| > w` and distance `δ > 0` (exact duplicates are
 /// ignored) is accepted if `δ ≤ σ/R_t` (σ: standard deviation of the rescaled series); the
 /// pair is false if `|s_{n+mk} − s_{j+mk}| / δ > R_t`. Fraction = false / accepted. The
-/// coordinate spacing is `k = τ` for [`FnnVectors::Delay`] (pdamp's default) and `k = 1` for
-/// [`FnnVectors::TiseanUnivariate`] (TISEAN 3.0.1, which ignores `-d` inside the vectors of a
+/// coordinate spacing is `k = τ` for [`FnnVectors::Delay`](super::FnnVectors::Delay) (pdamp's default) and `k = 1` for
+/// [`FnnVectors::TiseanUnivariate`](super::FnnVectors::TiseanUnivariate) (TISEAN 3.0.1, which ignores `-d` inside the vectors of a
 /// univariate series: only the ranges depend on τ).
 ///
 /// # Units
@@ -38,7 +38,7 @@ use crate::error::AnalysisError;
 ///
 /// # Pitfalls
 /// TISEAN's `false_nearest -d τ` with τ > 1 tests the unit-delay embedding (see
-/// [`FnnVectors::TiseanUnivariate`]); for a flow sampled finely that is a different and much
+/// [`FnnVectors::TiseanUnivariate`](super::FnnVectors::TiseanUnivariate)); for a flow sampled finely that is a different and much
 /// less informative test than Kennel's. Noisy data never reach 0 % (noise fills every dimension). With `w = 0` and a finely
 /// sampled flow the nearest neighbour is often the next sample on the same trajectory, which
 /// is rarely false: use a Theiler window of at least τ. Ties (several neighbours at exactly the

@@ -5,7 +5,7 @@
 /// Largest embedding dimension supported (distances are unrolled for a compile-time dimension).
 pub const MAX_DIMENSION: usize = 12;
 
-/// Options of [`false_nearest_neighbors`].
+/// Options of [`false_nearest_neighbors`](super::false_nearest_neighbors).
 ///
 /// `Default` gives pdamp's defaults (Kennel's ratio 10, Theiler window = lag). TISEAN's
 /// `false_nearest` defaults are [`FnnOptions::tisean`] (ratio 2, no Theiler window, `M = 5`).
@@ -28,7 +28,7 @@ pub struct FnnOptions {
     pub vectors: FnnVectors,
 }
 
-/// The coordinates of the vectors compared by [`false_nearest_neighbors`].
+/// The coordinates of the vectors compared by [`false_nearest_neighbors`](super::false_nearest_neighbors).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum FnnVectors {
     /// Delay vectors `(s_n, s_{n+τ}, …, s_{n+(m−1)τ})`, escape coordinate `s_{n+mτ}` (Kennel

@@ -75,7 +75,7 @@ impl std::str::FromStr for Delimiter {
     }
 }
 
-/// Options of [`read_table`], mirroring TISEAN's `-c`, `-x`, `-l`.
+/// Options of [`read_table`](super::read_table), mirroring TISEAN's `-c`, `-x`, `-l`.
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct SeriesReadOptions {
     /// Columns to read. Empty (the default): one column chosen automatically — the first, or
@@ -102,7 +102,7 @@ pub struct TimeAxis {
     pub dt: f64,
 }
 
-/// What [`read_table`] read: the selected columns and how they were found.
+/// What [`read_table`](super::read_table) read: the selected columns and how they were found.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SeriesTable {
     /// One `Vec` per selected column, in the order selected.
