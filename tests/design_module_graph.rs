@@ -11,8 +11,9 @@
 //! - a name reached through a re-export (`crate::prelude::Scene`, `crate::dem::DemWorld`) is
 //!   followed to the file that defines it.
 //!
-//! Code under `#[cfg(test)]` is left out (unit tests may build what they test from above),
-//! and so are doc comments (a link is not an import).
+//! Code under `#[cfg(test)]` is left out, inside a file or as a whole file of unit tests
+//! (`#![cfg(test)]`): unit tests may build what they test from above. So are doc comments (a
+//! link is not an import).
 //!
 //! Two checks: the top-level modules import only down the layers of [`LAYERS`] (the order
 //! `src/lib.rs` documents), and no files import each other in a cycle. A re-export (`pub
@@ -150,6 +151,11 @@ fn library() -> Vec<SourceFile> {
         }
         let text = std::fs::read_to_string(&p).unwrap();
         let ast = syn::parse_file(&text).unwrap_or_else(|e| panic!("src/{rel}: {e}"));
+        // a file of unit tests (`#![cfg(test)]`, e.g. `foo/tests.rs`) is left out as a
+        // `#[cfg(test)] mod tests { … }` inside a file is
+        if is_cfg_test(&ast.attrs) {
+            continue;
+        }
         out.push(SourceFile { module, rel, ast });
     }
     out
