@@ -652,7 +652,7 @@ fn run_length(
     let b: Vec<f64> = pairs.iter().map(|p| p.2).collect();
     let (la, lb) = (
         length_text(info.c, 1.0),
-        format!("{} (doubled)", length_text(info.c, 2.0)),
+        format!("{} (continued)", length_text(info.c, 2.0)),
     );
     let size = info.ctx.render(
         name,
@@ -679,9 +679,10 @@ fn run_length(
     let mut rec = info.record(
         name,
         format!(
-            "Run-length check: the sweep's points at the panel frequencies repeated with runs \
-             of {}: the verdict (regime and period) is unchanged at {same} of {} frequencies and the amplitude changes by at \
-             most {worst:.2} % (table in {name}.csv).",
+            "Run-length check: the sweep's runs continued to {} (the same trajectory: the \
+             same time step, the first half bit for bit the shorter run): the verdict (regime \
+             and period) is unchanged at {same} of {} frequencies and the amplitude changes by \
+             at most {worst:.2} % (table in {name}.csv).",
             length_text(info.c, 2.0),
             pairs.len()
         ),
