@@ -339,6 +339,7 @@ pub fn all(
                 ensemble_words: &e.words,
                 doubled: long_pts,
                 other_scene: &other_pts,
+                lengths: (length_text(c, 1.0), length_text(c, 2.0)),
                 sweeps: [long, &other],
             };
             figures.push(checks_figure(&info, &ch)?);

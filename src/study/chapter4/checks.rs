@@ -25,16 +25,19 @@ pub(super) struct Checks<'a> {
     pub doubled: &'a [Point],
     /// `thesis_b_soft.toml` at the mode's run length.
     pub other_scene: &'a [Point],
+    /// The two run lengths in words ("200 periods", "400 periods").
+    pub lengths: (String, String),
     /// The sweeps behind `doubled` and `other_scene` (their commands go in the record).
     pub sweeps: [&'a SweepResult; 2],
 }
 
-const HEADER: [&str; 15] = [
+const HEADER: [&str; 16] = [
     "frequency_hz",
     "verdict",
     "ensemble",
     "verdict_doubled",
     "same_doubled",
+    "run_length",
     "amplitude_change_doubled_pct",
     "verdict_soft_scene",
     "same_soft_scene",
@@ -68,6 +71,9 @@ fn row(c: &Checks, p: &Point) -> Vec<String> {
         verdict(d),
         same(d),
         d.map_or(String::new(), |d| {
+            run_length_words((&c.lengths.0, &c.lengths.1), p, d)
+        }),
+        d.map_or(String::new(), |d| {
             format!("{:.3}", 100.0 * (d.amplitude_m / p.amplitude_m - 1.0))
         }),
         verdict(s),
@@ -80,6 +86,22 @@ fn row(c: &Checks, p: &Point) -> Vec<String> {
         opt_cell(p.mle_per_s),
         opt_cell(s.and_then(|s| s.mle_per_s)),
     ]
+}
+
+/// Whether continuing the run changed the verdict, in words: "settled over 200 and 400
+/// periods" or "unsettled: periodic-2 over 200 periods, undetermined over 400 periods" (the
+/// run twice as long continues the same trajectory, so a change is the motion's, not
+/// another start's).
+fn run_length_words((short, long): (&str, &str), p: &Point, d: &Point) -> String {
+    if d.verdict() == p.verdict() {
+        format!("settled over {short} and {long}")
+    } else {
+        format!(
+            "unsettled: {} over {short}, {} over {long}",
+            p.verdict(),
+            d.verdict()
+        )
+    }
 }
 
 /// "k of n" agreement of `other` with the base verdicts, and the frequencies that differ.
