@@ -10,6 +10,7 @@
 //! puts the analysis clock (4 ms) well above `run.sample_interval` (0.1 ms), as the chapter-4
 //! runs' clock is.
 
+mod common;
 mod scratch;
 
 use std::collections::BTreeMap;
@@ -18,47 +19,28 @@ use std::path::Path;
 use pdamp::scene::SceneSource;
 use pdamp::sweep::{run_sweep, SweepSpec, Vary};
 
-const TINY: &str = r#"
-[primary]
-mass = 2.37
-stiffness = 21500.0
-damping = 7.6
+use common::TINY_DEM as TINY;
 
-[excitation]
-amplitude = 0.0045
-frequency = 15.0
-
-[damper]
-kind = "dem"
-box = [0.02, 0.02, 0.05]
-count = 20
-radius = 0.003
-density = 8030.0
-youngs_modulus = 2.03e7
-poisson = 0.28
-friction = 0.3
-gamma_n = 14.57
-gamma_s = 43.72
-contact = "hertz-kk"
-
-[run]
-periods = 12
-steady_fraction = 0.5
-analysis_fraction = 0.5
-analysis_max_samples = 100
-sample_interval = 1e-4
-dt = "auto"
-dt_fraction = 0.02
-"#;
+/// `run.analysis_max_samples` and `run.sample_interval` of these runs: the analysis clock
+/// (0.4 s / 100 = 4 ms) far above the sample interval (0.1 ms).
+fn clock_set() -> Vec<(String, toml::Value)> {
+    vec![
+        ("run.analysis_max_samples".into(), toml::Value::Integer(100)),
+        ("run.sample_interval".into(), toml::Value::Float(1e-4)),
+    ]
+}
 
 /// The time step (s) and the strobe rows by period index of the one point a sweep of TINY
 /// with `set` stored.
 fn run(dir: &Path, set: &[(&str, i64)]) -> (f64, BTreeMap<i64, String>) {
     let spec = SweepSpec {
         base: SceneSource::parse(TINY).unwrap(),
-        set: set
-            .iter()
-            .map(|(k, v)| (k.to_string(), toml::Value::Integer(*v)))
+        set: clock_set()
+            .into_iter()
+            .chain(
+                set.iter()
+                    .map(|(k, v)| (k.to_string(), toml::Value::Integer(*v))),
+            )
             .collect(),
         varies: vec![Vary::parse("excitation.frequency=15").unwrap()],
         analyze: true,
@@ -103,7 +85,10 @@ fn doubling_with_the_same_analysis_clock_continues_the_trajectory() {
 /// Amplitude (m) and strobed centre-of-mass heights of TINY run with the analysis, sampled as
 /// `opts` says.
 fn analysed(opts: &pdamp::model::RunOptions) -> (u64, Vec<u64>) {
-    let scene = SceneSource::parse(TINY).unwrap().scene(&[]).unwrap();
+    let scene = SceneSource::parse(TINY)
+        .unwrap()
+        .scene(&clock_set())
+        .unwrap();
     let mut obs = pdamp::observe::NullObserver;
     let s = pdamp::sweep::run_with_analysis(&scene, &mut obs, opts, true).unwrap();
     let z = s.strobe.iter().map(|p| p.grain_z_m.to_bits()).collect();
@@ -114,7 +99,10 @@ fn analysed(opts: &pdamp::model::RunOptions) -> (u64, Vec<u64>) {
 fn a_run_sampled_on_the_analysis_clock_is_the_sweep_points_run() {
     // what the chapter-4 panels do (`pdamp::setup::steady_series`): the same time step, so
     // the same trajectory and verdict as the sweep's point (sampled on its own clock)
-    let scene = SceneSource::parse(TINY).unwrap().scene(&[]).unwrap();
+    let scene = SceneSource::parse(TINY)
+        .unwrap()
+        .scene(&clock_set())
+        .unwrap();
     let sweep_point = analysed(&pdamp::model::RunOptions::summary_only());
     let panel = analysed(&pdamp::setup::steady_series(&scene));
     assert_eq!(sweep_point, panel);
