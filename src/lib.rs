@@ -8,14 +8,13 @@
 //! ## Architecture (dependencies point one way)
 //! ```text
 //! (binary: cli) → prelude → systems → study → tradeoff → sweep → plot → io → setup (scene → resolved objects)
-//!   → scene → dem / impact → observe / contact / neighbor / integrate / packing → files → model → analysis → simd → units / error
+//!   → choice → scene → dem / impact → observe / contact / neighbor / integrate / packing → files → model → analysis → simd → units / error
 //! ```
 //! A module imports only modules to its right, never one beside it (`dem` and `impact` know
 //! nothing of each other), and no two files import each other. `tests/design_module_graph.rs`
 //! reads the `use`/path graph of `src/` from the syntax tree and holds the code to this order
-//! (its lists of exceptions name what is left: the upward edge `setup → tradeoff` for
-//! `kind = "auto"`, issue 38, and a few `mod.rs` ↔ child-file pairs in `scene`, `setup` and
-//! `study`). `dem`, `impact` and `model` never see a scene; `analysis`
+//! (its list of exceptions names what is left: a few `mod.rs` ↔ child-file pairs in `scene`,
+//! `setup` and `study`). `dem`, `impact` and `model` never see a scene; `analysis`
 //! knows nothing of the simulators (the primary's FRF (2.1.21) it fits is its own,
 //! [`analysis::frf_fit::base_excitation_amplitude`], and [`model`] evaluates it from there).
 //! - [`scene`]: TOML scene files → validated [`scene::Scene`].
@@ -29,7 +28,8 @@
 //!   Poincaré sections, Kantz's Lyapunov exponent, regime classification, FRF fits (SPEC §4).
 //! - [`systems`]: logistic, Hénon, Lorenz, Rössler, bouncing ball — literature references.
 //! - [`plot`]: headless PNG figures (SPEC §7).
-//! - [`tradeoff`]: speed against accuracy of the models and settings; `kind = "auto"`.
+//! - [`tradeoff`]: speed against accuracy of the models and settings, measured.
+//! - [`choice`]: the ladder of shortcuts and `kind = "auto"`'s pick from the measured table.
 //! - [`io`]: series and CSV input/output, the run directory.
 //! - [`files`]: atomic writes and CSV text, beneath the observers (re-exported by [`io`]).
 //! - [`prelude`]: the common types in one `use pdamp::prelude::*;` (see
@@ -41,6 +41,7 @@
 #![warn(missing_docs)]
 
 pub mod analysis;
+pub mod choice;
 pub mod contact;
 pub mod dem;
 pub mod error;

@@ -268,6 +268,57 @@ fn cli_reports_the_key() {
     assert!(ok);
 }
 
+/// A run whose own estimate exceeds 24 h on one core is refused before it starts, naming the
+/// estimate and `--max-runtime` (issue 40): scene B's bed with a radius given in the wrong unit
+/// (30 µm) plans days at a tiny step; a short run given a tiny limit is refused the same way.
+#[test]
+fn a_run_too_long_to_be_meant_is_asked_for() {
+    let dir = scratch::tempdir().unwrap();
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/data/scenes/thesis_b_soft.toml"
+    );
+    let out = dir.path().join("out");
+    let o = out.to_str().unwrap();
+    let (ok, err) = pdamp(&["simulate", scene, "--out", o, "--set", "damper.radius=3e-5"]);
+    assert!(
+        !ok && err.contains("--max-runtime") && err.contains("estimated at"),
+        "{err}"
+    );
+    assert!(!out.exists(), "a refused run wrote {}", out.display());
+    let (ok, err) = pdamp(&[
+        "sweep",
+        scene,
+        "--out",
+        o,
+        "--set",
+        "damper.radius=3e-5",
+        "--vary",
+        "excitation.frequency=14,15",
+    ]);
+    assert!(
+        !ok && err.contains("--max-runtime") && err.contains("the sweep"),
+        "{err}"
+    );
+    assert!(!out.exists(), "a refused sweep wrote {}", out.display());
+    // the flag sets the limit: a short impact run refused below its estimate, run above it
+    let good = dir.path().join("good.toml");
+    std::fs::write(&good, GOOD).unwrap();
+    let g = good.to_str().unwrap();
+    let (ok, err) = pdamp(&["simulate", g, "--out", o, "--max-runtime", "1e-9s"]);
+    assert!(!ok && err.contains("--max-runtime"), "{err}");
+    let (ok, err) = pdamp(&[
+        "simulate",
+        g,
+        "--out",
+        o,
+        "--max-runtime",
+        "1h",
+        "--no-analysis",
+    ]);
+    assert!(ok, "{err}");
+}
+
 /// A DEM box without `[primary]` moves kinematically with the base (issue 4); `kind = "auto"`
 /// compares against the primary's response, so without `[primary]` it is refused naming the key.
 #[test]

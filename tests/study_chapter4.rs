@@ -98,6 +98,13 @@ fn reduced_chapter4_study_writes_every_figure_and_counts_two_impacts_at_14_5_hz(
         let v = checks.str_column(col).unwrap();
         assert!(v.iter().all(|w| !w.is_empty()), "{col}: {v:?}");
     }
+    let runs = checks.str_column("run_length").unwrap();
+    assert!(
+        runs.iter()
+            .all(|w| w.starts_with("settled over 12 periods and 24 periods")
+                || w.starts_with("unsettled: ")),
+        "{runs:?}"
+    );
     let same = checks.str_column("same_soft_scene").unwrap();
     assert!(
         same.iter().all(|w| *w == "true" || *w == "false"),

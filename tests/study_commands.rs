@@ -1,10 +1,16 @@
 //! Every command printed in `OUT/README.md` (issue 11, step 3) is a command the `pdamp` binary
 //! accepts: the smoke reproduction's README is read back, each command is parsed by the CLI's
-//! own clap parser (the binary with `PDAMP_PARSE_ONLY` set), and then every one of them is run
+//! own clap parser (`Cli::try_parse_from`, the CLI's module included from `src/cli/`, after its
+//! TISEAN-flag check, as `pdamp` parses), and then every one of them is run
 //! end to end in order (the smoke sizes make them cheap: the sweeps resume from the finished
 //! points, which also checks that a printed sweep is the very sweep that ran).
 
 mod scratch;
+
+// The binary's command line (it is not part of the library), for its parser only.
+#[allow(dead_code)]
+#[path = "../src/cli/mod.rs"]
+mod cli;
 
 use std::path::Path;
 use std::process::{Command, Stdio};
@@ -65,14 +71,29 @@ fn readme_commands(readme: &str) -> Vec<String> {
         .collect()
 }
 
-fn pdamp(args: &[String], parse_only: bool, stdout: Option<&str>) -> (bool, String) {
+/// Whether `pdamp ARGS` parses, as the binary parses it (its TISEAN-flag check, then clap),
+/// with the parser's message when not.
+fn parses(args: &[String]) -> (bool, String) {
+    let mut argv = vec!["pdamp".to_string()];
+    argv.extend(args.iter().cloned());
+    let parsed = cli::commands::tisean_flags::check(&argv)
+        .map_err(|e| e.to_string())
+        .and_then(|()| {
+            <cli::Cli as clap::Parser>::try_parse_from(&argv)
+                .map(|_| ())
+                .map_err(|e| e.to_string())
+        });
+    match parsed {
+        Ok(()) => (true, String::new()),
+        Err(e) => (false, e),
+    }
+}
+
+fn pdamp(args: &[String], stdout: Option<&str>) -> (bool, String) {
     let mut c = Command::new(env!("CARGO_BIN_EXE_pdamp"));
     c.args(args)
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .stderr(Stdio::piped());
-    if parse_only {
-        c.env("PDAMP_PARSE_ONLY", "1");
-    }
     match stdout {
         Some(f) => c.stdout(std::fs::File::create(f).unwrap()),
         None => c.stdout(Stdio::null()),
@@ -107,7 +128,7 @@ fn every_readme_command_parses_and_runs() {
     for line in &commands {
         let (words, _) = shell_words(line);
         assert_eq!(words[0], "pdamp");
-        let (ok, err) = pdamp(&words[1..], true, None);
+        let (ok, err) = parses(&words[1..]);
         if !ok {
             bad.push(format!("{line}\n  {err}"));
         }
@@ -124,7 +145,7 @@ fn every_readme_command_parses_and_runs() {
         if let Some(f) = &stdout {
             assert!(Path::new(f).is_absolute(), "`{line}`: relative output");
         }
-        let (ok, err) = pdamp(&words[1..], false, stdout.as_deref());
+        let (ok, err) = pdamp(&words[1..], stdout.as_deref());
         assert!(ok, "`{line}` failed:\n{err}");
     }
 }
@@ -189,7 +210,7 @@ fn chapter4_commands_parse() {
         for cmd in &f.commands {
             let line = cmd.to_string();
             let (words, _) = shell_words(&line);
-            let (ok, err) = pdamp(&words[1..], true, None);
+            let (ok, err) = parses(&words[1..]);
             assert!(ok, "{}: `{line}` rejected:\n{err}", f.name);
             n += 1;
         }

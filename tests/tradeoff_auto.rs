@@ -7,10 +7,10 @@
 //! (data/reference/tradeoff_settings.csv), which must be the committed
 //! figures/tradeoff_settings.csv and read.
 
+use pdamp::choice::auto::{builtin_table, choose, choose_with, BUILTIN_TABLE};
+use pdamp::choice::measured::read_settings;
 use pdamp::scene::dem::DemParams;
 use pdamp::scene::{Damper, Outputs, Scene};
-use pdamp::tradeoff::auto::{builtin_table, choose, choose_with, BUILTIN_TABLE};
-use pdamp::tradeoff::table::read_settings;
 
 const SYNTHETIC: &str = "\
 # synthetic: costs in CPU seconds per point, errors relative

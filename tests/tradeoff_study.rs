@@ -5,48 +5,20 @@
 //!
 //! A tiny DEM scene (20 soft grains, 12 forcing periods) keeps the runs to seconds.
 
+mod common;
 mod scratch;
 
 use std::path::Path;
 
+use pdamp::choice::Change;
 use pdamp::scene::SceneSource;
 use pdamp::sweep::{run_sweep, Catalog, SweepSpec, Vary};
 use pdamp::tradeoff::compute::compute_missing;
 use pdamp::tradeoff::study::study;
 use pdamp::tradeoff::table::{rows_csv, settings_csv};
-use pdamp::tradeoff::{Change, StudyPlan};
+use pdamp::tradeoff::StudyPlan;
 
-const TINY: &str = r#"
-[primary]
-mass = 2.37
-stiffness = 21500.0
-damping = 7.6
-
-[excitation]
-amplitude = 0.0045
-frequency = 15.0
-
-[damper]
-kind = "dem"
-box = [0.02, 0.02, 0.05]
-count = 20
-radius = 0.003
-density = 8030.0
-youngs_modulus = 2.03e7
-poisson = 0.28
-friction = 0.3
-gamma_n = 14.57
-gamma_s = 43.72
-contact = "hertz-kk"
-
-[run]
-periods = 12
-steady_fraction = 0.5
-analysis_fraction = 0.5
-sample_interval = 1e-3
-dt = "auto"
-dt_fraction = 0.02
-"#;
+use common::TINY_DEM as TINY;
 
 fn plain_sweep(data: &Path, freqs: &str) {
     let spec = SweepSpec {

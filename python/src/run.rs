@@ -134,7 +134,7 @@ fn simulate<'py>(
         .scene(&convert::overrides(set)?)
         .map_err(errors::scene)?;
     let resolved = scene.resolve().map_err(errors::scene)?;
-    let auto_choice = resolved.auto.as_ref().map(pdamp::tradeoff::auto::describe);
+    let auto_choice = resolved.auto.as_ref().map(pdamp::choice::auto::describe);
     let dir = out
         .map(|p| RunDir::create(&p).map_err(|e| errors::io(&p, e)))
         .transpose()?;

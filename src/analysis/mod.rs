@@ -169,6 +169,31 @@ pub(crate) fn require_positive(name: &str, value: usize) -> Result<(), AnalysisE
     Ok(())
 }
 
+/// Checks the optional radii ε_min and ε_max of an estimator (TISEAN `-r`, `-R`): each, when
+/// given, a positive finite number in data units. The one check of [`kantz`] and
+/// [`correlation_dimension`]; their own orderings (ε_min < ε_max, or a single radius) stay
+/// theirs.
+///
+/// # Errors
+/// [`AnalysisError::BadParameter`] naming `eps_min` or `eps_max`.
+pub(crate) fn validate_radii(
+    eps_min: Option<f64>,
+    eps_max: Option<f64>,
+) -> Result<(), AnalysisError> {
+    for (name, v) in [("eps_min", eps_min), ("eps_max", eps_max)] {
+        if let Some(v) = v {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(AnalysisError::bad(
+                    name,
+                    v,
+                    "the radius must be a positive number in data units",
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

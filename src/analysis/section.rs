@@ -190,24 +190,31 @@ pub fn analyze_section(
     let mut out = pattern(&u, &w, opts);
     if !matches!(out.pattern, SectionPattern::TooShort { .. }) {
         out.axis_scatter = axis_scatter(&u, out.best_period);
-        out.tight = tight_grouping(&u, &w, opts.noise_tol);
+        out.tight = tight_grouping(&u, &w, opts);
     }
     Ok(out)
 }
 
 /// The smallest period whose groups are tight ([`SectionAnalysis::tight`]), from the
 /// residue scatters `w[p − 1]` = W_p.
-fn tight_grouping(u: &[Vec<f64>], w: &[f64], noise_tol: f64) -> Option<Grouping> {
+fn tight_grouping(u: &[Vec<f64>], w: &[f64], opts: &SectionOptions) -> Option<Grouping> {
     // W_p² of n points in p groups of pure scatter is biased low by the factor (1 − p/n)
     // (p fitted centroids): compare periods on the corrected W_p / √(1 − p/n), or a long
     // period would always look "better" than the true one
     let n = u.len() as f64;
     let corrected = |p: usize| w[p - 1] / (1.0 - p as f64 / n).sqrt();
     let best = (1..=w.len()).map(corrected).fold(f64::INFINITY, f64::min);
+    // an exact period (W_p ≤ exact_tol, e.g. 1e-9 of the orbit) is tight whatever a longer
+    // period's still smaller residue: below the exact tolerance the ratio of two residues
+    // measures rounding and the last drift of the transient, not the orbit (a period-1 orbit
+    // at W_1 = 2e-9 was called period 3 because W_3 = 3e-13)
     (1..=w.len())
         .find(|&p| {
             let wp = w[p - 1];
-            wp <= noise_tol && corrected(p) <= 1.5 * best && groups_separated(u, p, wp)
+            wp <= opts.exact_tol
+                || (wp <= opts.noise_tol
+                    && corrected(p) <= 1.5 * best
+                    && groups_separated(u, p, wp))
         })
         .map(|p| Grouping {
             period: p,
@@ -588,106 +595,4 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use rand::{RngExt, SeedableRng};
-
-    fn lcg_noise(n: usize, seed: u64) -> Vec<f64> {
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-        (0..n).map(|_| rng.random::<f64>() - 0.5).collect()
-    }
-
-    #[test]
-    fn determinism_ratio_equals_the_all_pairs_scan() {
-        // ties: points on a coarse lattice, many repeated
-        let noise = lcg_noise(3000, 11);
-        let u: Vec<Vec<f64>> = noise
-            .chunks(2)
-            .map(|c| vec![(c[0] * 8.0).floor() / 8.0, (c[1] * 4.0).floor() / 4.0])
-            .collect();
-        let n = u.len();
-        let mut ss = 0.0;
-        for k in 0..n - 1 {
-            let mut best = (f64::INFINITY, usize::MAX);
-            for j in (0..n - 1).filter(|&j| j != k) {
-                let d = dist2(&u[k], &u[j]);
-                if d < best.0 {
-                    best = (d, j);
-                }
-            }
-            ss += dist2(&u[k + 1], &u[best.1 + 1]);
-        }
-        let want = (ss / (n - 1) as f64).sqrt() / (std::f64::consts::SQRT_2 * 0.3);
-        assert_eq!(determinism_ratio(&u, 0.3), Some(want));
-    }
-
-    #[test]
-    fn noisy_period_three_is_periodic_with_noise() {
-        let noise = lcg_noise(1200, 3);
-        let pts: Vec<Vec<f64>> = (0..600)
-            .map(|k| {
-                let c = [0.0, 0.4, 0.9][k % 3];
-                vec![c + 0.01 * noise[2 * k], 0.5 * c + 0.01 * noise[2 * k + 1]]
-            })
-            .collect();
-        let a = analyze_section(&pts, &[1.0, 1.0], &SectionOptions::default()).unwrap();
-        assert_eq!(
-            a.pattern,
-            SectionPattern::Periodic {
-                period: 3,
-                noisy: true
-            },
-            "{a:?}"
-        );
-        // iid scatter: R ≈ 1 (√2 W normalisation)
-        let r = a.determinism_ratio.unwrap();
-        assert!((0.7..1.3).contains(&r), "{r}");
-    }
-
-    #[test]
-    fn circle_rotation_is_quasi_periodic_and_logistic_is_irregular() {
-        let rho = (5f64.sqrt() - 1.0) / 2.0;
-        let pts: Vec<Vec<f64>> = (0..800)
-            .map(|k| {
-                let a = std::f64::consts::TAU * rho * k as f64;
-                vec![a.cos(), 0.5 * a.sin()]
-            })
-            .collect();
-        let a = analyze_section(&pts, &[2.0, 1.0], &SectionOptions::default()).unwrap();
-        match a.pattern {
-            SectionPattern::QuasiPeriodic { rotation_number } => {
-                // the golden-mean rotation, folded to (0, ½]: 1 − 0.618 = 0.382 (the angle's
-                // distortion by the ellipse averages out over the orbit)
-                assert!(
-                    (rotation_number - (1.0 - rho)).abs() < 0.01,
-                    "{rotation_number}"
-                )
-            }
-            p => panic!("{p:?} {a:?}"),
-        }
-        // logistic r = 4 as a 2-D section (x_k, x_{k+1} on a parabola): deterministic cloud
-        let mut x = 0.3;
-        let mut s = Vec::new();
-        for _ in 0..800 {
-            let y = 4.0 * x * (1.0 - x);
-            s.push(vec![x, y]);
-            x = y;
-        }
-        let a = analyze_section(&s, &[1.0, 1.0], &SectionOptions::default()).unwrap();
-        assert_eq!(a.pattern, SectionPattern::Irregular, "{a:?}");
-        assert!(a.determinism_ratio.unwrap() < 0.2, "{a:?}");
-    }
-
-    #[test]
-    fn too_few_points_and_bad_scales() {
-        let pts = vec![vec![0.0, 1.0]; 10];
-        let a = analyze_section(&pts, &[1.0, 1.0], &SectionOptions::default()).unwrap();
-        assert!(matches!(
-            a.pattern,
-            SectionPattern::TooShort { points: 10, .. }
-        ));
-        assert!(analyze_section(&pts, &[1.0, 0.0], &SectionOptions::default()).is_err());
-        assert!(analyze_section(&pts, &[1.0], &SectionOptions::default()).is_err());
-    }
-}
+mod tests;

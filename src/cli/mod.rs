@@ -7,6 +7,7 @@ pub mod commands;
 pub mod exit;
 pub mod log;
 pub mod progress;
+pub mod runtime;
 
 use clap::{Parser, Subcommand};
 
@@ -92,11 +93,6 @@ pub enum Command {
     Man(commands::shell::ManArgs),
 }
 
-/// With this environment variable set (to anything), `pdamp` parses its arguments, reports a
-/// parse error as usual, and stops without running: `tests/study_commands.rs` checks every
-/// command printed in `figures/README.md` with it.
-pub const PARSE_ONLY_ENV: &str = "PDAMP_PARSE_ONLY";
-
 /// Parse the command line and run the chosen subcommand.
 pub fn run() -> anyhow::Result<()> {
     commands::tisean_flags::check(
@@ -105,9 +101,6 @@ pub fn run() -> anyhow::Result<()> {
             .collect::<Vec<_>>(),
     )?;
     let cli = Cli::parse();
-    if std::env::var_os(PARSE_ONLY_ENV).is_some() {
-        return Ok(());
-    }
     log::init(log::level(cli.verbose, cli.quiet));
     match cli.command {
         Command::Simulate(a) => commands::simulate::run(a),

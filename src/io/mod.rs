@@ -5,6 +5,7 @@
 
 pub mod clock;
 pub mod run_dir;
+pub mod schema;
 pub mod series;
 
 pub use crate::files::{atomic, csv_out};

@@ -203,7 +203,7 @@ fn remove_if_present(path: &Path) -> std::io::Result<()> {
 
 /// The text of `strobe.csv` for a summary.
 pub fn strobe_csv(summary: &RunSummary) -> String {
-    let mut strobe = String::from("cycle,time_s,grain_z_m,box_z_m,grain_v_m_s,box_v_m_s\n");
+    let mut strobe = crate::files::csv_out::record_line(crate::io::schema::run_strobe_columns());
     for p in &summary.strobe {
         strobe.push_str(&format!(
             "{},{},{},{},{},{}\n",

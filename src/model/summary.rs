@@ -9,6 +9,9 @@ use super::dem_extras::DemExtras;
 /// Default output sampling interval (s): `run.sample_interval` and the DEM engine's
 /// `DemRunConfig` (1e-4 s).
 pub const DEFAULT_SAMPLE_INTERVAL_S: f64 = 1e-4;
+/// Default largest number of samples of the analysed series (`run.analysis_max_samples`,
+/// 20 000): the series is sampled every max(`run.sample_interval`, analysis window / this).
+pub const DEFAULT_ANALYSIS_MAX_SAMPLES: usize = 20_000;
 /// Default fraction of the run treated as steady state (per-cycle figures):
 /// `run.steady_fraction` and the engine's (0.1).
 pub const DEFAULT_STEADY_FRACTION: f64 = 0.1;

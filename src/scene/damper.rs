@@ -21,7 +21,7 @@ pub enum Damper {
     /// A box of spheres simulated with the discrete element method (SPEC §2).
     Dem(DemParams),
     /// A box of spheres described as for `dem`, simulated with the cheapest model and settings
-    /// that meet the scene's `[outputs]` (chosen by [`crate::tradeoff::auto::choose`] from the
+    /// that meet the scene's `[outputs]` (chosen by [`crate::choice::auto::choose`] from the
     /// measured speed/accuracy table).
     Auto(DemParams),
 }

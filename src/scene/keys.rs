@@ -28,6 +28,9 @@ pub const DAMPER_YOUNGS_MODULUS: &str = "damper.youngs_modulus";
 pub const RUN_DURATION: &str = "run.duration";
 /// `run.periods`: simulated forcing periods; replaces `run.duration`.
 pub const RUN_PERIODS: &str = "run.periods";
+/// `run.analysis_max_samples`: most samples of the analysed series (their interval is the
+/// coarser of `run.sample_interval` and the analysis window over this count).
+pub const RUN_ANALYSIS_MAX_SAMPLES: &str = "run.analysis_max_samples";
 /// `run.analysis_fraction`: last fraction of the run that is analysed (section and series).
 pub const RUN_ANALYSIS_FRACTION: &str = "run.analysis_fraction";
 /// `run.sample_interval`: output sampling of `series.csv` (s).

@@ -1,6 +1,6 @@
 //! `[outputs]`: what a scene needs from its run, and how accurately. `[damper] kind = "auto"`
 //! uses it to pick the cheapest model and settings that deliver it
-//! ([`crate::tradeoff::auto`]); the simulators use it to skip work nobody asked for.
+//! ([`crate::choice::auto`]); the simulators use it to skip work nobody asked for.
 //!
 //! ```toml
 //! [outputs]

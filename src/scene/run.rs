@@ -153,7 +153,7 @@ fn default_energy_ledger() -> bool {
     true
 }
 fn default_analysis_max_samples() -> usize {
-    20_000
+    crate::model::summary::DEFAULT_ANALYSIS_MAX_SAMPLES
 }
 
 impl Run {

@@ -36,7 +36,7 @@ use crate::impact::ImpactSetup;
 use crate::model::{RunOptions, RunSummary, RunWindow};
 use crate::observe::Observer;
 use crate::scene::Scene;
-use crate::tradeoff::AutoChoice;
+use crate::choice::AutoChoice;
 use keys::dem_instability_keys;
 
 /// What a scene resolves to: the engine's input for one of the two simulators.

@@ -12,7 +12,7 @@ use super::{impact, Resolved, Setup};
 
 impl Scene {
     /// Resolve the scene once: validate it, make the `kind = "auto"` choice
-    /// ([`crate::tradeoff::auto::choose`]), and build the engine's setup.
+    /// ([`crate::choice::auto::choose`]), and build the engine's setup.
     ///
     /// # Errors
     /// The first violated constraint, naming the scene key ([`SceneError`]).
@@ -20,7 +20,7 @@ impl Scene {
         self.validate()?;
         let (scene, auto) = match &self.damper {
             Damper::Auto(_) => {
-                let choice = crate::tradeoff::choose(self)?;
+                let choice = crate::choice::choose(self)?;
                 (choice.scene.clone(), Some(choice))
             }
             _ => (self.clone(), None),

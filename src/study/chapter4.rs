@@ -6,12 +6,13 @@
 //! - `ch4_bifurcation`: z_cm strobed once per period (the exact section) versus f;
 //! - `ch4_impacts`: collective bed–floor and bed–ceiling impacts per cycle versus f
 //!   ([`crate::dem::bed_impacts`]), so that "two impacts per period" can be read off;
-//! - `ch4_checks` (with `--ch4-checks`): every frequency from three starts, doubled, and with
-//!   the other shipped softened scene at both run lengths, verdict by verdict
+//! - `ch4_checks` (with `--ch4-checks`): every frequency from three starts, continued to twice
+//!   the length, and with the other shipped softened scene, verdict by verdict
 //!   (`chapter4/checks.rs`);
-//! - `ch4_run_length`: the check frequencies again with every run twice as long, verdict by
-//!   verdict and amplitude by amplitude (the quick mode's run length is only trusted where
-//!   doubling it changes nothing);
+//! - `ch4_run_length`: the check frequencies again with every run continued to twice its
+//!   length (the same trajectory, see `ch4_set`), verdict by verdict and amplitude by
+//!   amplitude (the quick mode's run length is only trusted where doubling it changes
+//!   nothing);
 //! - `ch4_panel_f<f>` (Figs. 4.2–4.6): bed band between floor and ceiling, the section and the
 //!   spectrum at each of the source's frequencies;
 //! - `ch4_reconstruction` (Fig. 4.7): delay reconstructions of z_cm at the same frequencies.
@@ -20,7 +21,7 @@ use crate::analysis::mutual_information::{mutual_information, MutualInformationO
 use crate::analysis::regime::Regime;
 use crate::analysis::spectrum::{power_spectrum, SpectrumOptions};
 use crate::error::StudyError;
-use crate::model::{RunOptions, RunSummary};
+use crate::model::RunSummary;
 use crate::plot::bed_motion::BedMotionFigure;
 use crate::plot::bifurcation::BifurcationFigure;
 use crate::plot::frequency_panel::{FrequencyPanelFigure, ReconstructionGridFigure};
@@ -45,8 +46,10 @@ use super::pipeline::{
     DEM_B_SOFT,
 };
 use super::settings::{Chapter4Settings, DemSettings, Settings};
+use crate::model::summary::DEFAULT_ANALYSIS_MAX_SAMPLES;
 use crate::scene::keys::{
-    DAMPER_SEED, EXCITATION_FREQUENCY, RUN_DT_FRACTION, RUN_DURATION, RUN_PERIODS,
+    DAMPER_SEED, EXCITATION_FREQUENCY, RUN_ANALYSIS_MAX_SAMPLES, RUN_DT_FRACTION, RUN_DURATION,
+    RUN_PERIODS,
 };
 use crate::sweep::SweepPoints;
 
@@ -168,6 +171,14 @@ fn points(step: &str, pts: &SweepPoints) -> Result<Vec<Point>, StudyError> {
 
 /// `--set` of a chapter-4 run: material and time step when they differ from the scene file,
 /// and the run length (`factor` × the mode's).
+///
+/// A longer run (`factor` ≠ 1) also takes `factor` × the analysed series' sample count, so
+/// that its analysis sample clock — analysis window / `run.analysis_max_samples` — is the
+/// mode's run's. The automatic time step is snapped to that clock, so the longer run takes the
+/// same time step and continues the mode's run's trajectory bit for bit (a doubled run on its
+/// own clock takes a time step a fraction of a per cent off: another trajectory, which in a
+/// multistable bed can end on another attractor — what the ensemble of starts checks, not the
+/// run length).
 fn ch4_set(d: &DemSettings, c: &Chapter4Settings, factor: f64) -> Vec<(&'static str, String)> {
     let mut set = Vec::new();
     if d.soften != SCENE_SOFTEN {
@@ -182,6 +193,10 @@ fn ch4_set(d: &DemSettings, c: &Chapter4Settings, factor: f64) -> Vec<(&'static 
             set.push((RUN_PERIODS, (factor * c.periods).to_string()));
         }
         None => {}
+    }
+    if factor != 1.0 {
+        let samples = factor * DEFAULT_ANALYSIS_MAX_SAMPLES as f64;
+        set.push((RUN_ANALYSIS_MAX_SAMPLES, samples.to_string()));
     }
     set
 }
@@ -209,14 +224,10 @@ fn sweep_dir(c: &Chapter4Settings, factor: f64) -> String {
 /// `--set` of the other shipped softened scene (`thesis_b_soft.toml`) at the mode's run
 /// length: the chapter-4 scene's material and time step settings, and the run length always
 /// written (that scene counts its runs in seconds).
-fn other_scene_set(
-    d: &DemSettings,
-    c: &Chapter4Settings,
-    factor: f64,
-) -> Vec<(&'static str, String)> {
-    let mut set = ch4_set(d, c, factor);
+fn other_scene_set(d: &DemSettings, c: &Chapter4Settings) -> Vec<(&'static str, String)> {
+    let mut set = ch4_set(d, c, 1.0);
     if c.duration_s.is_none() && !set.iter().any(|(k, _)| *k == RUN_PERIODS) {
-        set.push((RUN_PERIODS, (c.periods * factor).to_string()));
+        set.push((RUN_PERIODS, c.periods.to_string()));
     }
     set
 }
@@ -321,27 +332,22 @@ pub fn all(
     };
     if let (true, Some(e), Some((long, long_pts))) = (checks, &ensemble, &long) {
         if !c.recipe_freqs_hz.is_empty() {
-            let other_sweep = |factor: f64| {
-                ctx.sweep(
-                    &format!("dem_soft_{}", length_dir(c, factor)),
-                    DEM_B_SOFT,
-                    &other_scene_set(d, c, factor),
-                    &[(EXCITATION_FREQUENCY, frequency_list(&c.recipe_freqs_hz))],
-                    true,
-                )
-            };
-            let other = other_sweep(1.0)?;
+            let other = ctx.sweep(
+                &format!("dem_soft_{}", length_dir(c, 1.0)),
+                DEM_B_SOFT,
+                &other_scene_set(d, c),
+                &[(EXCITATION_FREQUENCY, frequency_list(&c.recipe_freqs_hz))],
+                true,
+            )?;
             let other_pts = points("ch4_checks", &other.points)?;
-            let other_long = other_sweep(2.0)?;
-            let other_long_pts = points("ch4_checks", &other_long.points)?;
             let ch = Checks {
                 base: &pts,
                 starts: &e.runs,
                 ensemble_words: &e.words,
                 doubled: long_pts,
                 other_scene: &other_pts,
-                other_scene_doubled: &other_long_pts,
-                sweeps: [long, &other, &other_long],
+                lengths: (length_text(c, 1.0), length_text(c, 2.0)),
+                sweeps: [long, &other],
             };
             figures.push(checks_figure(&info, &ch)?);
         }
@@ -654,7 +660,7 @@ fn run_length(
     let b: Vec<f64> = pairs.iter().map(|p| p.2).collect();
     let (la, lb) = (
         length_text(info.c, 1.0),
-        format!("{} (doubled)", length_text(info.c, 2.0)),
+        format!("{} (continued)", length_text(info.c, 2.0)),
     );
     let size = info.ctx.render(
         name,
@@ -681,9 +687,10 @@ fn run_length(
     let mut rec = info.record(
         name,
         format!(
-            "Run-length check: the sweep's points at the panel frequencies repeated with runs \
-             of {}: the verdict (regime and period) is unchanged at {same} of {} frequencies and the amplitude changes by at \
-             most {worst:.2} % (table in {name}.csv).",
+            "Run-length check: the sweep's runs continued to {} (the same trajectory: the \
+             same time step, the first half bit for bit the shorter run): the verdict (regime \
+             and period) is unchanged at {same} of {} frequencies and the amplitude changes by \
+             at most {worst:.2} % (table in {name}.csv).",
             length_text(info.c, 2.0),
             pairs.len()
         ),
@@ -736,11 +743,11 @@ fn panel_run(d: &DemSettings, c: &Chapter4Settings, f: f64) -> Result<PanelRun, 
     let mut set = ch4_set(d, c, 1.0);
     set.push((EXCITATION_FREQUENCY, f.to_string()));
     let scene = scene_with(&step, DEM_CH4, &set)?;
-    let dt = scene.run.sample_interval;
-    let opts = RunOptions {
-        sample_interval_s: Some(dt),
-        sample_from_s: scene.analysis_start_s(),
-    };
+    // the sweep's own analysis series (every analysis window / run.analysis_max_samples s
+    // from the analysis start, ~170 samples a period here): the automatic time step is
+    // snapped to that clock, so the panel is the sweep point's run, trajectory and verdict
+    let opts = crate::setup::steady_series(&scene);
+    let dt = opts.sample_interval_s.unwrap_or(scene.run.sample_interval);
     let mut rec = Recorded::default();
     let summary = crate::sweep::run_with_analysis(&scene, &mut rec, &opts, true)
         .map_err(|e| StudyError::step(&step, e))?;

@@ -19,6 +19,7 @@ pub mod slurm;
 pub mod tables;
 pub mod vary;
 
+pub use crate::io::schema::VERDICT_COLUMNS;
 pub use catalog::{Catalog, FoundPoint};
 pub use continuation::{Continuation, Direction};
 pub use points::{SweepPoint, SweepPoints};
@@ -26,5 +27,4 @@ pub use run::{run_scene, run_with_analysis};
 pub use runner::{merge, MergeReport};
 pub use runner::{run_shard, run_shard_with, run_sweep, SweepReport, SweepSpec};
 pub use shard::Shard;
-pub use tables::VERDICT_COLUMNS;
 pub use vary::{grid, Vary};

@@ -6,7 +6,7 @@
 
 use super::vary::{grid_point, Vary};
 use crate::error::{SceneError, SimError};
-use crate::io::csv_out::push_num;
+use crate::io::schema::{StrobeRow, SWEEP_HEAD, SWEEP_TAIL};
 use crate::model::{RunOptions, RunSummary};
 use crate::observe::{fmt_num, NullObserver};
 use crate::scene::{Scene, SceneSource};
@@ -53,8 +53,8 @@ pub(super) struct PointRecord {
     pub(super) values: Vec<(String, String)>,
     /// Column name → formatted cell.
     pub(super) cells: BTreeMap<String, String>,
-    /// Strobe rows `cycle,grain_z_m,box_z_m,grain_v_m_s,box_v_m_s`.
-    pub(super) strobe: Vec<String>,
+    /// Strobe rows (stored as their text `cycle,grain_z_m,box_z_m,grain_v_m_s,box_v_m_s`).
+    pub(super) strobe: Vec<StrobeRow>,
     /// The full run summary.
     pub(super) summary: serde_json::Value,
     /// CPU time (s) of the thread that ran the point (bed, settling, drive, replica test and
@@ -136,21 +136,7 @@ pub(super) fn run_point(
         _ => None,
     };
     let cells = cells_of(&s);
-    // the same text as format!("{},{},…", cycle, fmt_num(…), …), written into one buffer
-    let strobe = s
-        .strobe
-        .iter()
-        .map(|p| {
-            use std::fmt::Write;
-            let mut row = String::with_capacity(96);
-            let _ = write!(row, "{}", p.cycle);
-            for x in [p.grain_z_m, p.box_z_m, p.grain_v_m_s, p.box_v_m_s] {
-                row.push(',');
-                push_num(&mut row, x);
-            }
-            row
-        })
-        .collect();
+    let strobe = s.strobe.iter().map(StrobeRow::of).collect();
     let summary = serde_json::to_value(&s).map_err(|e| SimError::Output(e.to_string()))?;
     Ok(PointRecord {
         point: i,
@@ -170,33 +156,23 @@ pub(super) fn run_point(
 /// summary: also used to refresh the cells of a stored point whose derived values (e.g. the
 /// replica's growth rate) are computed by a newer rule than the one that wrote it.
 pub(super) fn cells_of(s: &RunSummary) -> BTreeMap<String, String> {
-    let mut cells = BTreeMap::new();
-    cells.insert("frequency_hz".to_string(), fmt_num(s.frequency_hz));
-    cells.insert("amplitude_m".to_string(), fmt_opt(Some(s.amplitude_m)));
-    cells.insert(
-        "reference_amplitude_m".to_string(),
+    // the cells in the column order of SWEEP_HEAD and SWEEP_TAIL (the model's extras are
+    // inserted after the tail's first two, as before)
+    let head = [
+        fmt_num(s.frequency_hz),
+        fmt_opt(Some(s.amplitude_m)),
         fmt_opt(s.reference_amplitude_m),
-    );
-    cells.insert(
-        "energy_input_j_per_cycle".to_string(),
         fmt_opt(Some(s.energy_input_j_per_cycle)),
-    );
-    cells.insert(
-        "energy_viscous_j_per_cycle".to_string(),
         fmt_opt(Some(s.energy_viscous_j_per_cycle)),
-    );
-    cells.insert(
-        "energy_impact_j_per_cycle".to_string(),
         fmt_opt(Some(s.energy_impact_j_per_cycle)),
-    );
-    cells.insert(
-        "impacts_per_cycle".to_string(),
+    ];
+    let mut cells: BTreeMap<String, String> =
+        SWEEP_HEAD.iter().map(|c| c.to_string()).zip(head).collect();
+    let balance = [
         fmt_opt(Some(s.impacts_per_cycle)),
-    );
-    cells.insert(
-        "energy_balance_relative_error".to_string(),
         fmt_opt(s.energy_balance_relative_error),
-    );
+    ];
+    cells.extend(SWEEP_TAIL.iter().map(|c| c.to_string()).zip(balance));
     // the DEM's own figures, by their summary.json keys (a value written as null, e.g. an
     // unmeasured CPU time, has no cell)
     if let Some(serde_json::Value::Object(dem)) =
@@ -212,47 +188,27 @@ pub(super) fn cells_of(s: &RunSummary) -> BTreeMap<String, String> {
     let a = s.analysis.as_ref();
     let num = |x: Option<f64>| fmt_opt(x);
     let r = s.replica.as_ref();
-    for (col, v) in [
-        ("regime", a.map(|a| a.regime.as_str().to_string())),
-        ("period", a.map(|a| num(a.period))),
-        ("verdict", a.map(|a| a.verdict())),
-        ("phase_locked", a.map(|a| a.phase_locked.to_string())),
-        (
-            "locked_fraction",
-            a.map(|a| num(a.phase_lock.map(|l| l.locked_fraction))),
-        ),
-        (
-            "section_scatter",
-            a.map(|a| num(a.section.as_ref().map(section_scatter))),
-        ),
-        (
-            "chaos_dimension",
-            a.map(|a| {
-                a.chaos_dimension
-                    .map_or(String::new(), |d| d.as_str().to_string())
-            }),
-        ),
-        ("replica", r.map(|r| r.outcome.as_str().to_string())),
-        (
-            "replica_saturation_rel",
-            r.map(|r| num(Some(r.saturation_rel))),
-        ),
-        (
-            "replica_growth_per_s",
-            r.map(|r| num(r.growth_rate_per_s().map(|g| g.0))),
-        ),
-        ("mle_per_s", a.map(|a| num(a.data_mle_per_s))),
-        ("mle_stderr_per_s", a.map(|a| num(a.data_mle_stderr_per_s))),
-        ("model_mle_per_s", a.map(|a| num(a.model_mle_per_s))),
-        (
-            "model_mle_stderr_per_s",
-            a.map(|a| num(a.model_mle_stderr_per_s)),
-        ),
-        (
-            "section_points",
-            a.map(|a| num(a.poincare_section_points.map(|n| n as f64))),
-        ),
-    ] {
+    let verdict: [Option<String>; 15] = [
+        a.map(|a| a.regime.as_str().to_string()),
+        a.map(|a| num(a.period)),
+        a.map(|a| a.verdict()),
+        a.map(|a| a.phase_locked.to_string()),
+        a.map(|a| num(a.phase_lock.map(|l| l.locked_fraction))),
+        a.map(|a| num(a.section.as_ref().map(section_scatter))),
+        a.map(|a| {
+            a.chaos_dimension
+                .map_or(String::new(), |d| d.as_str().to_string())
+        }),
+        r.map(|r| r.outcome.as_str().to_string()),
+        r.map(|r| num(Some(r.saturation_rel))),
+        r.map(|r| num(r.growth_rate_per_s().map(|g| g.0))),
+        a.map(|a| num(a.data_mle_per_s)),
+        a.map(|a| num(a.data_mle_stderr_per_s)),
+        a.map(|a| num(a.model_mle_per_s)),
+        a.map(|a| num(a.model_mle_stderr_per_s)),
+        a.map(|a| num(a.poincare_section_points.map(|n| n as f64))),
+    ];
+    for (col, v) in SWEEP_TAIL[2..].iter().zip(verdict) {
         cells.insert(col.to_string(), v.unwrap_or_default());
     }
     cells

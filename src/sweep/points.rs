@@ -6,7 +6,8 @@
 use std::path::Path;
 
 use crate::error::DataError;
-use crate::model::{RunSummary, StrobePoint};
+use crate::io::schema::StrobeRow;
+use crate::model::RunSummary;
 
 /// One finished point of a sweep.
 #[derive(Debug, Clone, PartialEq)]
@@ -56,7 +57,7 @@ struct StoredPoint {
     #[serde(default = "first_revision")]
     physics: u32,
     values: Vec<(String, String)>,
-    strobe: Vec<String>,
+    strobe: Vec<StrobeRow>,
     summary: RunSummary,
     #[serde(default)]
     cpu_s: Option<f64>,
@@ -106,9 +107,8 @@ impl SweepPoints {
             summary.strobe = rec
                 .strobe
                 .iter()
-                .map(|row| strobe_point(row, summary.frequency_hz))
-                .collect::<Option<Vec<_>>>()
-                .ok_or_else(|| bad("a strobe row is not `cycle,z,z_box,v,v_box`".into()))?;
+                .map(|row| row.point(summary.frequency_hz))
+                .collect();
             points.push(SweepPoint {
                 index: i,
                 values: rec
@@ -200,23 +200,6 @@ impl SweepPoints {
     }
 }
 
-fn strobe_point(row: &str, frequency_hz: f64) -> Option<StrobePoint> {
-    let v: Vec<&str> = row.split(',').collect();
-    let [cycle, gz, bz, gv, bv] = v.as_slice() else {
-        return None;
-    };
-    let num = |s: &str| s.parse::<f64>().ok();
-    let cycle: u64 = cycle.parse().ok()?;
-    Some(StrobePoint {
-        cycle,
-        time_s: cycle as f64 / frequency_hz,
-        grain_z_m: num(gz)?,
-        box_z_m: num(bz)?,
-        grain_v_m_s: num(gv)?,
-        box_v_m_s: num(bv)?,
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -268,14 +251,5 @@ mod tests {
             e.contains("damper.restitution") && e.contains("point 0"),
             "{e}"
         );
-    }
-
-    #[test]
-    fn strobe_rows_parse() {
-        let p = strobe_point("10,0.5,-1e-3,2,3", 5.0).unwrap();
-        assert_eq!(p.cycle, 10);
-        assert_eq!(p.time_s, 2.0);
-        assert_eq!(p.box_z_m, -1e-3);
-        assert!(strobe_point("10,0.5", 5.0).is_none());
     }
 }

@@ -9,65 +9,13 @@
 use super::point::{out_err, PointRecord};
 use crate::error::SimError;
 use crate::io::csv_out::{record_line, table_text, CsvOut};
+use crate::io::schema::{
+    is_timing, sweep_columns, sweep_strobe_columns, SweepRow, FREQUENCY, SWEEP_HEAD, SWEEP_TAIL,
+    TIMING_KEYS,
+};
 use std::collections::{BTreeMap, BTreeSet};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-
-/// Summary columns of sweep.csv after the varied keys (model-specific extras are inserted
-/// before `impacts_per_cycle`).
-pub(super) const HEAD: [&str; 6] = [
-    "frequency_hz",
-    "amplitude_m",
-    "reference_amplitude_m",
-    "energy_input_j_per_cycle",
-    "energy_viscous_j_per_cycle",
-    "energy_impact_j_per_cycle",
-];
-/// The verdict's words and evidence after `regime` and `period` (issue 39): the verdict with its
-/// qualifiers, the phase lock, the section's scatter, the chaos dimension and the two-replica
-/// test's outcome, saturation (fraction of the orbit) and growth rate (1/s). The chapter-4
-/// table shares them.
-pub const VERDICT_COLUMNS: [&str; 8] = [
-    "verdict",
-    "phase_locked",
-    "locked_fraction",
-    "section_scatter",
-    "chaos_dimension",
-    "replica",
-    "replica_saturation_rel",
-    "replica_growth_per_s",
-];
-pub(super) const TAIL: [&str; 17] = [
-    "impacts_per_cycle",
-    "energy_balance_relative_error",
-    "regime",
-    "period",
-    VERDICT_COLUMNS[0],
-    VERDICT_COLUMNS[1],
-    VERDICT_COLUMNS[2],
-    VERDICT_COLUMNS[3],
-    VERDICT_COLUMNS[4],
-    VERDICT_COLUMNS[5],
-    VERDICT_COLUMNS[6],
-    VERDICT_COLUMNS[7],
-    "mle_per_s",
-    "mle_stderr_per_s",
-    "model_mle_per_s",
-    "model_mle_stderr_per_s",
-    "section_points",
-];
-
-/// Model figures that measure the machine, not the system: they go to `timings.csv`, never to
-/// `sweep.csv` (keys of `RunSummary::extra`, and the name of their `timings.csv` column).
-pub(super) const TIMING_KEYS: [(&str, &str); 3] = [
-    ("wall_time_s", "run_wall_time_s"),
-    ("particle_steps_per_s", "particle_steps_per_s"),
-    ("particle_steps_per_cpu_s", "particle_steps_per_cpu_s"),
-];
-
-fn is_timing(key: &str) -> bool {
-    TIMING_KEYS.iter().any(|(k, _)| *k == key)
-}
 
 /// The point record of `path`, if it is a complete record of point `i`.
 ///
@@ -132,7 +80,7 @@ impl StreamLog {
     pub(super) fn append(&mut self, rec: &PointRecord, wall_time_s: f64) -> Result<(), SimError> {
         let mut row = vec![rec.point.to_string(), crate::observe::fmt_num(wall_time_s)];
         row.extend(rec.values.iter().map(|(_, v)| v.clone()));
-        for c in HEAD.iter().chain(TAIL.iter()) {
+        for c in SWEEP_HEAD.iter().chain(SWEEP_TAIL.iter()) {
             row.push(rec.cells.get(*c).cloned().unwrap_or_default());
         }
         let line = record_line(&row);
@@ -145,7 +93,7 @@ impl StreamLog {
 fn stream_header(keys: &[String]) -> String {
     let mut cols: Vec<&str> = vec!["point", "wall_time_s"];
     cols.extend(keys.iter().map(String::as_str));
-    cols.extend(HEAD.iter().chain(TAIL.iter()));
+    cols.extend(SWEEP_HEAD.iter().chain(SWEEP_TAIL.iter()));
     record_line(cols)
 }
 
@@ -229,13 +177,10 @@ impl AtomicFile {
     }
 }
 
-/// One row of `sweep.csv` as the tables hold it: (point, values, cells).
-pub(super) type Row = (usize, Vec<String>, BTreeMap<String, String>);
-
 /// Writes `sweep.csv`, `strobe.csv` and `timings.csv` into `out` from the point records
 /// `present` (point index and file, increasing), for a sweep whose varied keys are `keys`.
 /// Each point file is read once; only its `sweep.csv` cells stay in memory. Returns the rows
-/// of `sweep.csv` (point, values, cells).
+/// of `sweep.csv`.
 ///
 /// # Errors
 /// [`SimError::Output`] naming the file that could not be read or written.
@@ -244,11 +189,10 @@ pub(super) fn write_tables(
     present: &[(usize, PathBuf)],
     stream_dirs: &[PathBuf],
     out: &Path,
-) -> Result<Vec<Row>, SimError> {
+) -> Result<Vec<SweepRow>, SimError> {
     let mut strobe = AtomicFile::create(&out.join("strobe.csv"))?;
-    strobe.write(&strobe_header(keys))?;
-    let mut rows: Vec<(usize, Vec<String>, BTreeMap<String, String>)> =
-        Vec::with_capacity(present.len());
+    strobe.write(&record_line(sweep_strobe_columns(keys)))?;
+    let mut rows: Vec<SweepRow> = Vec::with_capacity(present.len());
     for (i, path) in present {
         let Some(rec) = read_record(path, *i) else {
             let _ = std::fs::remove_file(&strobe.tmp);
@@ -268,8 +212,11 @@ pub(super) fn write_tables(
             ));
         }
         strobe.write(&strobe_rows(&rec))?;
-        let values = rec.values.into_iter().map(|(_, v)| v).collect();
-        rows.push((*i, values, rec.cells));
+        rows.push(SweepRow {
+            point: *i,
+            values: rec.values.into_iter().map(|(_, v)| v).collect(),
+            cells: rec.cells,
+        });
     }
     let walls = stream_wall_times(stream_dirs);
     write_timings(&rows, &walls, out)?;
@@ -280,49 +227,40 @@ pub(super) fn write_tables(
     Ok(rows)
 }
 
-fn sweep_csv(keys: &[String], rows: &[(usize, Vec<String>, BTreeMap<String, String>)]) -> String {
-    let known: BTreeSet<&str> = HEAD.iter().chain(TAIL.iter()).copied().collect();
+fn sweep_csv(keys: &[String], rows: &[SweepRow]) -> String {
+    let known: BTreeSet<&str> = SWEEP_HEAD
+        .iter()
+        .chain(SWEEP_TAIL.iter())
+        .copied()
+        .collect();
     let extras: BTreeSet<&str> = rows
         .iter()
-        .flat_map(|(_, _, cells)| cells.keys())
+        .flat_map(|r| r.cells.keys())
         .map(String::as_str)
         .filter(|k| !known.contains(k) && !is_timing(k))
         .collect();
-    let mut cols: Vec<&str> = vec!["point"];
-    cols.extend(keys.iter().map(String::as_str));
-    cols.extend(HEAD);
-    cols.extend(extras);
-    cols.extend(TAIL);
-    let body = rows.iter().map(|(i, values, cells)| {
-        let mut row = vec![i.to_string()];
-        row.extend(values.iter().cloned());
-        for c in &cols[1 + keys.len()..] {
-            row.push(cells.get(*c).cloned().unwrap_or_default());
-        }
-        row
-    });
-    table_text(&cols, body)
+    let cols = sweep_columns(keys, extras);
+    table_text(&cols, rows.iter().map(|r| r.record(keys.len(), &cols)))
 }
 
 fn write_timings(
-    rows: &[(usize, Vec<String>, BTreeMap<String, String>)],
+    rows: &[SweepRow],
     walls: &BTreeMap<usize, String>,
     out: &Path,
 ) -> Result<(), SimError> {
     let present: Vec<(&str, &str)> = TIMING_KEYS
         .iter()
         .copied()
-        .filter(|(k, _)| rows.iter().any(|(_, _, c)| c.contains_key(*k)))
+        .filter(|(k, _)| rows.iter().any(|r| r.cells.contains_key(*k)))
         .collect();
     let mut header = vec!["point", "wall_time_s"];
     header.extend(present.iter().map(|(_, col)| *col));
-    let body = rows.iter().map(|(i, _, cells)| {
-        let mut row = vec![i.to_string(), walls.get(i).cloned().unwrap_or_default()];
-        row.extend(
-            present
-                .iter()
-                .map(|(k, _)| cells.get(*k).cloned().unwrap_or_default()),
-        );
+    let body = rows.iter().map(|r| {
+        let mut row = vec![
+            r.point.to_string(),
+            walls.get(&r.point).cloned().unwrap_or_default(),
+        ];
+        row.extend(present.iter().map(|(k, _)| r.cell(k)));
         row
     });
     let text = table_text(&header, body);
@@ -331,26 +269,19 @@ fn write_timings(
     f.commit()
 }
 
-fn strobe_header(keys: &[String]) -> String {
-    let mut cols: Vec<&str> = vec!["point", "frequency_hz"];
-    cols.extend(keys.iter().map(String::as_str));
-    cols.extend(["cycle", "grain_z_m", "box_z_m", "grain_v_m_s", "box_v_m_s"]);
-    record_line(cols)
-}
-
 /// The `strobe.csv` lines of one point: the point, its frequency and varied values, then each
-/// stored strobe row's five cells (`cycle,grain_z_m,box_z_m,grain_v_m_s,box_v_m_s`).
+/// stored strobe row's cells (`cycle` and the state).
 fn strobe_rows(r: &PointRecord) -> String {
     let mut prefix = vec![
         r.point.to_string(),
-        r.cells.get("frequency_hz").cloned().unwrap_or_default(),
+        r.cells.get(FREQUENCY).cloned().unwrap_or_default(),
     ];
     prefix.extend(r.values.iter().map(|(_, v)| v.clone()));
     let mut t = CsvOut::in_memory();
     for row in &r.strobe {
-        let cells = prefix.iter().map(String::as_str).chain(row.split(','));
+        let cells = row.cells();
         // writes into memory cannot fail
-        let _ = t.row(cells);
+        let _ = t.row(prefix.iter().chain(&cells));
     }
     t.into_string()
 }
@@ -397,7 +328,11 @@ mod tests {
         ]
         .map(|(k, v)| (k.to_string(), v.to_string()))
         .into();
-        let rows = vec![(0, vec!["5".to_string()], cells)];
+        let rows = vec![SweepRow {
+            point: 0,
+            values: vec!["5".to_string()],
+            cells,
+        }];
         let keys = vec!["excitation.frequency".to_string()];
         let csv = sweep_csv(&keys, &rows);
         let header = csv.lines().next().unwrap();

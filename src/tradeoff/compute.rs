@@ -10,9 +10,9 @@ use crate::io::atomic_write;
 use crate::model::PHYSICS_REVISION;
 use crate::sweep::{run_sweep, Catalog, SweepReport};
 
-use super::ladder::Rung;
 use super::observed::{observe, read_failures, same_frequency, Failure, Status};
 use super::plan::StudyPlan;
+use crate::choice::ladder::Rung;
 
 /// What [`compute_missing`] did for one rung.
 #[derive(Debug, Clone, PartialEq)]

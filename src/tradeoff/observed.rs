@@ -9,8 +9,8 @@ use crate::error::DataError;
 use crate::model::{RunSummary, PHYSICS_REVISION};
 use crate::sweep::Catalog;
 
-use super::ladder::Rung;
 use super::plan::{StudyPlan, FREQUENCY_KEY};
+use crate::choice::ladder::Rung;
 
 /// Why a rung has no usable point at a frequency, or that it has one.
 #[derive(Debug, Clone, PartialEq)]

@@ -12,7 +12,7 @@ use crate::error::SceneError;
 use crate::scene::{Damper, SceneSource};
 use crate::sweep::{Catalog, SweepSpec, Vary};
 
-use super::ladder::{ladder, Rung};
+use crate::choice::ladder::{ladder, Rung};
 
 /// Scene B's reference frequencies (Hz): 12–18 Hz every 0.5 Hz, the most informative first
 /// (around the primary's f0 = 15.16 Hz), so that an interrupted run has the peak.

@@ -1,14 +1,15 @@
 //! `TRADEOFF.md`: what a reader takes away from the study — which setting to use for an FRF,
-//! for regime maps and for grain-level output (chosen by [`super::auto`]'s rules from the
+//! for regime maps and for grain-level output (chosen by [`crate::choice::auto`]'s rules from the
 //! measured table, each pointing at its row), then the per-setting table.
 
 use std::fmt::Write as _;
 
 use crate::scene::{Damper, Outputs, Scene};
 
-use super::auto::choose_with;
 use super::study::{SettingSummary, Study};
-use super::table::{read_settings, settings_csv};
+use super::table::settings_csv;
+use crate::choice::auto::choose_with;
+use crate::choice::measured::read_settings;
 
 /// The questions answered at the top of the report: (what for, the outputs that ask it).
 fn questions() -> [(&'static str, Outputs); 3] {

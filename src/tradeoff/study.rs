@@ -13,11 +13,11 @@ use crate::error::DataError;
 use crate::model::RunSummary;
 use crate::sweep::Catalog;
 
-use super::ladder::{Axis, Change, Rung};
 use super::metrics::{effective, relative_error, resonance, Effective, Peak};
 use super::observed::{observe, Observed};
 use super::pareto::pareto_front;
 use super::plan::StudyPlan;
+use crate::choice::ladder::{Axis, Change, Rung};
 
 /// One rung at one frequency.
 #[derive(Debug, Clone, PartialEq)]

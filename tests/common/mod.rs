@@ -147,3 +147,40 @@ pub fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
         }
     }
 }
+
+// ---------------------------------------------------------------------------------------
+// A tiny DEM scene: 20 soft grains (steel ÷ 10 000) in a small box on scene B's primary,
+// 12 forcing periods, so that a sweep point takes seconds
+
+/// The tiny DEM scene (TOML).
+pub const TINY_DEM: &str = r#"
+[primary]
+mass = 2.37
+stiffness = 21500.0
+damping = 7.6
+
+[excitation]
+amplitude = 0.0045
+frequency = 15.0
+
+[damper]
+kind = "dem"
+box = [0.02, 0.02, 0.05]
+count = 20
+radius = 0.003
+density = 8030.0
+youngs_modulus = 2.03e7
+poisson = 0.28
+friction = 0.3
+gamma_n = 14.57
+gamma_s = 43.72
+contact = "hertz-kk"
+
+[run]
+periods = 12
+steady_fraction = 0.5
+analysis_fraction = 0.5
+sample_interval = 1e-3
+dt = "auto"
+dt_fraction = 0.02
+"#;

@@ -22,18 +22,23 @@
 //! fixed ε the number of neighbour pairs grows as N² (each reference has ∝ N neighbours), as
 //! in TISEAN's `lyap_k`.
 
-use crate::analysis::{reject_monotonic, require_positive, rescale_unit, validate_series};
+use crate::analysis::{
+    reject_monotonic, require_positive, rescale_unit, validate_radii, validate_series,
+};
 use crate::error::AnalysisError;
 
 pub use crate::analysis::scaling_region::{fit_scaling_region, ScalingOptions, SlopeFit};
 
 mod arith;
+mod buffers;
 mod kernel;
 mod options;
+mod rms;
 
 pub use options::{KantzCurve, KantzDefinition, KantzOptions, KantzResult, MAX_DIMENSION};
 
-use kernel::{assemble, run, Job};
+use buffers::Job;
+use kernel::{assemble, run};
 
 /// Kantz's stretching curves S(ε, m, Δn) for every m in `m_min..=m_max` and every ε.
 ///
@@ -139,18 +144,7 @@ fn validate_options(o: &KantzOptions) -> Result<(), AnalysisError> {
             "need at least 1 reference point (omit it for all)",
         ));
     }
-    for (name, v) in [("eps_min", o.eps_min), ("eps_max", o.eps_max)] {
-        if let Some(v) = v {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(AnalysisError::bad(
-                    name,
-                    v,
-                    "the radius must be a positive number in data units",
-                ));
-            }
-        }
-    }
-    Ok(())
+    validate_radii(o.eps_min, o.eps_max)
 }
 
 /// Whether `(a − b)² > 0` for every two samples `a`, `b` at different indices: all values

@@ -98,7 +98,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         Damper::Auto(_) => {
             if let Some(c) = &resolved.auto {
-                println!("damper: {}", pdamp::tradeoff::auto::describe(c));
+                println!("damper: {}", pdamp::choice::auto::describe(c));
             }
         }
     }

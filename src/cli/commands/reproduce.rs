@@ -38,9 +38,11 @@ pub struct Args {
     pub no_dem: bool,
     /// Check the chapter-4 verdicts at every frequency of its sweep: two more initial packings
     /// (`ch4_ensemble`: the verdicts of three starts, "split" where they differ), the runs
-    /// doubled (`ch4_run_length`), and the other shipped softened scene (thesis_b_soft.toml)
-    /// at both run lengths (`ch4_checks`). About six times the chapter-4 study's cost (the
-    /// committed points under figures/data are reused with `--out figures`).
+    /// continued to twice their length on the same trajectory (`ch4_run_length`), and the
+    /// other shipped softened scene (thesis_b_soft.toml) at the same length (`ch4_checks`).
+    /// About five times the chapter-4 study's own cost on top of it: two starts, a run twice
+    /// as long, the other scene (the committed points under figures/data are reused with
+    /// `--out figures`).
     #[arg(long)]
     pub ch4_checks: bool,
     /// Width of every figure (pixels).

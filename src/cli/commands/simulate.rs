@@ -34,6 +34,11 @@ pub struct Args {
     /// run starts (e.g. `--max-output 2e10` for 20 GB).
     #[arg(long, value_name = "BYTES", default_value_t = pdamp::setup::plan::DEFAULT_MAX_OUTPUT_BYTES)]
     pub max_output: f64,
+    /// Longest run (on one core, as the plan estimates it) that starts without being asked
+    /// for; a longer estimate is refused before the run starts (e.g. `--max-runtime 3d`).
+    /// Units s, min, h, d.
+    #[arg(long, value_name = "DURATION", default_value = crate::cli::runtime::DEFAULT_MAX_RUNTIME, value_parser = crate::cli::runtime::parse_duration)]
+    pub max_runtime: f64,
 }
 
 /// The plan of a resolved scene's full-series run (what `simulate` writes), refused above
@@ -93,8 +98,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     resolved.place_outputs_in(&args.out);
     let plan = plan_full_run(&resolved, args.max_output)?;
     tracing::info!("plan: {}", plan.describe());
+    crate::cli::runtime::check(plan.run_time_s, args.max_runtime, "the run")?;
     let auto_choice = resolved.auto.as_ref().map(|c| {
-        let why = pdamp::tradeoff::auto::describe(c);
+        let why = pdamp::choice::auto::describe(c);
         tracing::info!("{why}");
         why
     });

@@ -79,6 +79,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         sweep_args.push("--no-analysis".into());
     }
     sweep_args.extend(args.cont.sweep_args());
+    // each task asks for its own estimated time (the check of `pdamp sweep`)
+    let limit = crate::cli::runtime::parse_duration(crate::cli::runtime::DEFAULT_MAX_RUNTIME)
+        .unwrap_or(f64::INFINITY);
+    if cost.max_shard_cpu_s > limit {
+        let hours = (cost.max_shard_cpu_s * 1.1 / 3600.0).ceil();
+        sweep_args.extend(["--max-runtime".to_string(), format!("{hours:.0}h")]);
+    }
     sweep_args.extend(["--out".to_string(), out.clone()]);
     let job = SlurmJob {
         pdamp: pdamp.display().to_string(),

@@ -80,6 +80,11 @@ pub struct Args {
     /// Continuation settings.
     #[command(flatten)]
     pub cont: ContinuationArgs,
+    /// Longest sweep (its points' summed cost on one core, as `pdamp slurm` estimates it; of
+    /// the largest shard with --shard) that starts without being asked for; a longer estimate
+    /// is refused before any point runs (e.g. `--max-runtime 3d`). Units s, min, h, d.
+    #[arg(long, value_name = "DURATION", default_value = crate::cli::runtime::DEFAULT_MAX_RUNTIME, value_parser = crate::cli::runtime::parse_duration)]
+    pub max_runtime: f64,
 }
 
 /// The continuation flags of `pdamp sweep` (and of `pdamp slurm`, which passes them on to its
@@ -175,6 +180,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         None => Shard::WHOLE,
     };
     let continuation = args.cont.settings()?;
+    let cost = pdamp::sweep::cost::sweep_cost_of(&spec, continuation.as_ref(), shard.count)?;
+    crate::cli::runtime::check(cost.max_shard_cpu_s, args.max_runtime, "the sweep")?;
     let n = pdamp::sweep::vary::grid_len(&spec.varies).unwrap_or(usize::MAX);
     let mine = match (&continuation, spec.varies.first()) {
         (Some(c), Some(v)) => shard_point_count(&v.values, c, shard),

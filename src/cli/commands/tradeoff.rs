@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 
+use pdamp::choice::Axis;
 use pdamp::plot::pareto::{ParetoFigure, ParetoPoint};
 use pdamp::plot::{render, FigureOptions};
 use pdamp::sweep::Catalog;
@@ -15,7 +16,7 @@ use pdamp::tradeoff::compute::compute_missing;
 use pdamp::tradeoff::plan::SCENE_B_FREQUENCIES_HZ;
 use pdamp::tradeoff::study::{study, SettingSummary, Study};
 use pdamp::tradeoff::table::{rows_csv, settings_csv};
-use pdamp::tradeoff::{Axis, StudyPlan};
+use pdamp::tradeoff::StudyPlan;
 
 /// Arguments of `pdamp tradeoff`.
 #[derive(Debug, clap::Args)]

@@ -16,7 +16,7 @@ use crate::dem::stability::impact_speed;
 use crate::dem::BoxDrive;
 use crate::error::SceneError;
 use crate::scene::dem::DemParams;
-use crate::scene::{Damper, Scene, SceneSource};
+use crate::scene::{Damper, ImpactParams, Scene, SceneSource};
 use serde::{Deserialize, Serialize};
 
 /// Yield strength used for the linear law when the scene gives none (Pa): hardened steel,
@@ -244,23 +244,68 @@ fn soften_keys(src: &mut SceneSource, p: &DemParams, f: f64) -> Result<(), Scene
     Ok(())
 }
 
+/// `damper.count = n` and `damper.radius` scaled by [`with_count_at_fixed_mass`] (the rung
+/// writes one fixed radius, so a distribution is refused).
 fn count_keys(src: &mut SceneSource, p: &DemParams, n: usize) -> Result<(), SceneError> {
-    let Some(r) = p
-        .radius
-        .filter(|_| p.radius_table.is_none() && p.radius_min.is_none())
-    else {
+    if p.radius.is_none() || p.radius_table.is_some() || p.radius_min.is_some() {
         return Err(SceneError::invalid(
             "damper.radius",
             "a distribution",
             "the grain-count rung scales one fixed radius; give damper.radius",
         ));
-    };
+    }
+    let q = with_count_at_fixed_mass(p, n)?;
+    src.set("damper.count", (n as i64).into())?;
+    if let Some(r) = q.radius {
+        src.set("damper.radius", r.into())?;
+    }
+    if let Some(s) = q.neighbor_skin {
+        src.set("damper.neighbor_skin", s.into())?;
+    }
+    Ok(())
+}
+
+/// The scene's grains replaced by `n` grains of the same total mass: every radius scaled by
+/// (N₀/n)^{1/3} (same density, same size distribution shape).
+///
+/// # Errors
+/// `damper.count` when n = 0; radius errors of the distribution.
+pub fn with_count_at_fixed_mass(p: &DemParams, n: usize) -> Result<DemParams, SceneError> {
     if n == 0 {
         return Err(SceneError::invalid("damper.count", n, "must be ≥ 1 grain"));
     }
+    p.radius_distribution()?;
     let s = (p.count as f64 / n as f64).cbrt();
-    src.set("damper.count", (n as i64).into())?;
-    src.set("damper.radius", (r * s).into())
+    let mut q = p.clone();
+    q.count = n;
+    q.radius = q.radius.map(|r| r * s);
+    q.radius_min = q.radius_min.map(|r| r * s);
+    q.radius_max = q.radius_max.map(|r| r * s);
+    q.radius_std = q.radius_std.map(|r| r * s);
+    q.radius_table = q
+        .radius_table
+        .map(|t| t.into_iter().map(|[r, w]| [r * s, w]).collect());
+    q.neighbor_skin = q.neighbor_skin.map(|r| r * s);
+    Ok(q)
+}
+
+/// The grains of `p` as one effective particle of their total mass (SPEC §3) with restitution
+/// `restitution` (–) and free travel `gap_m` (m), starting at rest on the floor.
+///
+/// # Errors
+/// Radius errors of the distribution.
+pub fn one_particle(
+    p: &DemParams,
+    restitution: f64,
+    gap_m: f64,
+) -> Result<ImpactParams, SceneError> {
+    Ok(ImpactParams {
+        mass: bed_mass_kg(p)?,
+        gap: gap_m,
+        restitution,
+        initial_height: 0.0,
+        initial_velocity: 0.0,
+    })
 }
 
 /// The reference's primary, drive and run with the grains replaced by one particle of their
@@ -283,13 +328,13 @@ fn one_particle_scene(
             ))
         }
     };
-    let mass = bed_mass_kg(p)?;
+    let one = one_particle(p, restitution, gap_m)?;
     let mut table = reference.table().clone();
     let mut damper = toml::Table::new();
     damper.insert("kind".into(), "impact".into());
-    damper.insert("mass".into(), mass.into());
-    damper.insert("gap".into(), gap_m.into());
-    damper.insert("restitution".into(), restitution.into());
+    damper.insert("mass".into(), one.mass.into());
+    damper.insert("gap".into(), one.gap.into());
+    damper.insert("restitution".into(), one.restitution.into());
     table.insert("damper".into(), toml::Value::Table(damper));
     if let Some(toml::Value::Table(run)) = table.get_mut("run") {
         for k in ["dt", "dt_fraction", "replica", "replica_perturbation"] {

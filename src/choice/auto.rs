@@ -30,11 +30,13 @@ use serde::Serialize;
 
 use crate::error::{DataError, SceneError};
 use crate::scene::dem::{ContactKind, DemParams, TangentialKind};
-use crate::scene::{Damper, ImpactParams, Outputs, Scene};
+use crate::scene::{Damper, Outputs, Scene};
 
 use super::ladder::DEFAULT_YIELD_STRENGTH_PA;
-use super::ladder::{bed_mass_kg, design_restitution, ladder, Axis, Change, Gap};
-use super::table::{read_settings, MeasuredSetting};
+use super::ladder::{
+    design_restitution, ladder, one_particle, with_count_at_fixed_mass, Axis, Change, Gap,
+};
+use super::measured::{read_settings, MeasuredSetting};
 
 /// The built-in measured table (scene B), with its provenance header.
 pub const BUILTIN_TABLE: &str = include_str!("../../data/reference/tradeoff_settings.csv");
@@ -229,20 +231,11 @@ fn concretise(
     let mut p = params.clone();
     match change_of(&s.setting, params.count) {
         Change::OneParticle { restitution, gap } => {
-            let mass = bed_mass_kg(params)?;
-            let bed =
-                mass / params.density / (params.r#box[0] * params.r#box[1] * BED_VOLUME_FRACTION);
             let gap_m = match gap {
                 Gap::Given(g) if scene_b_like(params) => g,
-                _ => (params.r#box[2] - bed).max(0.0),
+                _ => params.r#box[2] - estimated_bed_height_m(params)?,
             };
-            out.damper = Damper::Impact(ImpactParams {
-                mass,
-                gap: gap_m,
-                restitution,
-                initial_height: 0.0,
-                initial_velocity: 0.0,
-            });
+            out.damper = Damper::Impact(one_particle(params, restitution, gap_m.max(0.0))?);
             return Ok((out, "impact"));
         }
         Change::DtFraction(f) => out.run.dt_fraction = f,
@@ -279,34 +272,17 @@ fn concretise(
     Ok((out, "dem"))
 }
 
+/// Height of the settled bed (m) estimated from its mass at [`BED_VOLUME_FRACTION`] (for a
+/// scene whose bed was not measured).
+fn estimated_bed_height_m(p: &DemParams) -> Result<f64, SceneError> {
+    let mass = super::ladder::bed_mass_kg(p)?;
+    Ok(mass / p.density / (p.r#box[0] * p.r#box[1] * BED_VOLUME_FRACTION))
+}
+
 /// Whether the grains are scene B's box and mass (the given gap was measured for it).
 fn scene_b_like(p: &DemParams) -> bool {
     let b = DemParams::thesis_b();
     p.r#box == b.r#box && p.count == b.count && p.radius == b.radius && p.density == b.density
-}
-
-/// The scene's grains replaced by `n` grains of the same total mass: every radius scaled by
-/// (N₀/n)^{1/3} (same density, same size distribution shape).
-///
-/// # Errors
-/// `damper.count` when n = 0; radius errors of the distribution.
-pub fn with_count_at_fixed_mass(p: &DemParams, n: usize) -> Result<DemParams, SceneError> {
-    if n == 0 {
-        return Err(SceneError::invalid("damper.count", n, "must be ≥ 1 grain"));
-    }
-    p.radius_distribution()?;
-    let s = (p.count as f64 / n as f64).cbrt();
-    let mut q = p.clone();
-    q.count = n;
-    q.radius = q.radius.map(|r| r * s);
-    q.radius_min = q.radius_min.map(|r| r * s);
-    q.radius_max = q.radius_max.map(|r| r * s);
-    q.radius_std = q.radius_std.map(|r| r * s);
-    q.radius_table = q
-        .radius_table
-        .map(|t| t.into_iter().map(|[r, w]| [r * s, w]).collect());
-    q.neighbor_skin = q.neighbor_skin.map(|r| r * s);
-    Ok(q)
 }
 
 fn skipped(o: &Outputs, model: &str) -> Vec<String> {
