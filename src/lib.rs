@@ -39,6 +39,8 @@
 //! `src/cli/`, cargo feature `cli`, on by default). `cargo build --lib --no-default-features`
 //! builds the library without clap, anyhow or indicatif.
 #![warn(missing_docs)]
+// every `unsafe` block says why it is sound, and every `unsafe fn` when it may be called (issue 40)
+#![warn(clippy::undocumented_unsafe_blocks, clippy::missing_safety_doc)]
 
 pub mod analysis;
 pub mod choice;

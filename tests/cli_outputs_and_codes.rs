@@ -148,7 +148,7 @@ fn quiet_and_verbose_change_only_what_goes_to_stderr() {
     let err = |o: &Output| String::from_utf8_lossy(&o.stderr).to_string();
     assert!(err(&normal).contains("plan: dt ="), "{}", err(&normal));
     assert!(!err(&quiet).contains("plan:"), "{}", err(&quiet));
-    assert!(err(&verbose).contains("[pdamp::setup] resolved event-driven scene"));
+    assert!(err(&verbose).contains("[pdamp::setup::resolve] resolved event-driven scene"));
     // the results on stdout and in the files are the same whatever the level
     let results = |o: &Output| {
         String::from_utf8_lossy(&o.stdout)

@@ -415,6 +415,8 @@ mod tests {
             let mut total = vec![0u64; 8];
             for _ in 0..2000 {
                 let parts = Parts::new(&mut total);
+                // SAFETY: unit u of the first list writes slot u, of the second slot 4 + u:
+                // every unit runs once, no two touch the same slot.
                 Exec::Team(&team).units2(
                     (4, &|u| unsafe { parts.get(u..u + 1)[0] += 1 }),
                     (4, &|u| unsafe { parts.get(4 + u..5 + u)[0] += 2 }),
@@ -476,6 +478,7 @@ mod tests {
         // the team still works afterwards
         let mut x = [0u8; 2];
         let parts = Parts::new(&mut x);
+        // SAFETY: thread t writes slot t alone.
         team.run(&|t| unsafe { parts.get(t..t + 1)[0] = 1 });
         assert_eq!(x, [1, 1]);
     }

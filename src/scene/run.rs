@@ -28,7 +28,10 @@ pub struct Run {
     /// `steady_fraction` window.
     #[serde(default = "default_analysis_fraction")]
     pub analysis_fraction: f64,
-    /// Output sampling interval of `series.csv` (s), > 0. Default 1e-4 s.
+    /// Output sampling interval of `series.csv` (s), > 0. Default 1e-4 s. The DEM's automatic
+    /// step is put on the analysis window's sample clock (`crate::setup::dem::step_clock_s`),
+    /// the same for `simulate` and a sweep point; `series.csv` then has a row every whole
+    /// number of steps nearest this interval, each with its exact time.
     #[serde(default = "default_sample_interval")]
     pub sample_interval: f64,
     /// Time step of time-stepping models (DEM): `"auto"` (a fraction `dt_fraction` of the

@@ -50,7 +50,10 @@ pub struct DemSetup {
     /// dt / t_s with an automatic step (–) (`run.dt_fraction`).
     pub dt_fraction: f64,
     /// The time step the rule chose for `dt` and `dt_fraction`, once, here (checked against
-    /// the contact time); a run takes it on its sample clock ([`DemSetup::time_step_for`]).
+    /// the contact time) and put on the scene's step clock ([`step_clock_s`]): every run of
+    /// the scene takes this step, whatever it samples — `pdamp simulate` (every
+    /// `run.sample_interval`), a sweep point (the analysis window's samples, or none) and
+    /// `check-scene`'s plan, which prints it.
     pub time_step: TimeStep,
     /// Snapshot directory and format, when snapshots are written.
     pub snapshots: Option<(PathBuf, SnapshotFormat)>,
@@ -79,15 +82,6 @@ impl DemSetup {
         opts.sample_interval_s.unwrap_or(self.sample_interval_s)
     }
 
-    /// The time step (s) and contact time of a run with the sampling of `opts`: the resolved
-    /// [`DemSetup::time_step`] on that run's sample clock ([`TimeStep::on_sample_clock`]).
-    /// The run, [`super::RunPlan`] (`check-scene`) and the sweep's cost estimate all take it
-    /// from here.
-    pub fn time_step_for(&self, opts: &RunOptions) -> TimeStep {
-        self.time_step
-            .on_sample_clock(self.sample_interval_for(opts))
-    }
-
     /// The engine's run settings for the sampling of `opts`.
     pub fn config(&self, opts: &RunOptions) -> DemRunConfig {
         DemRunConfig {
@@ -103,6 +97,22 @@ impl DemSetup {
             energy_ledger: self.energy_ledger,
         }
     }
+}
+
+/// The scene's step clock (s): the interval of the analysis window's samples
+/// ([`super::steady_series`]: `run.sample_interval`, or the analysis window divided by
+/// `run.analysis_max_samples` when that is longer). An automatic step is shortened to the
+/// nearest whole fraction of it ([`TimeStep::on_sample_clock`]), so that the analysed samples
+/// fall on time steps; a run sampling more often (`pdamp simulate`'s `series.csv` every
+/// `run.sample_interval`) samples every whole number of steps nearest its interval, and
+/// writes each sample's exact time.
+///
+/// One clock for every run of the scene is what makes `pdamp simulate` and a sweep point of
+/// the same scene take the same step and the same trajectory.
+pub fn step_clock_s(scene: &Scene) -> f64 {
+    super::steady_series(scene)
+        .sample_interval_s
+        .unwrap_or(scene.run.sample_interval)
 }
 
 /// The DEM's setup of a validated scene with damper `dem`. The time step is checked against
@@ -129,8 +139,11 @@ pub fn dem_setup(scene: &Scene) -> Result<DemSetup, SceneError> {
         Some(DtSpec::Seconds(s)) => DtChoice::Seconds(s),
         _ => DtChoice::Auto,
     };
-    let time_step =
-        TimeStep::choose(&model, &drive, dt, scene.run.dt_fraction).map_err(scene_error)?;
+    // the one rule, applied once: the step chosen against the contact time, put on the
+    // scene's step clock (`step_clock_s`) whatever a run then samples
+    let time_step = TimeStep::choose(&model, &drive, dt, scene.run.dt_fraction)
+        .map_err(scene_error)?
+        .on_sample_clock(step_clock_s(scene));
     Ok(DemSetup {
         model,
         drive,
@@ -228,7 +241,7 @@ pub fn simulate(
     obs: &mut dyn Observer,
     opts: &RunOptions,
 ) -> Result<RunSummary, SimError> {
-    let (drive, cfg, step) = (setup.drive, setup.config(opts), setup.time_step_for(opts));
+    let (drive, cfg, step) = (setup.drive, setup.config(opts), setup.time_step);
     let mut snapshots = setup.snapshots.as_ref().map(|(dir, format)| {
         SnapshotWriter::new(
             dir.clone(),

@@ -31,12 +31,12 @@ pub use keys::{keyed, scene_error, scene_key};
 pub use plan::RunPlan;
 pub use window::{full_series, steady_series, window};
 
+use crate::choice::AutoChoice;
 use crate::error::SimError;
 use crate::impact::ImpactSetup;
 use crate::model::{RunOptions, RunSummary, RunWindow};
 use crate::observe::Observer;
 use crate::scene::Scene;
-use crate::choice::AutoChoice;
 use keys::dem_instability_keys;
 
 /// What a scene resolves to: the engine's input for one of the two simulators.

@@ -134,7 +134,7 @@ impl RunPlan {
         };
         let mut plan = match &resolved.setup {
             Setup::Impact(_) => impact_plan(resolved, duration_s),
-            Setup::Dem(d) => dem_plan(d, opts, duration_s)?,
+            Setup::Dem(d) => dem_plan(d, duration_s)?,
         };
         plan.samples = samples;
         plan.sample_interval_s = opts.sample_interval_s.unwrap_or(dt_sample);
@@ -260,11 +260,11 @@ fn impact_plan(resolved: &Resolved, duration_s: f64) -> RunPlan {
     }
 }
 
-/// The DEM: the step the run takes (the resolved step on the sample clock of `opts`,
-/// [`super::DemSetup::time_step_for`]), settling and drive steps, the packing
+/// The DEM: the step every run of the scene takes ([`super::DemSetup::time_step`], on the
+/// scene's step clock [`super::dem::step_clock_s`]), settling and drive steps, the packing
 /// built once to check that the grains fit.
-fn dem_plan(d: &DemSetup, opts: &RunOptions, duration_s: f64) -> Result<RunPlan, SceneError> {
-    let step = d.time_step_for(opts);
+fn dem_plan(d: &DemSetup, duration_s: f64) -> Result<RunPlan, SceneError> {
+    let step = d.time_step;
     let (dt_s, ts) = (step.dt_s, step.contact_time_s);
     if !(dt_s > 0.0 && dt_s.is_finite() && ts.is_finite()) {
         return Err(SceneError::invalid(

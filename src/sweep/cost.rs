@@ -8,7 +8,7 @@
 //!   with the analysis.
 //! - DEM (SPEC §2): t = N · (T/dt + T_settle/dt) / r, with N grains, dt the scene's time step
 //!   (automatic: the fraction of the Hertz contact time at the largest expected impact speed,
-//!   [`crate::setup::DemSetup::time_step_for`]) and r = [`DEM_PARTICLE_STEPS_PER_S`].
+//!   [`crate::setup::DemSetup::time_step`]) and r = [`DEM_PARTICLE_STEPS_PER_S`].
 //!
 //! # Units
 //! Seconds of one core, bytes.
@@ -21,7 +21,6 @@ use super::continuation::{shard_value_runs, Continuation};
 use super::runner::SweepSpec;
 use super::shard::Shard;
 use crate::error::SceneError;
-use crate::model::RunOptions;
 use crate::scene::Scene;
 use crate::setup::Setup;
 
@@ -62,13 +61,8 @@ pub fn point_cost(scene: &Scene, analyze: bool) -> Result<PointCost, SceneError>
             memory_bytes: BASE_MEMORY,
         },
         Setup::Dem(d) => {
-            // the sampling the sweep's run takes (`super::run::run_resolved`)
-            let sampling = if analyze {
-                crate::setup::steady_series(scene)
-            } else {
-                RunOptions::summary_only()
-            };
-            let dt = d.time_step_for(&sampling).dt_s;
+            // the step every run of the scene takes, whatever it samples
+            let dt = d.time_step.dt_s;
             let grains = d.model.grains.len() as f64;
             let steps = (d.window.duration_s + d.model.settle_time_s) / dt;
             PointCost {

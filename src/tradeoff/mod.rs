@@ -3,7 +3,7 @@
 //! The shortcuts themselves and `[damper] kind = "auto"`, which reads the table written here,
 //! live beneath the resolve step in [`crate::choice`].
 //!
-//! Pipeline: [`crate::choice::ladder`] (the settings, each one change to the reference scene) → [`plan`]
+//! Pipeline: [`crate::choice::ladder`](mod@crate::choice::ladder) (the settings, each one change to the reference scene) → [`plan`]
 //! (frequencies, where points live) → [`compute`] (the missing points, as resumable sweeps)
 //! → [`observed`] (each rung's stored point at each frequency, or why there is none) →
 //! [`study`](mod@study) (errors, resonance, M_ef/C_ef, verdicts, cost; [`metrics`], [`pareto`]) →

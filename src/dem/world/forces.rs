@@ -223,6 +223,8 @@ impl DemWorld {
                 let (pairs, coef) = (&bp.pairs[r.clone()], &self.pair_coef[r.clone()]);
                 // SAFETY: cross chunk `c` alone touches these springs and responses.
                 let (hist, tc) = unsafe { (history.get(r.clone()), touch.get(r.clone())) };
+                // SAFETY: the responses of chunk `c` (its pairs' offsets from the first cross
+                // pair) are written by this unit alone.
                 let resp = unsafe { response.get(r.start - cross0..r.end - cross0) };
                 let part = if serial {
                     // one thread, after every block's own pairs: the responses straight into
