@@ -139,6 +139,10 @@ pub enum SimError {
     /// The scene is valid but asks for a model that is not available in this build.
     #[error("{0}")]
     Unavailable(String),
+    /// The caller stopped the run (an observer's progress report said so, or
+    /// [`crate::sweep::stop::request`] was called): nothing of it is complete.
+    #[error("interrupted: {0}")]
+    Interrupted(String),
 }
 
 /// A series analysis that cannot be carried out on the given data/parameters.

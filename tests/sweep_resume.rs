@@ -158,3 +158,54 @@ fn points_of_another_physics_revision_are_not_mixed_in() {
     );
     assert!(!out.join("points/2.json").exists(), "nothing computed");
 }
+
+/// A stop asked for from another thread (the Python binding's Ctrl-C,
+/// `pdamp::sweep::stop::request`) ends a running sweep within a forcing period of each
+/// running point: the points report `interrupted`, none is written, and a rerun computes
+/// them.
+#[test]
+fn a_stop_request_ends_a_running_sweep_and_leaves_no_point() {
+    use pdamp::scene::SceneSource;
+    use pdamp::sweep::{run_sweep, stop, SweepSpec, Vary};
+
+    let dir = scratch::tempdir().unwrap();
+    let out = dir.path().join("out");
+    // four points of 2 000 000 periods: ~7 s each on one core
+    let spec = SweepSpec {
+        base: SceneSource::parse(&SCENE.replace("periods = 60", "periods = 2000000")).unwrap(),
+        set: Vec::new(),
+        varies: vec![Vary::parse("excitation.frequency=10,12,14,16").unwrap()],
+        analyze: false,
+    };
+    let t0 = std::time::Instant::now();
+    let report = std::thread::scope(|s| {
+        s.spawn(|| {
+            std::thread::sleep(std::time::Duration::from_millis(300));
+            stop::request();
+        });
+        run_sweep(&spec, &out, &|_| {}).unwrap()
+    });
+    let took = t0.elapsed().as_secs_f64();
+    assert!(took < 5.0, "the sweep ran {took} s after the stop");
+    assert_eq!(report.failed.len(), 4, "{:?}", report.failed);
+    assert!(report
+        .failed
+        .iter()
+        .all(|(_, why)| why.starts_with("interrupted")));
+    let written = std::fs::read_dir(out.join("points"))
+        .unwrap()
+        .filter(|e| {
+            e.as_ref()
+                .is_ok_and(|e| e.path().extension().is_some_and(|x| x == "json"))
+        })
+        .count();
+    assert_eq!(written, 0);
+    // the next sweep clears the request and runs (one short point)
+    let spec = SweepSpec {
+        base: SceneSource::parse(SCENE).unwrap(),
+        varies: vec![Vary::parse("excitation.frequency=10").unwrap()],
+        ..spec
+    };
+    let again = run_sweep(&spec, &dir.path().join("again"), &|_| {}).unwrap();
+    assert_eq!((again.computed, again.failed.len()), (1, 0));
+}

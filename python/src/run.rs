@@ -63,8 +63,13 @@ impl Observer for Columns {
 }
 
 /// Stops a run when Python has a pending signal (Ctrl-C): checked at the simulators'
-/// progress reports (every few forcing periods); the next sample then ends the run and the
-/// signal's exception is raised.
+/// progress reports (about once per forcing period, whether the run keeps samples or not),
+/// which then end the run; the signal's exception is raised.
+///
+/// Why at the progress reports: while the run holds no GIL (`py.detach`) Python only sets a
+/// flag on SIGINT, and runs its handler when some code asks (`check_signals`). Asking at the
+/// samples alone — as this did before — never asked a run without samples (`series=False`,
+/// no `out`), which ran to its end past the first Ctrl-C.
 #[derive(Default)]
 struct Interrupt {
     raised: Option<PyErr>,
@@ -72,15 +77,16 @@ struct Interrupt {
 
 impl Observer for Interrupt {
     fn sample(&mut self, _s: &Sample) -> Result<(), SimError> {
+        Ok(())
+    }
+
+    fn progress(&mut self, _t_s: f64, _duration_s: f64) -> Result<(), SimError> {
+        if self.raised.is_none() {
+            self.raised = Python::attach(|py| py.check_signals()).err();
+        }
         match self.raised {
             Some(_) => Err(SimError::Output("interrupted from Python".into())),
             None => Ok(()),
-        }
-    }
-
-    fn progress(&mut self, _t_s: f64, _duration_s: f64) {
-        if self.raised.is_none() {
-            self.raised = Python::attach(|py| py.check_signals()).err();
         }
     }
 }
@@ -211,13 +217,43 @@ fn sweep<'py>(
         varies: convert::varies(&vary)?,
         analyze,
     };
-    let report = py
-        .detach(|| run_sweep(&spec, &out, &|_| {}))
-        .map_err(errors::sim)?;
+    let (report, raised) = py.detach(|| sweep_until_interrupted(&spec, &out));
+    if let Some(e) = raised {
+        return Err(e);
+    }
+    let report = report.map_err(errors::sim)?;
     Ok((
         report.points,
         report.skipped,
         report.computed,
         report.failed,
     ))
+}
+
+/// Runs the sweep on a worker thread while this (Python's main) thread asks Python for
+/// pending signals every 50 ms: a Ctrl-C asks the sweep to stop
+/// ([`pdamp::sweep::stop::request`]) — the running points end at their next progress report,
+/// the others are not started, the finished ones stay on disk — and its exception is
+/// returned. (The points run on worker threads, where Python's handler cannot be asked.)
+fn sweep_until_interrupted(
+    spec: &SweepSpec,
+    out: &std::path::Path,
+) -> (Result<pdamp::sweep::SweepReport, SimError>, Option<PyErr>) {
+    std::thread::scope(|scope| {
+        let worker = scope.spawn(|| run_sweep(spec, out, &|_| {}));
+        let mut raised = None;
+        while !worker.is_finished() {
+            std::thread::sleep(std::time::Duration::from_millis(50));
+            if raised.is_none() {
+                if let Err(e) = Python::attach(|py| py.check_signals()) {
+                    pdamp::sweep::stop::request();
+                    raised = Some(e);
+                }
+            }
+        }
+        let report = worker
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        (report, raised)
+    })
 }

@@ -236,3 +236,72 @@ def test_ctrl_c_stops_a_long_run(tmp_path):
     # as `pdamp simulate`: the run directory stays marked incomplete, and has no summary
     assert (tmp_path / "run" / "RUNNING").is_file()
     assert not (tmp_path / "run" / "summary.json").exists()
+
+
+def test_a_first_ctrl_c_stops_a_run_without_samples():
+    # one SIGINT, 0.5 s into a run that keeps no samples (series=False, no out): the binding
+    # asks Python for pending signals at every progress report (about once per forcing
+    # period) and ends the run there. Before, it asked only at the samples, and this run,
+    # having none, went on to its end (~7 s) past the Ctrl-C.
+    import signal
+    import threading
+    import time
+
+    done = threading.Event()
+
+    def on_sigint(signum, frame):
+        if not done.is_set():
+            raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGINT, on_sigint)
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            pdamp.simulate(
+                SCENE,
+                set={"run.periods": 2_000_000},
+                analyze=False,
+                series=False,
+            )
+    finally:
+        done.set()
+        timer.cancel()
+        signal.signal(signal.SIGINT, previous)
+    assert time.monotonic() - start < 5.0
+
+
+def test_a_first_ctrl_c_stops_a_sweep(tmp_path):
+    # one SIGINT, 0.5 s into a sweep of four ~7 s points: the binding watches for signals while
+    # the points run on worker threads and asks the sweep to stop; the running points end at
+    # their next progress report, the others never start, and no point is written half-done
+    import signal
+    import threading
+    import time
+
+    done = threading.Event()
+
+    def on_sigint(signum, frame):
+        if not done.is_set():
+            raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGINT, on_sigint)
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            pdamp.sweep(
+                SCENE,
+                {"excitation.frequency": [10, 12, 14, 16]},
+                set={"run.periods": 2_000_000},
+                analyze=False,
+                out=tmp_path / "sw",
+            )
+    finally:
+        done.set()
+        timer.cancel()
+        signal.signal(signal.SIGINT, previous)
+    assert time.monotonic() - start < 5.0
+    assert list((tmp_path / "sw" / "points").glob("*.json")) == []

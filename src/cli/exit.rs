@@ -54,6 +54,7 @@ fn kind_of(e: &(dyn std::error::Error + 'static)) -> Option<Kind> {
             SimError::Unstable { .. } => Kind::Unstable,
             SimError::Output(_) => Kind::Io,
             SimError::Scene(_) | SimError::Model(_) | SimError::Unavailable(_) => Kind::Input,
+            SimError::Interrupted(_) => Kind::Other,
         });
     }
     if let Some(e) = e.downcast_ref::<DataError>() {

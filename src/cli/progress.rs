@@ -40,11 +40,12 @@ impl Observer for ProgressObserver {
     fn sample(&mut self, _s: &Sample) -> Result<(), SimError> {
         Ok(())
     }
-    fn progress(&mut self, t: f64, d: f64) {
+    fn progress(&mut self, t: f64, d: f64) -> Result<(), SimError> {
         if d > 0.0 {
             self.bar
                 .set_position(((t / d).clamp(0.0, 1.0) * 1000.0) as u64);
         }
+        Ok(())
     }
     fn finish(&mut self) -> Result<(), SimError> {
         self.bar.finish_and_clear();

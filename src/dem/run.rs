@@ -578,7 +578,7 @@ fn drive_steps(
                 obs.snapshot(&world.grain_state())?;
             }
             if do_progress {
-                obs.progress(world.t, every.duration_s);
+                obs.progress(world.t, every.duration_s)?;
             }
             aside += c0.elapsed().as_secs_f64();
         }

@@ -265,7 +265,7 @@ pub fn choose_dt(
                 return Err(ModelError::new(
                     Quantity::TimeStepFraction,
                     fraction,
-                    "must be in (0, 0.05]: dt = fraction × t_s (default 1/50; the thesis used ~1/100)",
+                    "must be in (0, 0.05]: dt = fraction × t_s (default 0.01, as the thesis used)",
                 ));
             }
             // the viscous rule: never longer than a quarter of the viscous time

@@ -215,7 +215,7 @@ impl ImpactWorld {
                 hook.event(&before, &st, event);
             }
             if st.t >= next_progress {
-                obs.progress(st.t, self.duration);
+                obs.progress(st.t, self.duration)?;
                 next_progress += progress_every;
             }
         }
@@ -232,7 +232,7 @@ impl ImpactWorld {
                 self.emit(obs, &st, &motion, &an, st.t)?;
             }
         }
-        obs.progress(self.duration, self.duration);
+        obs.progress(self.duration, self.duration)?;
         obs.finish()?;
         drop(tee);
         Ok(self.summarize(&st, e0, &led, strobe.points))

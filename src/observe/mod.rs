@@ -248,9 +248,15 @@ pub trait Observer {
     fn snapshot(&mut self, _g: &GrainState<'_>) -> Result<(), SimError> {
         Ok(())
     }
-    /// Progress report: simulated time `t_s` out of `duration_s`. Called at most every few
-    /// forcing periods.
-    fn progress(&mut self, _t_s: f64, _duration_s: f64) {}
+    /// Progress report: simulated time `t_s` out of `duration_s`. Called about once per
+    /// forcing period, samples or none, so that an observer can stop a run there.
+    ///
+    /// # Errors
+    /// Any error ends the run with it (e.g. an interrupt the caller asked for: the Python
+    /// binding returns one after a Ctrl-C).
+    fn progress(&mut self, _t_s: f64, _duration_s: f64) -> Result<(), SimError> {
+        Ok(())
+    }
     /// Called once after the last sample.
     ///
     /// # Errors
@@ -289,8 +295,8 @@ impl Observer for Tee<'_> {
     fn snapshot(&mut self, g: &GrainState<'_>) -> Result<(), SimError> {
         self.observers.iter_mut().try_for_each(|o| o.snapshot(g))
     }
-    fn progress(&mut self, t: f64, d: f64) {
-        self.observers.iter_mut().for_each(|o| o.progress(t, d))
+    fn progress(&mut self, t: f64, d: f64) -> Result<(), SimError> {
+        self.observers.iter_mut().try_for_each(|o| o.progress(t, d))
     }
     fn finish(&mut self) -> Result<(), SimError> {
         self.observers.iter_mut().try_for_each(|o| o.finish())

@@ -16,6 +16,7 @@ pub mod run;
 pub mod runner;
 pub mod shard;
 pub mod slurm;
+pub mod stop;
 pub mod tables;
 pub mod vary;
 

@@ -8,7 +8,7 @@ use super::vary::{grid_point, Vary};
 use crate::error::{SceneError, SimError};
 use crate::io::schema::{StrobeRow, SWEEP_HEAD, SWEEP_TAIL};
 use crate::model::{RunOptions, RunSummary};
-use crate::observe::{fmt_num, NullObserver};
+use crate::observe::fmt_num;
 use crate::scene::{Scene, SceneSource};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -225,7 +225,7 @@ fn run_in_point_dir(scene: &Scene, dir: &Path, analyze: bool) -> Result<RunSumma
         None => None,
     };
     let opts = RunOptions::summary_only();
-    let s = super::run::run_resolved(&resolved, &mut NullObserver, &opts, analyze)?;
+    let s = super::run::run_resolved(&resolved, &mut super::stop::StopCheck, &opts, analyze)?;
     super::run::emit_warnings(&s);
     if let Some(d) = run_dir {
         d.finish().map_err(|e| out_err(dir, e))?;

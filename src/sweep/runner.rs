@@ -180,6 +180,7 @@ pub fn run_shard_with(
     shard: Shard,
     on_point: &(dyn Fn(usize) + Sync),
 ) -> Result<SweepReport, SimError> {
+    super::stop::clear();
     if let Some(c) = c {
         super::continuation::check(spec, c, shard)?;
     }
@@ -230,8 +231,12 @@ pub fn run_shard_with(
 
     pending.par_iter().for_each(|&i| {
         let started = std::time::Instant::now();
-        let result = point_scene(spec, i)
-            .map_err(SimError::from)
+        // a point not started when a stop is asked for is not started
+        let scene = match super::stop::requested() {
+            true => Err(super::stop::interrupted()),
+            false => point_scene(spec, i).map_err(SimError::from),
+        };
+        let result = scene
             .and_then(|scene| {
                 run_point(
                     &scene,
