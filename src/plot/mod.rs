@@ -11,6 +11,7 @@ pub mod energy;
 pub mod fnn;
 pub mod frequency_panel;
 pub mod frf;
+pub mod from_table;
 pub mod kantz;
 pub mod labels;
 pub mod lines;
