@@ -3,8 +3,6 @@
 //! `ch4_bifurcation` (z_cm strobed once per period versus f) and `ch4_impacts` (collective
 //! bed–floor and bed–ceiling impacts per cycle versus f).
 
-use super::super::command::Command;
-use super::super::pipeline::FigureRecord;
 use super::points::{opt_cell, Point};
 use super::record::Info;
 use super::runs::length_text;
@@ -14,6 +12,8 @@ use crate::plot::bifurcation::BifurcationFigure;
 use crate::plot::lines::LinesFigure;
 use crate::plot::regime_frf::{Exponents, RegimeFrfFigure};
 use crate::plot::Series;
+use crate::study::command::Command;
+use crate::study::pipeline::FigureRecord;
 
 pub(super) fn regime_frf(
     info: &Info,

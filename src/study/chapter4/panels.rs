@@ -2,9 +2,6 @@
 //! `ch4_panel_f<f>` (Figs. 4.2–4.6: bed band between floor and ceiling, the section and the
 //! spectrum) and `ch4_reconstruction` (Fig. 4.7: delay reconstructions of z_cm).
 
-use super::super::command::Command;
-use super::super::pipeline::{scene_with, simulate_command, FigureRecord, Recorded};
-use super::super::settings::{Chapter4Settings, DemSettings};
 use super::record::Info;
 use super::runs::{ch4_set, length_text, DEM_CH4};
 use crate::analysis::mutual_information::{mutual_information, MutualInformationOptions};
@@ -17,6 +14,9 @@ use crate::plot::poincare::PoincareFigure;
 use crate::plot::reconstruction::ReconstructionFigure;
 use crate::plot::spectrum::SpectrumFigure;
 use crate::scene::keys::EXCITATION_FREQUENCY;
+use crate::study::command::Command;
+use crate::study::pipeline::{scene_with, simulate_command, FigureRecord, Recorded};
+use crate::study::settings::{Chapter4Settings, DemSettings};
 
 /// One recorded chapter-4 run at a panel frequency.
 pub(super) struct PanelRun {

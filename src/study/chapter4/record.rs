@@ -1,9 +1,9 @@
 //! What every chapter-4 figure shares ([`Info`]: the context, the settings, the regime sweep
 //! and the reductions) and the figure's record.
 
-use super::super::command::Command;
-use super::super::pipeline::{Ctx, FigureRecord, SweepResult};
-use super::super::settings::Chapter4Settings;
+use crate::study::command::Command;
+use crate::study::pipeline::{Ctx, FigureRecord, SweepResult};
+use crate::study::settings::Chapter4Settings;
 
 /// What every figure of the study shares.
 pub(super) struct Info<'a, 'b> {

@@ -1,13 +1,13 @@
 //! `ch4_run_length`: the check frequencies again with every run continued to twice its length
 //! (the same trajectory, see `ch4_set`), verdict by verdict and amplitude by amplitude.
 
-use super::super::pipeline::{FigureRecord, SweepResult};
 use super::points::{opt_cell, Point};
 use super::record::Info;
 use super::runs::length_text;
 use crate::error::StudyError;
 use crate::plot::lines::LinesFigure;
 use crate::plot::Series;
+use crate::study::pipeline::{FigureRecord, SweepResult};
 
 pub(super) fn run_length(
     info: &Info,

@@ -2,11 +2,11 @@
 //! `--set` of a run at the mode's (or a multiple of its) length, the other shipped softened
 //! scene's `--set`, and the run length in words and in directory names.
 
-use super::super::dem_figures::softened_steel_set;
-use super::super::pipeline::BundledScene;
-use super::super::settings::{Chapter4Settings, DemSettings};
 use crate::model::summary::DEFAULT_ANALYSIS_MAX_SAMPLES;
 use crate::scene::keys::{RUN_ANALYSIS_MAX_SAMPLES, RUN_DT_FRACTION, RUN_DURATION, RUN_PERIODS};
+use crate::study::dem_figures::softened_steel_set;
+use crate::study::pipeline::BundledScene;
+use crate::study::settings::{Chapter4Settings, DemSettings};
 
 /// Scene B at Lz = 0.1225 m with softened grains and runs counted in periods
 /// (`data/scenes/thesis_b_ch4.toml`).
