@@ -273,6 +273,44 @@ impl PlotError {
     }
 }
 
+/// A figure that cannot be drawn from the given table and options
+/// ([`crate::plot::from_table`], the figures of `pdamp plot`): the message names the column or
+/// option and the fix; a cause of another kind is kept as it is.
+#[derive(Debug, Error)]
+pub enum TableFigureError {
+    /// The table or series file cannot be read, or lacks a column.
+    #[error(transparent)]
+    Data(#[from] DataError),
+    /// The figure refuses its data, or drawing failed.
+    #[error(transparent)]
+    Plot(#[from] PlotError),
+    /// The estimator behind the figure refused the series or its parameters.
+    #[error(transparent)]
+    Analysis(#[from] AnalysisError),
+    /// An option, or a combination of options, that the figure cannot use; names it and the
+    /// fix.
+    #[error("{0}")]
+    Options(String),
+    /// A failure with what was being done (`Kantz on FILE`) in front of its cause.
+    #[error("{context}")]
+    Context {
+        /// What was being done.
+        context: String,
+        /// The cause.
+        #[source]
+        source: Box<TableFigureError>,
+    },
+    /// An option value that is not a whole number.
+    #[error("{context}")]
+    Number {
+        /// Which option, and what it must be.
+        context: String,
+        /// The parse failure.
+        #[source]
+        source: std::num::ParseIntError,
+    },
+}
+
 /// A study (a pipeline of sweeps, fits and figures, e.g. `pdamp reproduce`) that had to stop:
 /// names the step and wraps the cause.
 #[derive(Debug, Error)]

@@ -13,9 +13,9 @@
 //! A module imports only modules to its right, never one beside it (`dem` and `impact` know
 //! nothing of each other), and no two files import each other. `tests/design_module_graph.rs`
 //! reads the `use`/path graph of `src/` from the syntax tree and holds the code to this order
-//! (its list of exceptions names what is left: a few `mod.rs` ↔ child-file pairs in `scene`,
-//! `setup` and `study`). `dem`, `impact` and `model` never see a scene; `analysis`
-//! knows nothing of the simulators (the primary's FRF (2.1.21) it fits is its own,
+//! (its list of exceptions names what is left: a few `mod.rs` ↔ child-file pairs in `scene`).
+//! `dem`, `impact` and `model` never see a scene; `analysis` knows nothing of the simulators
+//! (the primary's FRF (2.1.21) it fits is its own,
 //! [`analysis::frf_fit::base_excitation_amplitude`], and [`model`] evaluates it from there).
 //! - [`scene`]: TOML scene files → validated [`scene::Scene`].
 //! - [`setup`]: the resolve step, [`scene::Scene::resolve`] → the engine's objects
@@ -27,7 +27,8 @@
 //! - [`analysis`]: delay embedding, mutual information, false nearest neighbours, spectra,
 //!   Poincaré sections, Kantz's Lyapunov exponent, regime classification, FRF fits (SPEC §4).
 //! - [`systems`]: logistic, Hénon, Lorenz, Rössler, bouncing ball — literature references.
-//! - [`plot`]: headless PNG figures (SPEC §7).
+//! - [`plot`]: headless PNG figures (SPEC §7), and the table → figure adapters of `pdamp plot`
+//!   ([`plot::from_table`]).
 //! - [`tradeoff`]: speed against accuracy of the models and settings, measured.
 //! - [`choice`]: the ladder of shortcuts and `kind = "auto"`'s pick from the measured table.
 //! - [`io`]: series and CSV input/output, the run directory.

@@ -76,16 +76,6 @@ const UPWARD_FOR_NOW: &[(&str, &str, &str)] = &[];
 /// them is left out of the cycle search).
 const CYCLES_FOR_NOW: &[(&str, &str, &str)] = &[
     (
-        "study/chapter4.rs",
-        "study/chapter4/checks.rs",
-        "src/study/ is being rewritten with the trade-off (issue 38)",
-    ),
-    (
-        "study/chapter4.rs",
-        "study/chapter4/ensemble.rs",
-        "src/study/ is being rewritten with the trade-off (issue 38)",
-    ),
-    (
         "scene/mod.rs",
         "scene/damper.rs",
         "scene/mod.rs defines Scene and its children's parts refer back to it (issue 40, left)",

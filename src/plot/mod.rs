@@ -1,6 +1,8 @@
 //! Headless figures (SPEC §7): plotters with the bundled DejaVu Sans font, PNG output, one file
 //! per figure kind. Every figure is a struct of borrowed slices implementing [`Figure`];
 //! [`render`] writes it to a file and [`render_rgb`] to memory.
+//! [`from_table`] draws each figure kind of `pdamp plot` from the CSV tables of the output
+//! contract (the command line only turns its flags into [`from_table::TableFigureOptions`]).
 
 pub mod bed_motion;
 pub mod bifurcation;
@@ -11,6 +13,7 @@ pub mod energy;
 pub mod fnn;
 pub mod frequency_panel;
 pub mod frf;
+pub mod from_table;
 pub mod kantz;
 pub mod labels;
 pub mod lines;
