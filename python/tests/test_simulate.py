@@ -7,6 +7,7 @@ else at target/release/pdamp of the repository (`cargo build --release`); withou
 these comparisons are skipped with that reason.
 """
 
+import contextlib
 import csv
 import json
 import os
@@ -196,25 +197,26 @@ def test_periodic_verdict_of_a_run_reads_as_the_library_writes_it():
     assert sim.strobe["cycle"].size > 0 and sim.series == {}
 
 
-def test_ctrl_c_stops_a_long_run(tmp_path):
-    # 2 000 000 forcing periods take ~7 s; SIGINT from 0.5 s on must stop the run within a few
-    # periods (checked at the progress reports), not after it ends. The signal is repeated
-    # every 0.5 s while the call runs, as a user presses Ctrl-C again: one CI run (of many) ran
-    # to the end after a single SIGINT from the timer thread, not reproduced in 21 reruns.
+@contextlib.contextmanager
+def ctrl_c(after=0.5, repeat=False):
+    """Presses Ctrl-C (SIGINT to this process) `after` seconds into the block (and again every
+    `after` seconds with `repeat`); the block must raise KeyboardInterrupt within 5 s."""
     import signal
     import threading
     import time
 
     done = threading.Event()
 
-    def press():
-        while not done.wait(0.5):
-            os.kill(os.getpid(), signal.SIGINT)
-
     def on_sigint(signum, frame):
         # Ctrl-C's KeyboardInterrupt while the call runs; a press racing its end is ignored
         if not done.is_set():
             raise KeyboardInterrupt
+
+    def press():
+        while not done.wait(after):
+            os.kill(os.getpid(), signal.SIGINT)
+            if not repeat:
+                return
 
     previous = signal.signal(signal.SIGINT, on_sigint)
     start = time.monotonic()
@@ -222,17 +224,26 @@ def test_ctrl_c_stops_a_long_run(tmp_path):
     presser.start()
     try:
         with pytest.raises(KeyboardInterrupt):
-            pdamp.simulate(
-                SCENE,
-                set={"run.periods": 2_000_000, "run.sample_interval": 1.0},
-                analyze=False,
-                out=tmp_path / "run",
-            )
+            yield
     finally:
         done.set()
         presser.join()
         signal.signal(signal.SIGINT, previous)
     assert time.monotonic() - start < 5.0
+
+
+def test_ctrl_c_stops_a_long_run(tmp_path):
+    # 2 000 000 forcing periods take ~7 s; SIGINT from 0.5 s on must stop the run within a few
+    # periods (checked at the progress reports), not after it ends. The signal is repeated
+    # every 0.5 s while the call runs, as a user presses Ctrl-C again (the tests below press
+    # once).
+    with ctrl_c(repeat=True):
+        pdamp.simulate(
+            SCENE,
+            set={"run.periods": 2_000_000, "run.sample_interval": 1.0},
+            analyze=False,
+            out=tmp_path / "run",
+        )
     # as `pdamp simulate`: the run directory stays marked incomplete, and has no summary
     assert (tmp_path / "run" / "RUNNING").is_file()
     assert not (tmp_path / "run" / "summary.json").exists()
@@ -243,65 +254,20 @@ def test_a_first_ctrl_c_stops_a_run_without_samples():
     # asks Python for pending signals at every progress report (about once per forcing
     # period) and ends the run there. Before, it asked only at the samples, and this run,
     # having none, went on to its end (~7 s) past the Ctrl-C.
-    import signal
-    import threading
-    import time
-
-    done = threading.Event()
-
-    def on_sigint(signum, frame):
-        if not done.is_set():
-            raise KeyboardInterrupt
-
-    previous = signal.signal(signal.SIGINT, on_sigint)
-    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
-    start = time.monotonic()
-    timer.start()
-    try:
-        with pytest.raises(KeyboardInterrupt):
-            pdamp.simulate(
-                SCENE,
-                set={"run.periods": 2_000_000},
-                analyze=False,
-                series=False,
-            )
-    finally:
-        done.set()
-        timer.cancel()
-        signal.signal(signal.SIGINT, previous)
-    assert time.monotonic() - start < 5.0
+    with ctrl_c():
+        pdamp.simulate(SCENE, set={"run.periods": 2_000_000}, analyze=False, series=False)
 
 
 def test_a_first_ctrl_c_stops_a_sweep(tmp_path):
     # one SIGINT, 0.5 s into a sweep of four ~7 s points: the binding watches for signals while
     # the points run on worker threads and asks the sweep to stop; the running points end at
     # their next progress report, the others never start, and no point is written half-done
-    import signal
-    import threading
-    import time
-
-    done = threading.Event()
-
-    def on_sigint(signum, frame):
-        if not done.is_set():
-            raise KeyboardInterrupt
-
-    previous = signal.signal(signal.SIGINT, on_sigint)
-    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
-    start = time.monotonic()
-    timer.start()
-    try:
-        with pytest.raises(KeyboardInterrupt):
-            pdamp.sweep(
-                SCENE,
-                {"excitation.frequency": [10, 12, 14, 16]},
-                set={"run.periods": 2_000_000},
-                analyze=False,
-                out=tmp_path / "sw",
-            )
-    finally:
-        done.set()
-        timer.cancel()
-        signal.signal(signal.SIGINT, previous)
-    assert time.monotonic() - start < 5.0
+    with ctrl_c():
+        pdamp.sweep(
+            SCENE,
+            {"excitation.frequency": [10, 12, 14, 16]},
+            set={"run.periods": 2_000_000},
+            analyze=False,
+            out=tmp_path / "sw",
+        )
     assert list((tmp_path / "sw" / "points").glob("*.json")) == []

@@ -169,6 +169,37 @@ pub(crate) fn require_positive(name: &str, value: usize) -> Result<(), AnalysisE
     Ok(())
 }
 
+/// Checks an estimator's embedding dimensions and delay (TISEAN `-m`, `-M`, `-d`):
+/// 1 ≤ `m_min` ≤ `m_max` ≤ `max_dimension`, τ ≥ 1. The one check of [`kantz`],
+/// [`correlation_dimension`] and [`false_nearest_neighbors`].
+///
+/// # Errors
+/// [`AnalysisError::BadParameter`] naming `m_min`, `tau` or `m_max`.
+pub(crate) fn validate_embedding_range(
+    m_min: usize,
+    m_max: usize,
+    tau: usize,
+    max_dimension: usize,
+) -> Result<(), AnalysisError> {
+    require_positive("m_min", m_min)?;
+    require_positive("tau", tau)?;
+    if m_max < m_min {
+        return Err(AnalysisError::bad(
+            "m_max",
+            m_max,
+            format!("must be ≥ m_min = {m_min}"),
+        ));
+    }
+    if m_max > max_dimension {
+        return Err(AnalysisError::bad(
+            "m_max",
+            m_max,
+            format!("at most {max_dimension} dimensions are supported"),
+        ));
+    }
+    Ok(())
+}
+
 /// Checks the optional radii ε_min and ε_max of an estimator (TISEAN `-r`, `-R`): each, when
 /// given, a positive finite number in data units. The one check of [`kantz`] and
 /// [`correlation_dimension`]; their own orderings (ε_min < ε_max, or a single radius) stay

@@ -1,8 +1,8 @@
 //! `[damper]`: what the primary carries — nothing, one effective particle (SPEC §3) or a DEM
 //! box of spheres (SPEC §2, parameters in [`super::dem::DemParams`]).
 
+use super::checks::{non_negative, positive};
 use super::dem::DemParams;
-use super::{non_negative, positive};
 use crate::error::SceneError;
 use serde::{Deserialize, Serialize};
 

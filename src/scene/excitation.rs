@@ -1,6 +1,6 @@
 //! `[excitation]`: the harmonic base motion u(t) = U cos(2π f t) (SPEC §1).
 
-use super::{non_negative, positive};
+use super::checks::{non_negative, positive};
 use crate::error::SceneError;
 use serde::{Deserialize, Serialize};
 

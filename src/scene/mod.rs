@@ -28,6 +28,7 @@
 //! Any key can be overridden with a dotted name (`excitation.frequency=12`, see
 //! [`SceneSource::scene`]); unknown keys are rejected with a message naming them.
 
+mod checks;
 pub mod damper;
 pub mod dem;
 pub mod excitation;
@@ -81,16 +82,6 @@ fn default_gravity() -> f64 {
 }
 
 impl Scene {
-    /// Parse and validate a scene from TOML text.
-    ///
-    /// # Errors
-    /// [`SceneError::Parse`] for malformed TOML, wrong types, unknown or missing keys (the
-    /// message names the key and the line); [`SceneError::Invalid`] / [`SceneError::Missing`]
-    /// for values out of range (see [`Scene::validate`]).
-    pub fn from_toml(text: &str) -> Result<Scene, SceneError> {
-        SceneSource::parse(text)?.scene(&[])
-    }
-
     /// Deserialize and validate (no syntax pre-pass, no `kind = "none"` check).
     pub(crate) fn parse_validated(text: &str) -> Result<Scene, SceneError> {
         let parse_err = |e: toml::de::Error| SceneError::Parse(clean_toml_error(&e));
@@ -216,32 +207,6 @@ impl Scene {
 /// Shorten toml's multi-line error to something that still names the line and key.
 fn clean_toml_error(e: &toml::de::Error) -> String {
     e.to_string().trim_end().to_string()
-}
-
-/// Check that `value` is finite and > 0; the error names `field` and the unit.
-pub(crate) fn positive(field: &str, value: f64, unit: &str) -> Result<(), SceneError> {
-    if value.is_finite() && value > 0.0 {
-        Ok(())
-    } else {
-        Err(SceneError::invalid(
-            field,
-            value,
-            format!("must be finite and > 0 ({unit})"),
-        ))
-    }
-}
-
-/// Check that `value` is finite and ≥ 0; the error names `field` and the unit.
-pub(crate) fn non_negative(field: &str, value: f64, unit: &str) -> Result<(), SceneError> {
-    if value.is_finite() && value >= 0.0 {
-        Ok(())
-    } else {
-        Err(SceneError::invalid(
-            field,
-            value,
-            format!("must be finite and ≥ 0 ({unit})"),
-        ))
-    }
 }
 
 #[cfg(test)]

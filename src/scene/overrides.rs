@@ -15,6 +15,18 @@ pub struct SceneSource {
     text: String,
 }
 
+impl Scene {
+    /// Parse and validate a scene from TOML text.
+    ///
+    /// # Errors
+    /// [`SceneError::Parse`] for malformed TOML, wrong types, unknown or missing keys (the
+    /// message names the key and the line); [`SceneError::Invalid`] / [`SceneError::Missing`]
+    /// for values out of range (see [`Scene::validate`]).
+    pub fn from_toml(text: &str) -> Result<Scene, SceneError> {
+        SceneSource::parse(text)?.scene(&[])
+    }
+}
+
 impl SceneSource {
     /// Parse TOML text (syntax only; keys and values are checked by [`SceneSource::scene`]).
     ///

@@ -1,6 +1,6 @@
 //! `[primary]`: the spring-mounted primary mass (SPEC §1, (2.1.2)).
 
-use super::{non_negative, positive};
+use super::checks::{non_negative, positive};
 use crate::error::SceneError;
 use crate::model::PrimarySystem;
 use serde::{Deserialize, Serialize};

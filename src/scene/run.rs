@@ -1,6 +1,6 @@
 //! `[run]`: duration, steady-state window, output sampling and time-step settings.
 
-use super::positive;
+use super::checks::positive;
 use crate::error::SceneError;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 

@@ -1,7 +1,7 @@
 //! Options of the correlation sum ([`D2Options`], TISEAN `d2`'s defaults), their checks, and
 //! the log-spaced radii `ε_l = ε_min·f^l`, `f = (ε_max/ε_min)^{1/(count−1)}` (data units).
 
-use crate::analysis::{require_positive, validate_radii};
+use crate::analysis::validate_radii;
 use crate::error::AnalysisError;
 
 /// Largest embedding dimension supported by [`correlation_sum`](super::correlation_sum).
@@ -42,22 +42,7 @@ impl Default for D2Options {
 }
 
 pub(super) fn validate_options(o: &D2Options) -> Result<(), AnalysisError> {
-    require_positive("m_min", o.m_min)?;
-    require_positive("tau", o.tau)?;
-    if o.m_max < o.m_min {
-        return Err(AnalysisError::bad(
-            "m_max",
-            o.m_max,
-            format!("must be ≥ m_min = {}", o.m_min),
-        ));
-    }
-    if o.m_max > MAX_DIMENSION {
-        return Err(AnalysisError::bad(
-            "m_max",
-            o.m_max,
-            format!("at most {MAX_DIMENSION} dimensions are supported"),
-        ));
-    }
+    crate::analysis::validate_embedding_range(o.m_min, o.m_max, o.tau, MAX_DIMENSION)?;
     if o.eps_count < 2 {
         return Err(AnalysisError::bad(
             "eps_count",

@@ -7,7 +7,7 @@ use std::sync::atomic::AtomicU32;
 use super::count::fnn_in_dimension;
 use super::options::{FnnOptions, FnnPoint, MAX_DIMENSION};
 use super::search::{Grid, Setup, NONE};
-use crate::analysis::{require_positive, rescale_unit, standard_deviation};
+use crate::analysis::{rescale_unit, standard_deviation};
 use crate::error::AnalysisError;
 
 /// Fraction of false nearest neighbours for m = m_min..=m_max.
@@ -115,22 +115,7 @@ pub fn suggested_dimension(points: &[FnnPoint], threshold: f64) -> Option<usize>
 }
 
 fn validate_options(opts: &FnnOptions) -> Result<(), AnalysisError> {
-    require_positive("m_min", opts.m_min)?;
-    require_positive("tau", opts.tau)?;
-    if opts.m_max < opts.m_min {
-        return Err(AnalysisError::bad(
-            "m_max",
-            opts.m_max,
-            format!("must be ≥ m_min = {}", opts.m_min),
-        ));
-    }
-    if opts.m_max > MAX_DIMENSION {
-        return Err(AnalysisError::bad(
-            "m_max",
-            opts.m_max,
-            format!("at most {MAX_DIMENSION} dimensions are supported"),
-        ));
-    }
+    crate::analysis::validate_embedding_range(opts.m_min, opts.m_max, opts.tau, MAX_DIMENSION)?;
     if !(opts.ratio.is_finite() && opts.ratio > 0.0) {
         return Err(AnalysisError::bad(
             "ratio",

@@ -120,23 +120,8 @@ pub fn kantz(x: &[f64], opts: &KantzOptions) -> Result<KantzResult, AnalysisErro
 }
 
 fn validate_options(o: &KantzOptions) -> Result<(), AnalysisError> {
-    require_positive("m_min", o.m_min)?;
-    require_positive("tau", o.tau)?;
+    crate::analysis::validate_embedding_range(o.m_min, o.m_max, o.tau, MAX_DIMENSION)?;
     require_positive("eps_count", o.eps_count)?;
-    if o.m_max < o.m_min {
-        return Err(AnalysisError::bad(
-            "m_max",
-            o.m_max,
-            format!("must be ≥ m_min = {}", o.m_min),
-        ));
-    }
-    if o.m_max > MAX_DIMENSION {
-        return Err(AnalysisError::bad(
-            "m_max",
-            o.m_max,
-            format!("at most {MAX_DIMENSION} dimensions are supported"),
-        ));
-    }
     if o.references == Some(0) {
         return Err(AnalysisError::bad(
             "references",
