@@ -21,7 +21,12 @@ pub enum Simd {
 }
 
 /// The processor running this program has AVX2 (made only by [`Simd::detect`]; the private
-/// field keeps every other code from making one).
+/// field keeps every other code from making one):
+///
+/// ```compile_fail
+/// // error: the field of `HasAvx2` is private — no proof without asking the processor
+/// let claim = pdamp::simd::Simd::Avx2(pdamp::simd::HasAvx2(()));
+/// ```
 #[cfg(target_arch = "x86_64")]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct HasAvx2(());
