@@ -6,7 +6,7 @@ use std::io::Write;
 use anyhow::Context;
 
 use crate::cli::commands::mutual::SeriesInput;
-use crate::cli::commands::tisean_args::{Delay, Theiler};
+use crate::cli::commands::tisean_args::{edit_arg, Delay, Theiler};
 use pdamp::analysis::cao::{cao, CaoOptions};
 
 /// Arguments of `pdamp cao`.
@@ -18,12 +18,12 @@ use pdamp::analysis::cao::{cao, CaoOptions};
 #[derive(Debug, clap::Args)]
 #[command(
     mut_arg("tau", |a| a.help("Delay τ in samples; use the first minimum of `pdamp mutual`")),
-    mut_arg("theiler", |a| a
+    mut_args(edit_arg("theiler", |a| a
         .help(
             "Theiler window in samples (neighbours must be more than this apart in time). Use at \
              least τ for flows"
         )
-        .default_value("0"))
+        .default_value("0")))
 )]
 pub struct Args {
     /// Input series.

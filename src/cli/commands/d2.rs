@@ -6,7 +6,7 @@ use std::io::Write;
 use anyhow::Context;
 
 use crate::cli::commands::mutual::SeriesInput;
-use crate::cli::commands::tisean_args::{Delay, DimRange, Radii, Theiler};
+use crate::cli::commands::tisean_args::{edit_arg, Delay, DimRange, Radii, Theiler};
 use pdamp::analysis::correlation_dimension::{
     correlation_sum, estimate_d2, D2Options, PlateauOptions,
 };
@@ -25,16 +25,16 @@ use pdamp::analysis::correlation_dimension::{
 /// is counted (TISEAN's -N0).
 #[derive(Debug, clap::Args)]
 #[command(
-    mut_arg("m_min", |a| a
+    mut_args(edit_arg("m_min", |a| a
         .help("Smallest embedding dimension written (all from 1 by default, as TISEAN)")
-        .default_value("1")),
-    mut_arg("m_max", |a| a.default_value("10")),
-    mut_arg("theiler", |a| a
+        .default_value("1"))),
+    mut_args(edit_arg("m_max", |a| a.default_value("10"))),
+    mut_args(edit_arg("theiler", |a| a
         .help(
             "Theiler window in samples: pairs closer in time are not counted (TISEAN -t). Use at \
              least the autocorrelation time for flows"
         )
-        .default_value("0")),
+        .default_value("0"))),
     mut_arg("eps_min", |a| a.help("Smallest ε in data units (TISEAN -r). Default: interval/1000")),
     mut_arg("eps_max", |a| a.help(
         "Largest ε in data units (TISEAN -R). Default: the data interval max − min"

@@ -5,7 +5,7 @@ use std::io::Write;
 use anyhow::Context;
 
 use crate::cli::commands::mutual::SeriesInput;
-use crate::cli::commands::tisean_args::{Delay, DimRange, Theiler};
+use crate::cli::commands::tisean_args::{edit_arg, Delay, DimRange, Theiler};
 use pdamp::analysis::false_nearest_neighbors::suggested_dimension;
 use pdamp::analysis::{false_nearest_neighbors, FnnOptions};
 
@@ -24,16 +24,16 @@ use pdamp::analysis::{false_nearest_neighbors, FnnOptions};
 /// (explicit flags still win), and then the numbers match TISEAN's.
 #[derive(Debug, clap::Args)]
 #[command(
-    mut_arg("m_min", |a| a.help("Smallest embedding dimension tested (TISEAN -m)")),
-    mut_arg("m_max", |a| a.help(
+    mut_args(edit_arg("m_min", |a| a.help("Smallest embedding dimension tested (TISEAN -m)"))),
+    mut_args(edit_arg("m_max", |a| a.help(
         "Largest dimension: `M` or TISEAN's `comp,M` (only 1 component is supported). Default 6 \
          (TISEAN: 5)"
-    )),
+    ))),
     mut_arg("tau", |a| a.help("Delay τ in samples (TISEAN -d); use the first minimum of `pdamp mutual`")),
-    mut_arg("theiler", |a| a.help(
+    mut_args(edit_arg("theiler", |a| a.help(
         "Theiler window in samples: neighbours must be more than this apart in time. Default τ; \
          TISEAN: 0"
-    ))
+    )))
 )]
 pub struct Args {
     /// Input series.

@@ -5,7 +5,7 @@ use std::io::Write;
 use anyhow::Context;
 
 use crate::cli::commands::mutual::SeriesInput;
-use crate::cli::commands::tisean_args::{Delay, Radii, Theiler};
+use crate::cli::commands::tisean_args::{edit_arg, Delay, Radii, Theiler};
 use pdamp::analysis::kantz::{
     estimate_from_curves, fit_scaling_region, kantz, KantzDefinition, KantzOptions, ScalingOptions,
 };
@@ -37,7 +37,7 @@ pub enum Definition {
         "Largest radius ε in data units (TISEAN -R). Default: (max − min)/100"
     )),
     mut_arg("eps_count", |a| a.default_value("5")),
-    mut_arg("theiler", |a| a.help("Theiler window in samples (TISEAN -t). Default: τ (TISEAN: 0)"))
+    mut_args(edit_arg("theiler", |a| a.help("Theiler window in samples (TISEAN -t). Default: τ (TISEAN: 0)")))
 )]
 pub struct Args {
     /// Input series.

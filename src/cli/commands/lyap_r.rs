@@ -5,7 +5,7 @@ use std::io::Write;
 use anyhow::Context;
 
 use crate::cli::commands::mutual::SeriesInput;
-use crate::cli::commands::tisean_args::{Delay, Dim, Theiler};
+use crate::cli::commands::tisean_args::{edit_arg, Delay, Dim, Theiler};
 use pdamp::analysis::kantz::{fit_scaling_region, ScalingOptions};
 use pdamp::analysis::rosenstein::{rosenstein, RosensteinOptions};
 
@@ -21,10 +21,10 @@ use pdamp::analysis::rosenstein::{rosenstein, RosensteinOptions};
 /// as the initial search radius, Euclidean nearest neighbour, series rescaled to [0, 1]).
 #[derive(Debug, clap::Args)]
 #[command(
-    mut_arg("m", |a| a.default_value("2")),
-    mut_arg("theiler", |a| a
+    mut_args(edit_arg("m", |a| a.default_value("2"))),
+    mut_args(edit_arg("theiler", |a| a
         .help("Theiler window in samples (TISEAN -t); about one mean period for flows")
-        .default_value("0"))
+        .default_value("0")))
 )]
 pub struct Args {
     /// Input series.

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::bail;
 
-use crate::cli::commands::tisean_args::Theiler;
+use crate::cli::commands::tisean_args::{edit_arg, Theiler};
 
 use pdamp::analysis::recurrence::RecurrenceThreshold;
 use pdamp::error::TableFigureError;
@@ -99,12 +99,12 @@ pub struct Args {
 
 /// Options of `pdamp plot` shared by the figure kinds (boxed in [`Args`]).
 #[derive(Debug, clap::Args)]
-#[command(mut_arg("theiler", |a| a
+#[command(mut_args(edit_arg("theiler", |a| a
     .help(
         "Theiler window in samples for kantz and fnn (TISEAN -t; default τ, TISEAN 0) and for \
          recurrence (RR excludes |i − j| ≤ w; default 0)"
     )
-    .help_heading("Estimators (kantz, mutual, fnn)")))]
+    .help_heading("Estimators (kantz, mutual, fnn)"))))]
 pub struct PlotOptions {
     /// Image width in pixels (default 1024).
     #[arg(long, default_value_t = 1024)]

@@ -5,7 +5,7 @@ use std::io::Write;
 use anyhow::{bail, Context};
 
 use crate::cli::commands::mutual::SeriesInput;
-use crate::cli::commands::tisean_args::{Delay, Dim, Theiler};
+use crate::cli::commands::tisean_args::{edit_arg, Delay, Dim, Theiler};
 use pdamp::analysis::recurrence::{rqa, RecurrenceOptions, RecurrenceThreshold, DEFAULT_MAX_LEN};
 
 /// Arguments of `pdamp rqa`.
@@ -17,11 +17,11 @@ use pdamp::analysis::recurrence::{rqa, RecurrenceOptions, RecurrenceThreshold, D
 /// refused.
 #[derive(Debug, clap::Args)]
 #[command(
-    mut_arg("m", |a| a.help("Embedding dimension").default_value("1")),
+    mut_args(edit_arg("m", |a| a.help("Embedding dimension").default_value("1"))),
     mut_arg("tau", |a| a.help("Delay τ in samples")),
-    mut_arg("theiler", |a| a
+    mut_args(edit_arg("theiler", |a| a
         .help("Theiler window w: entries with |i − j| ≤ w are excluded (0: the line of identity)")
-        .default_value("0"))
+        .default_value("0")))
 )]
 pub struct Args {
     /// Input series.

@@ -8,7 +8,7 @@ use serde::Serialize;
 
 use crate::cli::commands::mutual::SeriesInput;
 use crate::cli::commands::surrogates::{reject_time_column, select_segment};
-use crate::cli::commands::tisean_args::Theiler;
+use crate::cli::commands::tisean_args::{edit_arg, Theiler};
 use pdamp::analysis::prediction_error::{prediction_error, PredictionErrorOptions};
 use pdamp::analysis::surrogate_test::{
     surrogate_test, SurrogateTestOptions, SurrogateTestResult, Tail,
@@ -38,10 +38,10 @@ pub enum Statistic {
 /// `significance_sigma`, `tail`, `rejected` (p ≤ --alpha), `max_discrepancy`,
 /// `not_converged` and the options used.
 #[derive(Debug, clap::Args)]
-#[command(mut_arg("theiler", |a| a
+#[command(mut_args(edit_arg("theiler", |a| a
     .help("Theiler window in samples")
     .help_heading("Statistic")
-    .default_value("0")))]
+    .default_value("0"))))]
 pub struct Args {
     /// Input series.
     #[command(flatten)]

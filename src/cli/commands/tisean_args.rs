@@ -8,6 +8,11 @@
 //! `lyap-k`) states it in its own help with `mut_arg`, so every verb's flags, defaults and help
 //! read as before.
 //!
+//! The defaults and help of the groups' arguments are set in place ([`edit_arg`] in
+//! `mut_args`): `mut_arg` would move the argument to the end of the command's list, which
+//! orders the completion scripts and the man pages (the help keeps the declared order either
+//! way). The older `mut_arg` calls on `-d` and `-r -R -#` stay, so those lists read as before.
+//!
 //! Left to their verbs, as they are other flags under the same letter: `-M` of lyap-k (a plain
 //! number: TISEAN lyap_k has no `components,M`) and cao (no `-m`), `-m -M` of plot (`-M` reads
 //! `min,max`), and `-m --dimension` of embed, nrlazy (`m` or `components,m`) and
@@ -50,8 +55,17 @@ impl Radii {
     }
 }
 
+/// For `Command::mut_args`: `f` applied to the argument `id` only, which stays in its place
+/// among the command's arguments (`mut_arg` moves it to the end).
+pub(crate) fn edit_arg(
+    id: &'static str,
+    mut f: impl FnMut(clap::Arg) -> clap::Arg,
+) -> impl FnMut(clap::Arg) -> clap::Arg {
+    move |a| if a.get_id() == id { f(a) } else { a }
+}
+
 /// TISEAN's Theiler window `-t`: pairs closer in time are not neighbours. A verb with a fixed
-/// default gives it with `mut_arg("theiler", |a| a.default_value(…))` and reads
+/// default gives it with `edit_arg("theiler", |a| a.default_value(…))` and reads
 /// [`Theiler::window`]; one whose default depends on other flags (τ) reads [`Theiler::given`].
 #[derive(Debug, Clone, Copy, clap::Args)]
 pub struct Theiler {
@@ -74,7 +88,7 @@ impl Theiler {
 }
 
 /// TISEAN's dimension range `-m -M`, `-M` as `M` or TISEAN's `components,M` (one component).
-/// The verb gives the defaults (`mut_arg("m_min" | "m_max", …)`) or reads them as absent.
+/// The verb gives the defaults (`edit_arg("m_min" | "m_max", …)`) or reads them as absent.
 #[derive(Debug, Clone, clap::Args)]
 pub struct DimRange {
     /// Smallest embedding dimension (TISEAN -m).
