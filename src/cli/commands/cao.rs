@@ -6,7 +6,7 @@ use std::io::Write;
 use anyhow::Context;
 
 use crate::cli::commands::mutual::SeriesInput;
-use crate::cli::commands::tisean_args::Delay;
+use crate::cli::commands::tisean_args::{edit_arg, Delay, Theiler};
 use pdamp::analysis::cao::{cao, CaoOptions};
 
 /// Arguments of `pdamp cao`.
@@ -16,7 +16,15 @@ use pdamp::analysis::cao::{cao, CaoOptions};
 /// with E1 ≥ --saturation and a change < --flatness to the next m) goes to stderr, with a
 /// note when E2 stays near 1 (no evidence of determinism).
 #[derive(Debug, clap::Args)]
-#[command(mut_arg("tau", |a| a.help("Delay τ in samples; use the first minimum of `pdamp mutual`")))]
+#[command(
+    mut_arg("tau", |a| a.help("Delay τ in samples; use the first minimum of `pdamp mutual`")),
+    mut_args(edit_arg("theiler", |a| a
+        .help(
+            "Theiler window in samples (neighbours must be more than this apart in time). Use at \
+             least τ for flows"
+        )
+        .default_value("0")))
+)]
 pub struct Args {
     /// Input series.
     #[command(flatten)]
@@ -32,15 +40,9 @@ pub struct Args {
     /// Delay τ (-d; help below).
     #[command(flatten)]
     pub delay: Delay,
-    /// Theiler window in samples (neighbours must be more than this apart in time). Use at
-    /// least τ for flows.
-    #[arg(
-        short = 't',
-        long = "theiler",
-        default_value_t = 0,
-        help_heading = "Estimator"
-    )]
-    pub theiler: usize,
+    /// Theiler window -t, 0 by default.
+    #[command(flatten)]
+    pub theiler: Theiler,
     /// E1 level that counts as saturated.
     #[arg(long, default_value_t = 0.85, help_heading = "Estimator")]
     pub saturation: f64,
@@ -55,7 +57,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let opts = CaoOptions {
         m_max: args.m_max,
         tau: args.delay.tau,
-        theiler: args.theiler,
+        theiler: args.theiler.window(),
         saturation: args.saturation,
         flatness: args.flatness,
     };

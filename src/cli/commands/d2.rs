@@ -5,9 +5,8 @@ use std::io::Write;
 
 use anyhow::Context;
 
-use crate::cli::commands::fnn::parse_max_dim;
 use crate::cli::commands::mutual::SeriesInput;
-use crate::cli::commands::tisean_args::{Delay, Radii};
+use crate::cli::commands::tisean_args::{edit_arg, Delay, DimRange, Radii, Theiler};
 use pdamp::analysis::correlation_dimension::{
     correlation_sum, estimate_d2, D2Options, PlateauOptions,
 };
@@ -26,6 +25,16 @@ use pdamp::analysis::correlation_dimension::{
 /// is counted (TISEAN's -N0).
 #[derive(Debug, clap::Args)]
 #[command(
+    mut_args(edit_arg("m_min", |a| a
+        .help("Smallest embedding dimension written (all from 1 by default, as TISEAN)")
+        .default_value("1"))),
+    mut_args(edit_arg("m_max", |a| a.default_value("10"))),
+    mut_args(edit_arg("theiler", |a| a
+        .help(
+            "Theiler window in samples: pairs closer in time are not counted (TISEAN -t). Use at \
+             least the autocorrelation time for flows"
+        )
+        .default_value("0"))),
     mut_arg("eps_min", |a| a.help("Smallest ε in data units (TISEAN -r). Default: interval/1000")),
     mut_arg("eps_max", |a| a.help(
         "Largest ε in data units (TISEAN -R). Default: the data interval max − min"
@@ -38,34 +47,15 @@ pub struct Args {
     /// Input series.
     #[command(flatten)]
     pub input: SeriesInput,
-    /// Smallest embedding dimension written (all from 1 by default, as TISEAN).
-    #[arg(
-        short = 'm',
-        long = "min-dim",
-        default_value_t = 1,
-        help_heading = "Estimator"
-    )]
-    pub m_min: usize,
-    /// Largest embedding dimension: `M` or TISEAN's `components,M` (1 component).
-    #[arg(
-        short = 'M',
-        long = "max-dim",
-        default_value = "10",
-        help_heading = "Estimator"
-    )]
-    pub m_max: String,
+    /// Dimensions -m -M (TISEAN), 1 and 10 by default.
+    #[command(flatten)]
+    pub dim_range: DimRange,
     /// Delay τ (TISEAN -d).
     #[command(flatten)]
     pub delay: Delay,
-    /// Theiler window in samples: pairs closer in time are not counted (TISEAN -t). Use at
-    /// least the autocorrelation time for flows.
-    #[arg(
-        short = 't',
-        long = "theiler",
-        default_value_t = 0,
-        help_heading = "Estimator"
-    )]
-    pub theiler: usize,
+    /// Theiler window -t (TISEAN), 0 by default.
+    #[command(flatten)]
+    pub theiler: Theiler,
     /// Radii -r -R -# (TISEAN), 100 by default.
     #[command(flatten)]
     pub radii: Radii,
@@ -84,10 +74,10 @@ pub struct Args {
 pub fn run(args: Args) -> anyhow::Result<()> {
     let x = args.input.read()?;
     let opts = D2Options {
-        m_min: args.m_min,
-        m_max: parse_max_dim(&args.m_max)?,
+        m_min: args.dim_range.min().expect("d2 gives -m a default"),
+        m_max: args.dim_range.max()?.expect("d2 gives -M a default"),
         tau: args.delay.tau,
-        theiler: args.theiler,
+        theiler: args.theiler.window(),
         eps_min: args.radii.eps_min,
         eps_max: args.radii.eps_max,
         eps_count: args.radii.count(),

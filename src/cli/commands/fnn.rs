@@ -2,10 +2,10 @@
 
 use std::io::Write;
 
-use anyhow::{bail, Context};
+use anyhow::Context;
 
 use crate::cli::commands::mutual::SeriesInput;
-use crate::cli::commands::tisean_args::Delay;
+use crate::cli::commands::tisean_args::{edit_arg, Delay, DimRange, Theiler};
 use pdamp::analysis::false_nearest_neighbors::suggested_dimension;
 use pdamp::analysis::{false_nearest_neighbors, FnnOptions};
 
@@ -23,18 +23,25 @@ use pdamp::analysis::{false_nearest_neighbors, FnnOptions};
 /// shortens the index ranges). `--tisean` switches to TISEAN's defaults and its vectors
 /// (explicit flags still win), and then the numbers match TISEAN's.
 #[derive(Debug, clap::Args)]
-#[command(mut_arg("tau", |a| a.help("Delay τ in samples (TISEAN -d); use the first minimum of `pdamp mutual`")))]
+#[command(
+    mut_args(edit_arg("m_min", |a| a.help("Smallest embedding dimension tested (TISEAN -m)"))),
+    mut_args(edit_arg("m_max", |a| a.help(
+        "Largest dimension: `M` or TISEAN's `comp,M` (only 1 component is supported). Default 6 \
+         (TISEAN: 5)"
+    ))),
+    mut_arg("tau", |a| a.help("Delay τ in samples (TISEAN -d); use the first minimum of `pdamp mutual`")),
+    mut_args(edit_arg("theiler", |a| a.help(
+        "Theiler window in samples: neighbours must be more than this apart in time. Default τ; \
+         TISEAN: 0"
+    )))
+)]
 pub struct Args {
     /// Input series.
     #[command(flatten)]
     pub input: SeriesInput,
-    /// Smallest embedding dimension tested (TISEAN -m).
-    #[arg(short = 'm', long = "min-dim", help_heading = "Estimator")]
-    pub m_min: Option<usize>,
-    /// Largest dimension: `M` or TISEAN's `comp,M` (only 1 component is supported).
-    /// Default 6 (TISEAN: 5).
-    #[arg(short = 'M', long = "max-dim", help_heading = "Estimator")]
-    pub m_max: Option<String>,
+    /// Dimensions -m -M (help above).
+    #[command(flatten)]
+    pub dim_range: DimRange,
     /// Delay τ (-d; help below).
     #[command(flatten)]
     pub delay: Delay,
@@ -42,29 +49,13 @@ pub struct Args {
     /// 10 (Kennel et al.); TISEAN: 2.
     #[arg(short = 'f', long = "ratio", help_heading = "Estimator")]
     pub ratio: Option<f64>,
-    /// Theiler window in samples: neighbours must be more than this apart in time. Default
-    /// τ; TISEAN: 0.
-    #[arg(short = 't', long = "theiler", help_heading = "Estimator")]
-    pub theiler: Option<usize>,
+    /// Theiler window -t (help above).
+    #[command(flatten)]
+    pub theiler: Theiler,
     /// TISEAN false_nearest's defaults (-m1 -M1,5 -f2 -t0) and vectors (unit spacing: -d
     /// only sets the ranges, as in TISEAN 3.0.1).
     #[arg(long, help_heading = "Estimator")]
     pub tisean: bool,
-}
-
-pub(crate) fn parse_max_dim(s: &str) -> anyhow::Result<usize> {
-    let parts: Vec<&str> = s.split(',').collect();
-    let (comp, m) = match parts.as_slice() {
-        [m] => ("1", *m),
-        [c, m] => (*c, *m),
-        _ => bail!("-M {s}: expected `M` or `components,M`"),
-    };
-    if comp.trim() != "1" {
-        bail!("-M {s}: only one component (univariate series) is supported");
-    }
-    m.trim()
-        .parse()
-        .with_context(|| format!("-M {s}: `{m}` is not a dimension"))
 }
 
 /// Run `pdamp fnn`.
@@ -76,14 +67,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         FnnOptions::default()
     };
     let opts = FnnOptions {
-        m_min: args.m_min.unwrap_or(base.m_min),
-        m_max: match &args.m_max {
-            Some(s) => parse_max_dim(s)?,
-            None => base.m_max,
-        },
+        m_min: args.dim_range.min().unwrap_or(base.m_min),
+        m_max: args.dim_range.max()?.unwrap_or(base.m_max),
         tau: args.delay.tau,
         ratio: args.ratio.unwrap_or(base.ratio),
-        theiler: args.theiler.or(base.theiler),
+        theiler: args.theiler.given().or(base.theiler),
         vectors: base.vectors,
     };
     if args.tisean && opts.tau > 1 {
@@ -123,7 +111,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::cli::commands::tisean_args::parse_max_dim;
 
     #[test]
     fn max_dim_accepts_tisean_form() {

@@ -5,7 +5,7 @@ use std::io::Write;
 use anyhow::Context;
 
 use crate::cli::commands::mutual::SeriesInput;
-use crate::cli::commands::tisean_args::{Delay, Radii};
+use crate::cli::commands::tisean_args::{edit_arg, Delay, Radii, Theiler};
 use pdamp::analysis::kantz::{
     estimate_from_curves, fit_scaling_region, kantz, KantzDefinition, KantzOptions, ScalingOptions,
 };
@@ -36,7 +36,8 @@ pub enum Definition {
     mut_arg("eps_max", |a| a.help(
         "Largest radius ε in data units (TISEAN -R). Default: (max − min)/100"
     )),
-    mut_arg("eps_count", |a| a.default_value("5"))
+    mut_arg("eps_count", |a| a.default_value("5")),
+    mut_args(edit_arg("theiler", |a| a.help("Theiler window in samples (TISEAN -t). Default: τ (TISEAN: 0)")))
 )]
 pub struct Args {
     /// Input series.
@@ -75,9 +76,9 @@ pub struct Args {
     /// Number of reference points: the first n admissible samples (TISEAN -n). Default: all.
     #[arg(short = 'n', long = "references", help_heading = "Estimator")]
     pub references: Option<usize>,
-    /// Theiler window in samples (TISEAN -t). Default: τ (TISEAN: 0).
-    #[arg(short = 't', long = "theiler", help_heading = "Estimator")]
-    pub theiler: Option<usize>,
+    /// Theiler window -t (TISEAN), τ by default.
+    #[command(flatten)]
+    pub theiler: Theiler,
     /// Average inside the log. Default: mean (TISEAN: tisean).
     #[arg(long, value_enum, help_heading = "Estimator")]
     pub definition: Option<Definition>,
@@ -122,7 +123,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         eps_count: args.radii.count(),
         references: args.references,
         steps: args.steps,
-        theiler: args.theiler.or(base.theiler),
+        theiler: args.theiler.given().or(base.theiler),
         definition,
     };
     let result = kantz(&x, &opts).with_context(|| format!("Kantz on {}", args.input.file))?;

@@ -5,7 +5,7 @@ use std::io::Write;
 use anyhow::Context;
 
 use crate::cli::commands::mutual::SeriesInput;
-use crate::cli::commands::tisean_args::Delay;
+use crate::cli::commands::tisean_args::{edit_arg, Delay, Dim, Theiler};
 use pdamp::analysis::kantz::{fit_scaling_region, ScalingOptions};
 use pdamp::analysis::rosenstein::{rosenstein, RosensteinOptions};
 
@@ -20,29 +20,25 @@ use pdamp::analysis::rosenstein::{rosenstein, RosensteinOptions};
 /// Same definition and defaults as TISEAN 3.0.1 lyap_r (-m2 -d1 -t0 -s10, -r = interval/1000
 /// as the initial search radius, Euclidean nearest neighbour, series rescaled to [0, 1]).
 #[derive(Debug, clap::Args)]
+#[command(
+    mut_args(edit_arg("m", |a| a.default_value("2"))),
+    mut_args(edit_arg("theiler", |a| a
+        .help("Theiler window in samples (TISEAN -t); about one mean period for flows")
+        .default_value("0")))
+)]
 pub struct Args {
     /// Input series.
     #[command(flatten)]
     pub input: SeriesInput,
-    /// Embedding dimension (TISEAN -m).
-    #[arg(
-        short = 'm',
-        long = "dim",
-        default_value_t = 2,
-        help_heading = "Estimator"
-    )]
-    pub m: usize,
+    /// Embedding dimension -m (TISEAN), 2 by default.
+    #[command(flatten)]
+    pub dim: Dim,
     /// Delay τ (TISEAN -d).
     #[command(flatten)]
     pub delay: Delay,
-    /// Theiler window in samples (TISEAN -t); about one mean period for flows.
-    #[arg(
-        short = 't',
-        long = "theiler",
-        default_value_t = 0,
-        help_heading = "Estimator"
-    )]
-    pub theiler: usize,
+    /// Theiler window -t (TISEAN), 0 by default.
+    #[command(flatten)]
+    pub theiler: Theiler,
     /// Initial neighbourhood size in data units (TISEAN -r): matters only for points with
     /// exact duplicates, which keep a neighbour only within it. Default interval/1000.
     #[arg(short = 'r', long = "eps0", help_heading = "Estimator")]
@@ -67,9 +63,9 @@ pub struct Args {
 pub fn run(args: Args) -> anyhow::Result<()> {
     let x = args.input.read()?;
     let opts = RosensteinOptions {
-        m: args.m,
+        m: args.dim.get(),
         tau: args.delay.tau,
-        theiler: args.theiler,
+        theiler: args.theiler.window(),
         eps0: args.eps0,
         steps: args.steps,
     };

@@ -10,6 +10,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::bail;
 
+use crate::cli::commands::tisean_args::{edit_arg, Theiler};
+
 use pdamp::analysis::recurrence::RecurrenceThreshold;
 use pdamp::error::TableFigureError;
 use pdamp::plot::from_table::{self, TableFigureOptions};
@@ -97,6 +99,12 @@ pub struct Args {
 
 /// Options of `pdamp plot` shared by the figure kinds (boxed in [`Args`]).
 #[derive(Debug, clap::Args)]
+#[command(mut_args(edit_arg("theiler", |a| a
+    .help(
+        "Theiler window in samples for kantz and fnn (TISEAN -t; default τ, TISEAN 0) and for \
+         recurrence (RR excludes |i − j| ≤ w; default 0)"
+    )
+    .help_heading("Estimators (kantz, mutual, fnn)"))))]
 pub struct PlotOptions {
     /// Image width in pixels (default 1024).
     #[arg(long, default_value_t = 1024)]
@@ -181,14 +189,9 @@ pub struct PlotOptions {
         help_heading = "Estimators (kantz, mutual, fnn)"
     )]
     pub references: Option<usize>,
-    /// Theiler window in samples for kantz and fnn (TISEAN -t; default τ, TISEAN 0) and for
-    /// recurrence (RR excludes |i − j| ≤ w; default 0).
-    #[arg(
-        short = 't',
-        long = "theiler",
-        help_heading = "Estimators (kantz, mutual, fnn)"
-    )]
-    pub theiler: Option<usize>,
+    /// Theiler window -t (kantz, fnn, recurrence).
+    #[command(flatten)]
+    pub theiler: Theiler,
     /// TISEAN's definitions and defaults for kantz (RMS, Theiler 0) and fnn (-M 1,5 -f 2 -t 0).
     #[arg(long, help_heading = "Estimators (kantz, mutual, fnn)")]
     pub tisean: bool,
@@ -326,7 +329,7 @@ fn table_figure_options(o: &PlotOptions) -> anyhow::Result<TableFigureOptions> {
         eps_count: o.eps_count,
         steps: o.steps,
         references: o.references,
-        theiler: o.theiler,
+        theiler: o.theiler.given(),
         tisean: o.tisean,
         max_lag: o.max_lag,
         bins: o.bins,

@@ -5,7 +5,7 @@ use std::io::Write;
 use anyhow::{bail, Context};
 
 use crate::cli::commands::mutual::SeriesInput;
-use crate::cli::commands::tisean_args::Delay;
+use crate::cli::commands::tisean_args::{edit_arg, Delay, Dim, Theiler};
 use pdamp::analysis::recurrence::{rqa, RecurrenceOptions, RecurrenceThreshold, DEFAULT_MAX_LEN};
 
 /// Arguments of `pdamp rqa`.
@@ -16,30 +16,26 @@ use pdamp::analysis::recurrence::{rqa, RecurrenceOptions, RecurrenceThreshold, D
 /// matrix is never stored (O(N) memory, O(N²) time); series longer than --max-len are
 /// refused.
 #[derive(Debug, clap::Args)]
-#[command(mut_arg("tau", |a| a.help("Delay τ in samples")))]
+#[command(
+    mut_args(edit_arg("m", |a| a.help("Embedding dimension").default_value("1"))),
+    mut_arg("tau", |a| a.help("Delay τ in samples")),
+    mut_args(edit_arg("theiler", |a| a
+        .help("Theiler window w: entries with |i − j| ≤ w are excluded (0: the line of identity)")
+        .default_value("0")))
+)]
 pub struct Args {
     /// Input series.
     #[command(flatten)]
     pub input: SeriesInput,
-    /// Embedding dimension.
-    #[arg(
-        short = 'm',
-        long = "dim",
-        default_value_t = 1,
-        help_heading = "Estimator"
-    )]
-    pub m: usize,
+    /// Embedding dimension -m, 1 by default.
+    #[command(flatten)]
+    pub dim: Dim,
     /// Delay τ (-d; help below).
     #[command(flatten)]
     pub delay: Delay,
-    /// Theiler window w: entries with |i − j| ≤ w are excluded (0: the line of identity).
-    #[arg(
-        short = 't',
-        long = "theiler",
-        default_value_t = 0,
-        help_heading = "Estimator"
-    )]
-    pub theiler: usize,
+    /// Theiler window -t, 0 by default.
+    #[command(flatten)]
+    pub theiler: Theiler,
     /// Fixed threshold ε in data units (maximum norm).
     #[arg(
         short = 'r',
@@ -82,9 +78,9 @@ pub(crate) fn threshold(
 pub fn run(args: Args) -> anyhow::Result<()> {
     let x = args.input.read()?;
     let opts = RecurrenceOptions {
-        m: args.m,
+        m: args.dim.get(),
         tau: args.delay.tau,
-        theiler: args.theiler,
+        theiler: args.theiler.window(),
         threshold: threshold(args.eps, args.rate)?,
         l_min: args.l_min,
         v_min: args.v_min,

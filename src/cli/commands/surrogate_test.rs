@@ -8,6 +8,7 @@ use serde::Serialize;
 
 use crate::cli::commands::mutual::SeriesInput;
 use crate::cli::commands::surrogates::{reject_time_column, select_segment};
+use crate::cli::commands::tisean_args::{edit_arg, Theiler};
 use pdamp::analysis::prediction_error::{prediction_error, PredictionErrorOptions};
 use pdamp::analysis::surrogate_test::{
     surrogate_test, SurrogateTestOptions, SurrogateTestResult, Tail,
@@ -37,6 +38,10 @@ pub enum Statistic {
 /// `significance_sigma`, `tail`, `rejected` (p ≤ --alpha), `max_discrepancy`,
 /// `not_converged` and the options used.
 #[derive(Debug, clap::Args)]
+#[command(mut_args(edit_arg("theiler", |a| a
+    .help("Theiler window in samples")
+    .help_heading("Statistic")
+    .default_value("0"))))]
 pub struct Args {
     /// Input series.
     #[command(flatten)]
@@ -126,14 +131,9 @@ pub struct Args {
         help_heading = "Statistic"
     )]
     pub min_neighbors: usize,
-    /// Theiler window in samples.
-    #[arg(
-        short = 't',
-        long = "theiler",
-        default_value_t = 0,
-        help_heading = "Statistic"
-    )]
-    pub theiler: usize,
+    /// Theiler window -t, 0 by default.
+    #[command(flatten)]
+    pub theiler: Theiler,
     /// Print one JSON object instead of the table.
     #[arg(long, help_heading = "Output")]
     pub json: bool,
@@ -162,7 +162,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         horizon: args.horizon,
         epsilon: args.epsilon,
         min_neighbors: args.min_neighbors,
-        theiler: args.theiler,
+        theiler: args.theiler.window(),
         ..PredictionErrorOptions::default()
     };
     let lag = args.delay;

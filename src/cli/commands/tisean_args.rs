@@ -1,10 +1,22 @@
 //! The TISEAN flags that several verbs share, declared once and flattened into each verb's
-//! arguments (`#[command(flatten)]`): the delay `-d` (d2, lyap-k, lyap-r, fnn, cao, rqa) and
-//! the radius range `-r -R -#` (d2, lyap-k).
+//! arguments (`#[command(flatten)]`): the delay `-d` (d2, lyap-k, lyap-r, fnn, cao, rqa), the
+//! radius range `-r -R -#` (d2, lyap-k), the Theiler window `-t` (d2, lyap-k, lyap-r, fnn,
+//! cao, rqa, surrogate-test, plot), the dimension range `-m -M` of TISEAN's `M` or
+//! `components,M` (d2, fnn) and the single embedding dimension `-m --dim` (lyap-r, rqa).
 //!
 //! A verb whose default for one of them differs in meaning (the largest radius of `d2` and
 //! `lyap-k`) states it in its own help with `mut_arg`, so every verb's flags, defaults and help
 //! read as before.
+//!
+//! The defaults and help of the groups' arguments are set in place ([`edit_arg`] in
+//! `mut_args`): `mut_arg` would move the argument to the end of the command's list, which
+//! orders the completion scripts and the man pages (the help keeps the declared order either
+//! way). The older `mut_arg` calls on `-d` and `-r -R -#` stay, so those lists read as before.
+//!
+//! Left to their verbs, as they are other flags under the same letter: `-M` of lyap-k (a plain
+//! number: TISEAN lyap_k has no `components,M`) and cao (no `-m`), `-m -M` of plot (`-M` reads
+//! `min,max`), and `-m --dimension` of embed, nrlazy (`m` or `components,m`) and
+//! surrogate-test.
 
 /// TISEAN's delay `-d` (default 1).
 #[derive(Debug, Clone, Copy, clap::Args)]
@@ -40,6 +52,95 @@ impl Radii {
     pub fn count(&self) -> usize {
         self.eps_count
             .expect("every verb that flattens `Radii` gives `-#` a default")
+    }
+}
+
+/// For `Command::mut_args`: `f` applied to the argument `id` only, which stays in its place
+/// among the command's arguments (`mut_arg` moves it to the end).
+pub(crate) fn edit_arg(
+    id: &'static str,
+    mut f: impl FnMut(clap::Arg) -> clap::Arg,
+) -> impl FnMut(clap::Arg) -> clap::Arg {
+    move |a| if a.get_id() == id { f(a) } else { a }
+}
+
+/// TISEAN's Theiler window `-t`: pairs closer in time are not neighbours. A verb with a fixed
+/// default gives it with `edit_arg("theiler", |a| a.default_value(…))` and reads
+/// [`Theiler::window`]; one whose default depends on other flags (τ) reads [`Theiler::given`].
+#[derive(Debug, Clone, Copy, clap::Args)]
+pub struct Theiler {
+    /// Theiler window in samples (TISEAN -t).
+    #[arg(short = 't', long = "theiler", help_heading = "Estimator")]
+    theiler: Option<usize>,
+}
+
+impl Theiler {
+    /// The window given with `-t`, if any (no default declared).
+    pub fn given(&self) -> Option<usize> {
+        self.theiler
+    }
+
+    /// The window: `-t`, or the verb's default.
+    pub fn window(&self) -> usize {
+        self.theiler
+            .expect("a verb that reads `Theiler::window` gives `-t` a default")
+    }
+}
+
+/// TISEAN's dimension range `-m -M`, `-M` as `M` or TISEAN's `components,M` (one component).
+/// The verb gives the defaults (`edit_arg("m_min" | "m_max", …)`) or reads them as absent.
+#[derive(Debug, Clone, clap::Args)]
+pub struct DimRange {
+    /// Smallest embedding dimension (TISEAN -m).
+    #[arg(short = 'm', long = "min-dim", help_heading = "Estimator")]
+    m_min: Option<usize>,
+    /// Largest embedding dimension: `M` or TISEAN's `components,M` (1 component).
+    #[arg(short = 'M', long = "max-dim", help_heading = "Estimator")]
+    m_max: Option<String>,
+}
+
+impl DimRange {
+    /// The smallest dimension given with `-m` (or the verb's default), if any.
+    pub fn min(&self) -> Option<usize> {
+        self.m_min
+    }
+
+    /// The largest dimension given with `-M` (or the verb's default), if any; an error for
+    /// more than one component or no number.
+    pub fn max(&self) -> anyhow::Result<Option<usize>> {
+        self.m_max.as_deref().map(parse_max_dim).transpose()
+    }
+}
+
+/// `M` or TISEAN's `components,M`, one component only.
+pub(crate) fn parse_max_dim(s: &str) -> anyhow::Result<usize> {
+    let parts: Vec<&str> = s.split(',').collect();
+    let (comp, m) = match parts.as_slice() {
+        [m] => ("1", *m),
+        [c, m] => (*c, *m),
+        _ => anyhow::bail!("-M {s}: expected `M` or `components,M`"),
+    };
+    if comp.trim() != "1" {
+        anyhow::bail!("-M {s}: only one component (univariate series) is supported");
+    }
+    anyhow::Context::with_context(m.trim().parse::<usize>(), || {
+        format!("-M {s}: `{m}` is not a dimension")
+    })
+}
+
+/// One embedding dimension `-m --dim` (TISEAN -m); the verb gives the default and help.
+#[derive(Debug, Clone, Copy, clap::Args)]
+pub struct Dim {
+    /// Embedding dimension (TISEAN -m).
+    #[arg(short = 'm', long = "dim", help_heading = "Estimator")]
+    m: Option<usize>,
+}
+
+impl Dim {
+    /// The dimension: `-m`, or the verb's default.
+    pub fn get(&self) -> usize {
+        self.m
+            .expect("every verb that flattens `Dim` gives `-m` a default")
     }
 }
 
