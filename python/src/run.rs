@@ -85,7 +85,7 @@ impl Observer for Interrupt {
             self.raised = Python::attach(|py| py.check_signals()).err();
         }
         match self.raised {
-            Some(_) => Err(SimError::Output("interrupted from Python".into())),
+            Some(_) => Err(SimError::Interrupted("Ctrl-C in Python".into())),
             None => Ok(()),
         }
     }
