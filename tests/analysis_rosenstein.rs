@@ -159,3 +159,32 @@ fn bad_input_is_named() {
         Err(AnalysisError::TooShort(_))
     ));
 }
+
+#[test]
+fn output_does_not_depend_on_the_thread_count() {
+    // long enough for several chunks of references and for the parallel tree build
+    // (splits of more than 16 384 points)
+    let x = lorenz::lorenz_x(40_000, 0.01);
+    let o = RosensteinOptions {
+        m: 4,
+        tau: 10,
+        theiler: 100,
+        steps: 30,
+        eps0: None,
+    };
+    let run = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| rosenstein(&x, &o).unwrap())
+    };
+    let one = run(1);
+    assert!(one.references > 30_000);
+    for threads in [2, 3] {
+        let r = run(threads);
+        assert_eq!(r.count, one.count, "{threads} threads");
+        let bits = |s: &[Option<f64>]| s.iter().map(|v| v.map(f64::to_bits)).collect::<Vec<_>>();
+        assert_eq!(bits(&r.s), bits(&one.s), "{threads} threads");
+    }
+}

@@ -3,11 +3,13 @@
 //! nearest neighbour (outside the Theiler window), followed forward in time.
 //!
 //! # Algorithm
-//! A kd-tree (squared Euclidean, median splits, leaves of 16) over the candidate delay vectors
-//! gives each reference's exact nearest neighbour outside the Theiler window in one pruned
-//! descent that skips the window's points (TISEAN grows a box radius from `-r` by 10 % per
-//! round until every reference has a neighbour: the same neighbour); the previous
-//! reference's neighbour, one step on, seeds the search. References are
+//! A kd-tree (`tree.rs`: squared Euclidean, median splits, leaves of 16) over the candidate
+//! delay vectors (read from the series, not copied) gives each reference's exact nearest
+//! neighbour outside the Theiler window in one pruned descent that skips the window's points
+//! (TISEAN grows a box radius from `-r` by 10 % per round until every reference has a
+//! neighbour: the same neighbour); the previous reference's neighbour, one step on, seeds the
+//! search. The tree is built in parallel (the halves of a split of more than 16 384 points at
+//! once: the same tree as a serial build's, its shape depending on N only). References are
 //! processed in fixed chunks in parallel and summed in chunk order (thread-count
 //! independent); within a chunk the logarithms of the squared distances are summed as running
 //! products (mantissa and binary exponent), one logarithm per Δn and chunk. Cost
@@ -16,7 +18,7 @@
 use rayon::prelude::*;
 
 use crate::analysis::scaling_region::{fit_scaling_region, ScalingOptions, SlopeFit};
-use crate::analysis::{outside_theiler_window, require_positive, rescale_unit, validate_series};
+use crate::analysis::{require_positive, rescale_unit, validate_series};
 use crate::error::AnalysisError;
 
 /// Largest embedding dimension supported.
@@ -24,6 +26,9 @@ pub const MAX_DIMENSION: usize = 10;
 
 /// References per parallel work unit.
 const CHUNK: usize = 1024;
+
+mod tree;
+use tree::{Delays, ExclusionTree};
 
 /// Options of [`rosenstein`]. `Default` gives TISEAN `lyap_r`'s defaults.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -190,9 +195,11 @@ fn run<const K: usize>(s: &[f64], o: &RosensteinOptions, eps0: f64) -> Result<Su
     let tau = o.tau;
     let n_cand = s.len() - (K - 1) * tau - o.steps;
     let n_ref = n_cand - o.theiler;
-    let pts: Vec<[f64; K]> = (0..n_cand)
-        .map(|i| std::array::from_fn(|k| s[i + k * tau]))
-        .collect();
+    let pts = Delays::<K> {
+        s,
+        tau,
+        len: n_cand,
+    };
     let tree = ExclusionTree::new(&pts);
     let len = o.steps + 1;
     let span_k = len + (K - 1) * tau;
@@ -298,8 +305,6 @@ fn run<const K: usize>(s: &[f64], o: &RosensteinOptions, eps0: f64) -> Result<Su
     Ok((sum, count, refs))
 }
 
-/// Nearest candidate of reference n with `|n − j| > w` and squared distance > 0 (ties: the
-/// smallest index), and whether an exact duplicate (distance 0) lies outside the window.
 /// Smallest factor of a running product (2^-100); squared distances are at most m ≤ 10 in
 /// rescaled units.
 const PROD_LO: f64 = 7.888_609_052_210_118e-31;
@@ -315,158 +320,6 @@ fn renormalise(prod: &mut [f64], exp2: &mut [i64]) {
         let b = x.to_bits();
         *e += ((b >> 52) & 0x7ff) as i64 - 1023;
         *x = f64::from_bits((b & MANTISSA) | ONE_BITS);
-    }
-}
-
-/// Points per leaf of [`ExclusionTree`].
-const LEAF: usize = 16;
-
-/// A kd-tree over the candidate delay vectors whose nearest-neighbour query skips the
-/// reference's Theiler window and zero distances itself (one descent, pruned by the best
-/// admissible distance so far), instead of asking a general kd-tree for 4, 16, 64, …
-/// neighbours until one lies outside the window.
-struct ExclusionTree<const K: usize> {
-    /// Point indices, permuted so that every node's points are contiguous.
-    perm: Vec<u32>,
-    /// The points in `perm` order: a leaf's points are read contiguously.
-    sorted: Vec<[f64; K]>,
-    nodes: Vec<Node>,
-}
-
-#[derive(Clone, Copy)]
-struct Node {
-    /// Points `lo..hi` of `perm`.
-    lo: u32,
-    hi: u32,
-    /// Children (0: a leaf), split coordinate and value (left: ≤ value, right: ≥ value).
-    left: u32,
-    right: u32,
-    dim: u32,
-    split: f64,
-}
-
-impl<const K: usize> ExclusionTree<K> {
-    fn new(pts: &[[f64; K]]) -> Self {
-        let mut t = Self {
-            perm: (0..pts.len() as u32).collect(),
-            sorted: Vec::new(),
-            nodes: Vec::with_capacity(2 * pts.len() / LEAF + 2),
-        };
-        let mut lo = [f64::INFINITY; K];
-        let mut hi = [f64::NEG_INFINITY; K];
-        for p in pts {
-            for k in 0..K {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
-            }
-        }
-        t.build(pts, 0, pts.len(), lo, hi);
-        t.sorted = t.perm.iter().map(|&j| pts[j as usize]).collect();
-        t
-    }
-
-    /// Builds the node of points `lo..hi` of `perm`, inside the box `bl..bh` (the parent's
-    /// box cut at the splits: the widest side of it chooses the split coordinate).
-    fn build(&mut self, pts: &[[f64; K]], lo: usize, hi: usize, bl: [f64; K], bh: [f64; K]) -> u32 {
-        let id = self.nodes.len() as u32;
-        self.nodes.push(Node {
-            lo: lo as u32,
-            hi: hi as u32,
-            left: 0,
-            right: 0,
-            dim: 0,
-            split: 0.0,
-        });
-        if hi - lo <= LEAF {
-            return id;
-        }
-        // split the widest side of the box at the median
-        let mut dim = 0;
-        for k in 1..K {
-            if bh[k] - bl[k] > bh[dim] - bl[dim] {
-                dim = k;
-            }
-        }
-        let mid = lo + (hi - lo) / 2;
-        self.perm[lo..hi].select_nth_unstable_by(mid - lo, |&a, &b| {
-            pts[a as usize][dim].total_cmp(&pts[b as usize][dim])
-        });
-        let split = pts[self.perm[mid] as usize][dim];
-        let (mut lh, mut rl) = (bh, bl);
-        lh[dim] = split;
-        rl[dim] = split;
-        let left = self.build(pts, lo, mid, bl, lh);
-        let right = self.build(pts, mid, hi, rl, bh);
-        let node = &mut self.nodes[id as usize];
-        node.left = left;
-        node.right = right;
-        node.dim = dim as u32;
-        node.split = split;
-        id
-    }
-
-    /// The nearest point j of reference n with `|n − j| > w` and a distance > 0 (squared
-    /// Euclidean; ties: the smallest index), its squared distance, and whether an admissible
-    /// point lies at distance 0 (an exact duplicate). `hint`: a likely good neighbour.
-    fn nearest(
-        &self,
-        pts: &[[f64; K]],
-        n: usize,
-        w: usize,
-        hint: Option<usize>,
-        stack: &mut Vec<(u32, f64)>,
-    ) -> Option<(usize, f64, bool)> {
-        let q = &pts[n];
-        let dist = |p: &[f64; K]| -> f64 {
-            let mut d = 0.0;
-            for k in 0..K {
-                let e = q[k] - p[k];
-                d += e * e;
-            }
-            d
-        };
-        let (mut best, mut best_j) = (f64::INFINITY, usize::MAX);
-        if let Some(h) = hint.filter(|&h| h < pts.len() && outside_theiler_window(n, h, w)) {
-            let d = dist(&pts[h]);
-            if d > 0.0 {
-                (best, best_j) = (d, h);
-            }
-        }
-        let mut duplicate = false;
-        stack.clear();
-        stack.push((0, 0.0));
-        while let Some((id, bound)) = stack.pop() {
-            if bound > best {
-                continue;
-            }
-            let node = self.nodes[id as usize];
-            if node.left == 0 {
-                let (lo, hi) = (node.lo as usize, node.hi as usize);
-                for (&j, p) in self.perm[lo..hi].iter().zip(&self.sorted[lo..hi]) {
-                    let j = j as usize;
-                    if !outside_theiler_window(n, j, w) {
-                        continue;
-                    }
-                    let d = dist(p);
-                    if d == 0.0 {
-                        duplicate = true;
-                    } else if d < best || (d == best && j < best_j) {
-                        (best, best_j) = (d, j);
-                    }
-                }
-                continue;
-            }
-            let e = q[node.dim as usize] - node.split;
-            let (near, far) = if e <= 0.0 {
-                (node.left, node.right)
-            } else {
-                (node.right, node.left)
-            };
-            // the far side is at least e² away (its points lie beyond the split value)
-            stack.push((far, bound.max(e * e)));
-            stack.push((near, bound));
-        }
-        (best_j != usize::MAX).then_some((best_j, best, duplicate))
     }
 }
 
