@@ -1,14 +1,19 @@
 //! `pdamp nrlazy`: Schreiber's simple nonlinear noise reduction (TISEAN `lazy` / `nrlazy`).
 
-use std::io::Write;
+use std::fmt::Write as _;
+use std::io::Write as _;
 
 use anyhow::Context;
+use rayon::prelude::*;
 
 use crate::cli::commands::mutual::SeriesInput;
 use crate::cli::commands::surrogates::reject_time_column;
 use pdamp::analysis::noise_reduction::{
     nonlinear_noise_reduction, Correction, NoiseReductionOptions,
 };
+
+/// Samples per block of the output, formatted in parallel.
+const OUTPUT_BLOCK: usize = 16_384;
 
 /// Arguments of `pdamp nrlazy`.
 ///
@@ -155,10 +160,19 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             "almost no neighbours within epsilon; raise -r or --radius-sd (2-3 noise levels)"
         );
     }
-    let mut text = String::with_capacity(x.len() * 18);
-    for v in &r.values {
-        text.push_str(&format!("{v:.10e}\n"));
-    }
+    // formatted in parallel over fixed blocks, joined in order
+    let text: String = r
+        .values
+        .par_chunks(OUTPUT_BLOCK)
+        .map(|block| {
+            let mut text = String::with_capacity(block.len() * 18);
+            for v in block {
+                writeln!(text, "{v:.10e}").expect("writing to a String cannot fail");
+            }
+            text
+        })
+        .collect::<Vec<String>>()
+        .concat();
     match &args.output {
         Some(path) => pdamp::io::atomic_write(std::path::Path::new(path), text.as_bytes())?,
         None => {
