@@ -22,7 +22,9 @@
 #   their ~N² run time is too long; their ratio is then not printed; TISEAN's surrogates is
 #   always skipped above 100 000, the most its Fortran arrays hold),
 #   REPEAT (runs of each command, default 1; the table then shows medians), PDAMP (a pdamp
-#   binary to time instead of building target/release/pdamp).
+#   binary to time instead of building target/release/pdamp), PDAMP_BASE (a second pdamp
+#   binary, e.g. the main branch's, timed in the same rounds right after PDAMP, its output
+#   checked equal to PDAMP's; its rows are marked "(base)").
 # Order per (program, N), repeated REPEAT times (alternating): TISEAN, pdamp on 2 threads, pdamp
 # on 1 thread (RAYON_NUM_THREADS=1, taskset -c 0 if available). Load (uptime) is printed before
 # each round: on a shared machine compare CPU seconds (user+sys), which the load disturbs much
@@ -213,6 +215,10 @@ compare_surr() {
 
 echo
 echo "machine: $(nproc) cores, $(uname -m); $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2)"
+# with autogroup scheduling the cores are shared between sessions, not between threads: while
+# another session keeps a core busy, this one's two threads get about one core between them
+[[ $(cat /proc/sys/kernel/sched_autogroup_enabled 2>/dev/null || echo 0) == 1 ]] &&
+  echo "kernel.sched_autogroup_enabled = 1: CPU time is shared per session; busy other sessions cap pdamp's 2 threads near 1 core"
 RESULTS=()
 for prog in $PROGRAMS; do
   for n in $LENGTHS; do
@@ -238,7 +244,7 @@ for prog in $PROGRAMS; do
       echo "   TISEAN surrogates skipped: its arrays hold 100 000 samples (parameter nx), or it did not build"
     fi
     rm -f "$tfile"
-    tt=(); tp2=(); tp1=()
+    tt=(); tp2=(); tp1=(); tb2=(); tb1=()
     for ((rep = 1; rep <= REPEAT; rep++)); do
       echo "   load: $(uptime | sed 's/.*load/load/')"
       if [[ $run_tisean -eq 1 ]]; then
@@ -257,6 +263,14 @@ for prog in $PROGRAMS; do
       last_t="- -"
       [[ ${#tt[@]} -gt 0 ]] && last_t=${tt[-1]}
       echo "   run $rep wall/cpu s: TISEAN $last_t | pdamp 2 thr ${tp2[-1]} | pdamp 1 thr ${tp1[-1]}"
+      if [[ -n "${PDAMP_BASE:-}" ]]; then
+        # shellcheck disable=SC2086
+        OUT=$pfile.base; t=$(timed "$PDAMP_BASE" "$verb" "$dat" $ptisean $opts $popts); tb2+=("$t")
+        # shellcheck disable=SC2086
+        OUT=$pfile.base1; t=$(RAYON_NUM_THREADS=1 timed $ONE_CORE "$PDAMP_BASE" "$verb" "$dat" $ptisean $opts $popts); tb1+=("$t")
+        echo "   run $rep wall/cpu s: base 2 thr ${tb2[-1]} | base 1 thr ${tb1[-1]}"
+        cmp -s "$pfile" "$pfile.base" || echo "   note: PDAMP_BASE's output differs from PDAMP's"
+      fi
     done
     t_t="- -"
     [[ $run_tisean -eq 1 ]] && t_t=$(median "${tt[@]}")
@@ -277,6 +291,7 @@ for prog in $PROGRAMS; do
       echo "   outputs: $eq"
     fi
     RESULTS+=("$prog $n $t_t $t_p2 $t_p1")
+    [[ ${#tb2[@]} -gt 0 ]] && RESULTS+=("$prog(base) $n $t_t $(median "${tb2[@]}") $(median "${tb1[@]}")")
   done
 done
 
