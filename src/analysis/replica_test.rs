@@ -13,22 +13,33 @@
 //! continuous trajectory over the window), so that all figures below are fractions of the
 //! orbit, comparable between position and velocity:
 //! - separation of the replicas d_k = max_d |s_A,k,d − s_B,k,d| / E_d (the worst axis);
-//! - independent separation D: what d_k reaches once the replicas are independent states of
-//!   the section *at the same phase of the cycle*. With D_q = median over pairs i < j,
-//!   i ≡ j (mod q), of A's strobes in the last third of max_d |s_A,i,d − s_A,j,d| / E_d
-//!   (q = 1 … 8), D = D_1 (the whole section) as the simulator reports it, and D = D_n when
-//!   the regime classifier finds the section to be n tight groups ([`ReplicaReport::at_period`]):
-//!   two replicas locked to the same period-n cycle sit in the same group, so they can only
-//!   become independent *within* it — comparing with the spread across groups would call a
-//!   fully decorrelated period-3 bed "not yet separated";
-//! - saturation d_sat = median of d_k over the last third; trend d_sat / median of the middle
-//!   third (well above 1: still growing);
-//! - macroscopic offset M = max_d |mean_A − mean_B| / E_d over the last third, in units of D:
+//! - the judged span: the replicas are compared once they have separated, over as long a
+//!   stretch as the record gives. With D_q^half = median over pairs i < j, i ≡ j (mod q), of
+//!   A's strobes in the last half of max_d |s_A,i,d − s_A,j,d| / E_d (the same-phase
+//!   separation of independent states; q = 1 … 8), the span of phase period q starts at the
+//!   first strobe k*_q with d_k ≥ ½ D_q^half (the separation reached the scale of independent
+//!   states), or at the last third when it never did or did later — whichever is longer;
+//! - independent separation D_q: the same median over A's strobes in the span of q; D = D_1 (the
+//!   whole section) as the simulator reports it, and D = D_n when the regime classifier finds
+//!   the section to be n tight groups ([`ReplicaReport::at_period`]): two replicas locked to
+//!   the same period-n cycle sit in the same group, so they can only become independent
+//!   *within* it — comparing with the spread across groups would call a fully decorrelated
+//!   period-3 bed "not yet separated";
+//! - saturation d_sat = median of d_k over the span; trend d_sat(second half of the span) /
+//!   d_sat(first half) (well above 1: still growing; well below: the replicas re-approached);
+//! - macroscopic offset M = max_d |mean_A − mean_B| / E_d over the span, in units of D:
 //!   two copies of one attractor have the same mean up to D √(6/n); an offset of D or more
 //!   means the beds ended in different states (one compacted, coexisting attractors);
 //! - growth rate λ: least squares of ln d_k on t_k from the first strobe with d_k ≥ 10 δ0/E_z
 //!   up to (excluding) the first one reaching 0.3 d_sat, with its standard error; and the
 //!   two-point initial rate ln(d_1 E_z / δ0) / (t_1 − t_p).
+//!
+//! Why a span from the first reach and not a fixed last third: once separated, a chaotic
+//! bed's replicas stay independent on average but can re-approach for tens of periods (the
+//! bed passes through a contracting episode, both copies follow it, and separate again). A
+//! median over a fixed last third then depends on where such an episode falls — at 16 Hz on
+//! `thesis_b_ch4.toml` it read 1.04, 0.39 and 1.35 × D over 200, 400 and 800 periods; over the
+//! span from the first reach it reads 0.88, 1.04 and 1.31 × D.
 //!
 //! # Outcome
 //! - **sensitive**: D/2 ≤ d_sat ≤ 2 D: the perturbation grew to the separation of independent
@@ -94,6 +105,21 @@ pub struct GrowthFit {
     pub to_s: f64,
 }
 
+/// The span a phase period q is judged on and what it gives (module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PhaseSpan {
+    /// First strobe of the span (index into the strobes after the perturbation).
+    pub start: usize,
+    /// D_q: median same-phase separation of A's states in the span (relative to the orbit).
+    pub independent_rel: f64,
+    /// d_sat: median d_k over the span (relative).
+    pub saturation_rel: f64,
+    /// d_sat over the span's second half / over its first half.
+    pub trend: f64,
+    /// Largest offset of the replicas' mean section states over the span (relative).
+    pub mean_offset_rel: f64,
+}
+
 /// What the separation did.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
@@ -143,32 +169,43 @@ pub struct ReplicaReport {
     /// D: median separation of two independent states of A's section at the same phase of a
     /// `phase_period`-cycle (relative): D_q of `independent_by_period`.
     pub independent_separation_rel: f64,
-    /// D_q for q = 1 ..= 8: pairs of A's states k ≡ k' (mod q) in the last third (relative).
+    /// D_q for q = 1 ..= 8: pairs of A's states k ≡ k' (mod q) in the span judged at q
+    /// (relative).
     #[serde(default)]
     pub independent_by_period: Vec<f64>,
+    /// What the test is judged on at each phase period q = 1 ..= 8 (module docs: the span from
+    /// the first reach); empty in reports written before the spans (then `at_period` re-judges
+    /// with `independent_by_period` and the last third's saturation).
+    #[serde(default)]
+    pub spans: Vec<PhaseSpan>,
     /// The period q whose same-phase separation D is (1 from the simulator: the whole
     /// section; the regime classifier re-judges with the section's tight period n, because two
     /// replicas locked to a period-n cycle can only become independent within its groups).
     #[serde(default = "one")]
     pub phase_period: usize,
-    /// Largest offset of the replicas' mean section states over the last third (relative).
+    /// Largest offset of the replicas' mean section states over the judged span (relative).
     #[serde(default)]
     pub mean_offset_rel: f64,
     /// Why the test could not run to its end (replica B non-finite, the run too short), when so.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub failure: Option<String>,
-    /// d_sat: median d_k over the last third (relative).
+    /// d_sat: median d_k over the judged span (relative).
     pub saturation_rel: f64,
-    /// d_sat / median d_k over the middle third.
+    /// d_sat over the second half of the judged span / d_sat over its first half.
     pub saturation_trend: f64,
     /// d_sat / D.
     pub saturation_over_independent: f64,
-    /// M: largest offset of the replicas' mean section states over the last third, / D.
+    /// M: largest offset of the replicas' mean section states over the judged span, / D.
     pub mean_offset_over_independent: f64,
     /// Growth of ln d_k over the growth phase (none: fewer than 3 strobes in it).
     pub growth: Option<GrowthFit>,
     /// The outcome.
     pub outcome: ReplicaOutcome,
+    /// d_k at every strobe after the perturbation (relative to the orbit): stored with the
+    /// report so that the outcome can be re-judged from a stored sweep point (A's states are
+    /// its strobe rows) and the growth drawn without `replica.csv`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub separation_rel: Vec<f64>,
     /// Per-strobe rows (`replica.csv`).
     #[serde(skip)]
     pub rows: Vec<ReplicaRow>,
@@ -188,6 +225,11 @@ impl ReplicaReport {
         let mut r = self.clone();
         r.phase_period = q;
         r.independent_separation_rel = indep;
+        if let Some(span) = self.spans.get(q - 1) {
+            r.saturation_rel = span.saturation_rel;
+            r.saturation_trend = span.trend;
+            r.mean_offset_rel = span.mean_offset_rel;
+        }
         r.saturation_over_independent = r.saturation_rel / indep;
         r.mean_offset_over_independent = r.mean_offset_rel / indep;
         r.outcome = match &r.failure {
@@ -271,25 +313,39 @@ fn median(v: &mut [f64]) -> f64 {
 /// Largest residue period q of the same-phase separations D_q.
 pub const MAX_PHASES: usize = 8;
 
-/// D_q for q = 1 ..= min([`MAX_PHASES`], n/4): the median separation of pairs of states at the
-/// same residue k mod q (module docs).
-fn independent_by_period(states: &[[f64; AXES]], extent: &[f64; AXES]) -> Vec<f64> {
+/// The median separation of pairs of states at the same residue k mod q (module docs: D_q).
+fn same_phase_median(states: &[[f64; AXES]], extent: &[f64; AXES], q: usize) -> f64 {
     let n = states.len();
-    (1..=MAX_PHASES.min(n / 4).max(1))
-        .map(|q| {
-            let mut d = Vec::with_capacity(n * n / (2 * q));
-            for (i, a) in states.iter().enumerate() {
-                d.extend(
-                    states[i + 1..]
-                        .iter()
-                        .enumerate()
-                        .filter(|(j, _)| (j + 1) % q == 0)
-                        .map(|(_, b)| separation(a, b, extent)),
-                );
-            }
-            median(&mut d)
-        })
-        .collect()
+    let mut d = Vec::with_capacity(n * n / (2 * q));
+    for (i, a) in states.iter().enumerate() {
+        let later = states.get(i + q..).unwrap_or_default();
+        d.extend(later.iter().step_by(q).map(|b| separation(a, b, extent)));
+    }
+    median(&mut d)
+}
+
+/// The judged span of phase period q and its figures (module docs): from the first strobe at
+/// which the separation `d` reached half the same-phase separation of A's last half, or the
+/// last third when that is shorter.
+fn phase_span(rows: &[ReplicaRow], d: &[f64], extent: &[f64; AXES], q: usize) -> PhaseSpan {
+    let n = rows.len();
+    let a: Vec<[f64; AXES]> = rows.iter().map(|r| r.a).collect();
+    let b: Vec<[f64; AXES]> = rows.iter().map(|r| r.b).collect();
+    let scale = same_phase_median(&a[n - n / 2..], extent, q);
+    let last_third = n - n / 3;
+    let start = d
+        .iter()
+        .position(|&x| x >= SEPARATED_FACTOR * scale)
+        .map_or(last_third, |k| k.min(last_third));
+    let mid = start + (n - start) / 2;
+    let saturation_rel = median(&mut d[start..].to_vec());
+    PhaseSpan {
+        start,
+        independent_rel: same_phase_median(&a[start..], extent, q),
+        saturation_rel,
+        trend: median(&mut d[mid..].to_vec()) / median(&mut d[start..mid].to_vec()),
+        mean_offset_rel: mean_offset(&a[start..], &b[start..], extent),
+    }
 }
 
 /// Largest per-axis offset of the two sets' means, relative to the orbit.
@@ -360,14 +416,16 @@ pub fn report(
         .map(|r| separation(&r.a, &r.b, &orbit_extent))
         .collect();
     let t: Vec<f64> = rows.iter().map(|r| r.time_s).collect();
-    let third = n / 3;
-    let tail_a: Vec<[f64; AXES]> = rows[n - third..].iter().map(|r| r.a).collect();
-    let tail_b: Vec<[f64; AXES]> = rows[n - third..].iter().map(|r| r.b).collect();
-    let by_period = independent_by_period(&tail_a, &orbit_extent);
-    let indep = by_period[0];
-    let sat = median(&mut d[n - third..].to_vec());
-    let trend = sat / median(&mut d[third..n - third].to_vec());
-    let offset_rel = mean_offset(&tail_a, &tail_b, &orbit_extent);
+    // q up to MAX_PHASES while the last half holds at least four strobes per phase
+    let spans: Vec<PhaseSpan> = (1..=MAX_PHASES.min(n / 8).max(1))
+        .map(|q| phase_span(&rows, &d, &orbit_extent, q))
+        .collect();
+    let whole = spans[0];
+    let (indep, sat, offset_rel) = (
+        whole.independent_rel,
+        whole.saturation_rel,
+        whole.mean_offset_rel,
+    );
     let offset = offset_rel / indep;
     let delta_rel = if orbit_extent[0] > 0.0 {
         delta0_m / orbit_extent[0]
@@ -389,16 +447,18 @@ pub fn report(
         initial_growth_per_s,
         max_separation_rel: d.iter().copied().fold(f64::NAN, f64::max),
         independent_separation_rel: indep,
-        independent_by_period: by_period,
+        independent_by_period: spans.iter().map(|s| s.independent_rel).collect(),
+        spans,
         phase_period: 1,
         mean_offset_rel: offset_rel,
         failure: None,
         saturation_rel: sat,
-        saturation_trend: trend,
+        saturation_trend: whole.trend,
         saturation_over_independent: sat / indep,
         mean_offset_over_independent: offset,
         growth,
         outcome,
+        separation_rel: d,
         rows,
     }
 }

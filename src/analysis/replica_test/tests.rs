@@ -163,3 +163,70 @@ fn the_worst_axis_decides() {
     let b = [0.0, 1.5, 0.0, 0.0];
     assert_eq!(separation(&a, &b, &[1.0, 1.0, 0.0, 0.0]), 0.5);
 }
+
+/// Two copies of the logistic map r = 4 (λ = ln 2 per period) from 1e-9 apart, B put back
+/// 1e-9 from A at the strobes in `together` (a contracting episode both replicas follow; they
+/// separate again in ~30 periods), on an orbit of extent 1e-2.
+fn logistic_pair(n: usize, together: std::ops::Range<usize>) -> (Vec<f64>, Vec<f64>) {
+    let (mut a, mut b) = (0.3f64, 0.3 + 1e-9);
+    let (mut za, mut zb) = (Vec::new(), Vec::new());
+    for k in 0..n {
+        a = 4.0 * a * (1.0 - a);
+        b = 4.0 * b * (1.0 - b);
+        if together.contains(&k) {
+            b = a + 1e-9;
+        }
+        za.push(1e-2 * a);
+        zb.push(1e-2 * b);
+    }
+    (za, zb)
+}
+
+#[test]
+fn a_re_approach_in_the_last_third_does_not_undo_sensitivity() {
+    // separated within ~30 periods; then the replicas are pulled together in the last third
+    // and separate again, ~40 of the last 80 periods close (at 16 Hz on thesis_b_ch4.toml,
+    // 400 periods, ~40 of 240 strobes): a median over the last third alone reads under D/2,
+    // the span from the first reach reads the separation of independent states
+    let f = 16.0;
+    let (za, zb) = logistic_pair(240, 170..180);
+    let r = report(1e-11, 0.0, f, EXTENT, rows_of(&za, &zb, f));
+    let tail: Vec<f64> = r.rows[160..].iter().map(|row| r.separation(row)).collect();
+    let mut tail_sorted = tail.clone();
+    tail_sorted.sort_by(f64::total_cmp);
+    assert!(
+        tail_sorted[tail.len() / 2] < SEPARATED_FACTOR * r.independent_separation_rel,
+        "the episode must pull the last third's median under D/2: {tail_sorted:?}"
+    );
+    assert!(
+        matches!(r.outcome, ReplicaOutcome::Sensitive { .. }),
+        "{}",
+        r.describe()
+    );
+    assert!(r.spans[0].start < 40, "{:?}", r.spans[0]);
+}
+
+#[test]
+fn replicas_sharing_a_slow_motion_are_not_called_independent() {
+    // both replicas ride the same slow oscillation of amplitude 1 (the section's spread) and
+    // differ only by independent fast noise of sd 0.1: sensitive at the noise's scale, but the
+    // separation stays near 0.1 × the separation of independent states — inconclusive, never
+    // "sensitive"
+    let f = 11.0;
+    let mut rng = ChaCha8Rng::seed_from_u64(6);
+    let slow: Vec<f64> = (0..240)
+        .map(|k| 0.05 + 4e-3 * (k as f64 * 0.37).sin())
+        .collect();
+    let za: Vec<f64> = slow.iter().map(|s| s + 4e-4 * gauss(&mut rng)).collect();
+    let zb: Vec<f64> = slow.iter().map(|s| s + 4e-4 * gauss(&mut rng)).collect();
+    let r = report(1e-9, 0.0, f, EXTENT, rows_of(&za, &zb, f));
+    let ReplicaOutcome::Inconclusive { why } = &r.outcome else {
+        panic!("{}", r.describe());
+    };
+    assert!(why.contains("between"), "{why}");
+    assert!(
+        (0.05..0.3).contains(&r.saturation_over_independent),
+        "{}",
+        r.saturation_over_independent
+    );
+}
