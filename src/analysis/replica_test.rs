@@ -326,11 +326,15 @@ fn same_phase_median(states: &[[f64; AXES]], extent: &[f64; AXES], q: usize) -> 
 
 /// The judged span of phase period q and its figures (module docs): from the first strobe at
 /// which the separation `d` reached half the same-phase separation of A's last half, or the
-/// last third when that is shorter.
-fn phase_span(rows: &[ReplicaRow], d: &[f64], extent: &[f64; AXES], q: usize) -> PhaseSpan {
-    let n = rows.len();
-    let a: Vec<[f64; AXES]> = rows.iter().map(|r| r.a).collect();
-    let b: Vec<[f64; AXES]> = rows.iter().map(|r| r.b).collect();
+/// last third when that is shorter. `a`, `b`: the replicas' states at the strobes of `d`.
+fn phase_span(
+    a: &[[f64; AXES]],
+    b: &[[f64; AXES]],
+    d: &[f64],
+    extent: &[f64; AXES],
+    q: usize,
+) -> PhaseSpan {
+    let n = d.len();
     let scale = same_phase_median(&a[n - n / 2..], extent, q);
     let last_third = n - n / 3;
     let start = d
@@ -416,9 +420,11 @@ pub fn report(
         .map(|r| separation(&r.a, &r.b, &orbit_extent))
         .collect();
     let t: Vec<f64> = rows.iter().map(|r| r.time_s).collect();
+    let a: Vec<[f64; AXES]> = rows.iter().map(|r| r.a).collect();
+    let b: Vec<[f64; AXES]> = rows.iter().map(|r| r.b).collect();
     // q up to MAX_PHASES while the last half holds at least four strobes per phase
     let spans: Vec<PhaseSpan> = (1..=MAX_PHASES.min(n / 8).max(1))
-        .map(|q| phase_span(&rows, &d, &orbit_extent, q))
+        .map(|q| phase_span(&a, &b, &d, &orbit_extent, q))
         .collect();
     let whole = spans[0];
     let (indep, sat, offset_rel) = (
