@@ -219,3 +219,86 @@ fn pareto_from_a_tradeoff_settings_table() {
         "{err}"
     );
 }
+
+#[test]
+fn decay_from_a_run_folder_and_from_its_decay_csv() {
+    // a run folder whose series.csv is a free decay of the primary (ζ = 0.03, offset −0.2 mm)
+    let dir = scratch::tempdir().unwrap();
+    let mut series = String::from("time_s,base_u_m,box_z_m\n");
+    let (omega0, zeta) = (2.0 * std::f64::consts::PI * 5.0, 0.03_f64);
+    let omega_d = omega0 * (1.0 - zeta * zeta).sqrt();
+    for i in 0..4000 {
+        let t = i as f64 * 1e-3;
+        let z = -2e-4 + 1e-3 * (-zeta * omega0 * t).exp() * (omega_d * t).cos();
+        series += &format!("{t},0,{z}\n");
+    }
+    std::fs::write(dir.path().join("series.csv"), series).unwrap();
+    let png = dir.path().join("zeta.png");
+    let run = dir.path().to_str().unwrap();
+    let (err, ok) = pdamp(&["plot", "decay", run, "-o", png.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    let img = image::open(&png).unwrap().to_rgb8();
+    assert!(count_color(&img, BLUE) > 200);
+    // the plotted data beside the figure: one row per cycle, ζ of the oscillator
+    let data = std::fs::read_to_string(dir.path().join("zeta.csv")).unwrap();
+    let mut lines = data.lines();
+    assert_eq!(lines.next(), Some("cycle,amplitude_m,damping_ratio"));
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|c| c.parse().unwrap()).collect())
+        .collect();
+    assert!(rows.len() >= 15, "{} cycles", rows.len());
+    assert!(
+        rows.iter().all(|r| (r[2] / zeta - 1.0).abs() < 1e-3),
+        "{data}"
+    );
+    // the same figure from a decay.csv
+    let decay_csv = dir.path().join("decay.csv");
+    std::fs::write(
+        &decay_csv,
+        format!(
+            "cycle,time_s,amplitude_m,period_s,log_decrement,damping_ratio\n{}",
+            rows.iter()
+                .map(|r| format!("{},0,{},0.2,0,{}\n", r[0], r[1], r[2]))
+                .collect::<String>()
+        ),
+    )
+    .unwrap();
+    let png2 = dir.path().join("from_csv.svg");
+    let (err, ok) = pdamp(&[
+        "plot",
+        "decay",
+        decay_csv.to_str().unwrap(),
+        "-o",
+        png2.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    assert!(std::fs::read_to_string(&png2).unwrap().contains("<svg"));
+    // too short a series: a clear error, no figure
+    let short = dir.path().join("short.csv");
+    std::fs::write(
+        &short,
+        "time_s,box_z_m\n0,1\n0.1,0\n0.2,-1\n0.3,0\n0.4,1\n0.5,0\n0.6,-0.9\n0.7,0\n",
+    )
+    .unwrap();
+    let bad = dir.path().join("bad.png");
+    let (err, ok) = pdamp(&[
+        "plot",
+        "decay",
+        short.to_str().unwrap(),
+        "-o",
+        bad.to_str().unwrap(),
+    ]);
+    assert!(
+        !ok && err.contains("2 full cycles") && !err.contains("panicked"),
+        "{err}"
+    );
+    assert!(!bad.exists());
+    // the example in --help
+    let out = Command::new(env!("CARGO_BIN_EXE_pdamp"))
+        .args(["plot", "--help"])
+        .output()
+        .unwrap();
+    assert!(String::from_utf8(out.stdout)
+        .unwrap()
+        .contains("pdamp plot decay run/"));
+}

@@ -4,7 +4,8 @@
 //! data (IAAFT, FT, shuffle) with a rank test of discriminating statistics (time-reversal
 //! asymmetry, nonlinear prediction error); the correlation dimension (Grassberger–Procaccia),
 //! Cao's embedding dimension, Rosenstein's maximal exponent, recurrence quantification and the
-//! autocorrelation's first zero.
+//! autocorrelation's first zero; the free-decay envelope (logarithmic decrement and damping
+//! ratio per cycle).
 //!
 //! One file per estimator. This module holds the helpers they share: series validation
 //! ([`validate_series`]), rescaling to [0, 1] as TISEAN does ([`rescale_unit`]) and the Theiler
@@ -15,6 +16,7 @@ pub mod autocorrelation;
 pub mod box_grid;
 pub mod cao;
 pub mod correlation_dimension;
+pub mod decay;
 pub mod embedding;
 pub mod false_nearest_neighbors;
 pub mod frf_fit;
@@ -49,6 +51,7 @@ pub use correlation_dimension::{
     correlation_dimension, correlation_sum, estimate_d2, CorrelationSums, D2Estimate, D2Options,
     PlateauOptions,
 };
+pub use decay::{decay_envelope, DecayCycle, DecayEnvelope, DecayOptions, DecayStop};
 pub use embedding::DelayEmbedding;
 pub use false_nearest_neighbors::{false_nearest_neighbors, FnnOptions, FnnPoint, FnnVectors};
 pub use kantz::{estimate_max_lyapunov, kantz, KantzDefinition, KantzOptions, KantzResult};

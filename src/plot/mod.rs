@@ -8,6 +8,7 @@ pub mod bed_motion;
 pub mod bifurcation;
 pub mod common;
 pub mod correlation_dimension;
+pub mod decay;
 pub mod effective;
 pub mod energy;
 pub mod fnn;

@@ -78,10 +78,21 @@ pub enum Kind {
     /// `mle_max_abs_error_per_s`) against `wall_time_s`, log–log, one labelled marker per setting
     /// coloured by `axis`, the Pareto front as a staircase, the reference's wall time dashed.
     Pareto,
+    /// Free decay: the equivalent damping ratio ζ of each cycle against its amplitude (log
+    /// axis), from decay.csv (`amplitude_m`, `damping_ratio`), or from a run's series.csv or
+    /// run folder (its decay.csv if there, else the envelope of the primary's `box_z_m`, or
+    /// --column, between --from-time and --to-time). The plotted data goes to FILE.csv beside
+    /// the figure.
+    Decay,
 }
 
 /// Arguments of `pdamp plot`.
 #[derive(Debug, clap::Args)]
+#[command(after_help = "Examples:
+  pdamp plot frf run_a/sweep.csv run_b/sweep.csv --label a --label b -o frf.png
+  pdamp plot bed-motion run/series.csv --from-time 2 --to-time 3 -o bed.svg
+  pdamp plot decay run/ -o run/damping.png   (ζ against amplitude of a free decay; \
+run/decay.csv, else the envelope of box_z_m in run/series.csv)")]
 pub struct Args {
     /// Figure kind.
     #[arg(value_enum)]
@@ -125,7 +136,8 @@ pub struct PlotOptions {
     #[arg(long)]
     pub y: Option<String>,
     /// Series column for reconstruction, kantz, mutual, fnn: a header name, or a 1-based index
-    /// (default 1 for plain files).
+    /// (default 1 for plain files); for decay the displacement column of series.csv (default
+    /// `box_z_m`).
     #[arg(short = 'c', long)]
     pub column: Option<String>,
     /// Delay τ in samples: reconstruction (default: first zero of the autocorrelation), kantz
@@ -229,10 +241,10 @@ pub struct PlotOptions {
     /// Sweep point (`point` column of strobe.csv) for the Poincaré return map (default: first).
     #[arg(long)]
     pub point: Option<i64>,
-    /// Start of the time window (s) for bed-motion.
+    /// Start of the time window (s) for bed-motion and decay (from series.csv).
     #[arg(long)]
     pub from_time: Option<f64>,
-    /// End of the time window (s) for bed-motion.
+    /// End of the time window (s) for bed-motion and decay (from series.csv).
     #[arg(long)]
     pub to_time: Option<f64>,
     /// Primary mass M (kg): FRF reference curve; M reference line of `effective`.
@@ -281,6 +293,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if matches!(args.kind, Kind::Kantz | Kind::Mutual | Kind::Fnn) {
         return estimator(&args, &options, &opts);
     }
+    if args.kind == Kind::Decay {
+        return decay(&args, &options, &opts);
+    }
     let tables = args
         .inputs
         .iter()
@@ -306,6 +321,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         Kind::D2 => from_table::d2(first, out, &opts),
         Kind::Pareto => return pareto(first, o, out, &opts),
         Kind::Kantz | Kind::Mutual | Kind::Fnn => return estimator(&args, &options, &opts),
+        Kind::Decay => return decay(&args, &options, &opts),
     };
     drawn.map_err(cli_error)?;
     wrote(out);
@@ -381,6 +397,20 @@ fn estimator(
     }
     .map_err(cli_error)?;
     wrote(out);
+    Ok(())
+}
+
+/// `decay`: one decay.csv, series.csv or run folder ([`from_table::decay_input`]).
+fn decay(args: &Args, options: &TableFigureOptions, opts: &FigureOptions) -> anyhow::Result<()> {
+    if args.inputs.len() != 1 {
+        bail!(
+            "decay takes one decay.csv, series.csv or run folder, got {} inputs",
+            args.inputs.len()
+        );
+    }
+    let table = Table::read(&from_table::decay_input(&args.inputs[0]))?;
+    from_table::decay(&table, options, &args.output, opts).map_err(cli_error)?;
+    wrote(&args.output);
     Ok(())
 }
 

@@ -12,6 +12,7 @@
 //!   swept parameter);
 //! - [`regime`]: `regime-frf`, `regime-map` (the `regime` column of a sweep);
 //! - [`series`]: `bed-motion`, `poincare`, `spectrum`, `reconstruction`, `recurrence`, `d2`;
+//! - [`decay`](mod@decay): `decay` (`decay.csv`, or the free-decay envelope of a run's `series.csv`);
 //! - [`estimators`]: `kantz`, `mutual`, `fnn` (a series, the estimator run with the analysis
 //!   verbs' defaults).
 
@@ -24,11 +25,13 @@ use crate::plot::regime_frf::Exponents;
 use crate::plot::table::Table;
 use crate::plot::{render, Figure, FigureOptions};
 
+pub mod decay;
 pub mod estimators;
 pub mod frequency;
 pub mod regime;
 pub mod series;
 
+pub use decay::{decay, decay_input};
 pub use estimators::{fnn, kantz, mutual, read_estimator_series};
 pub use frequency::{bifurcation, effective, energy, frf, resonance};
 pub use regime::{regime_frf, regime_map};
@@ -45,7 +48,8 @@ pub struct TableFigureOptions {
     /// y column (regime-map, poincare).
     pub y: Option<String>,
     /// Series column for reconstruction, recurrence, kantz, mutual, fnn: a header name, or a
-    /// 1-based index (default 1 for plain files).
+    /// 1-based index (default 1 for plain files); for decay the displacement column of
+    /// series.csv (default `box_z_m`).
     pub column: Option<String>,
     /// Delay τ in samples: reconstruction (default: first zero of the autocorrelation),
     /// recurrence, kantz and fnn (default 1, TISEAN -d).
@@ -86,9 +90,9 @@ pub struct TableFigureOptions {
     pub forcing_hz: Option<f64>,
     /// Sweep point (`point` column of strobe.csv) for the Poincaré return map (default: first).
     pub point: Option<i64>,
-    /// Start of the time window (s) for bed-motion.
+    /// Start of the time window (s) for bed-motion and decay (from series.csv).
     pub from_time: Option<f64>,
-    /// End of the time window (s) for bed-motion.
+    /// End of the time window (s) for bed-motion and decay (from series.csv).
     pub to_time: Option<f64>,
     /// Primary mass M (kg): FRF reference curve; M reference line of `effective`.
     pub mass: Option<f64>,

@@ -59,7 +59,7 @@ pub fn bed_motion(
 }
 
 /// Index range [a, b) of the samples with from ≤ t ≤ to.
-fn window(
+pub(super) fn window(
     t: &[f64],
     from: Option<f64>,
     to: Option<f64>,

@@ -1,0 +1,175 @@
+//! Free-decay envelope: the equivalent damping ratio ζ of each cycle against its amplitude
+//! (log axis), from `decay.csv` or a run's `series.csv` ([`crate::analysis::decay`]). A linear
+//! viscous damper gives a horizontal line; dry friction a ζ that rises as the amplitude falls;
+//! a particle damper its own curve, with a maximum where the grains' impacts are most
+//! effective.
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use super::common::{self, check_finite, check_len, draw_err, series_color, Figure};
+use crate::error::PlotError;
+
+/// The figure: one marker per cycle, joined in cycle order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DecayFigure<'a> {
+    /// Cycle amplitudes a_k (m), all > 0.
+    pub amplitude_m: &'a [f64],
+    /// Equivalent damping ratios ζ_k (–), same length.
+    pub damping_ratio: &'a [f64],
+}
+
+impl Figure for DecayFigure<'_> {
+    fn kind(&self) -> &'static str {
+        "decay"
+    }
+
+    fn validate(&self) -> Result<(), PlotError> {
+        let k = self.kind();
+        check_finite(k, "amplitude_m", self.amplitude_m)?;
+        check_len(
+            k,
+            "damping_ratio",
+            self.damping_ratio.len(),
+            self.amplitude_m.len(),
+        )?;
+        check_finite(k, "damping_ratio", self.damping_ratio)?;
+        if let Some(i) = self.amplitude_m.iter().position(|&a| a <= 0.0) {
+            return Err(PlotError::bad(
+                k,
+                "amplitude_m",
+                format!(
+                    "value {} at row {i}: amplitudes must be > 0 m (log axis); drop that row",
+                    self.amplitude_m[i]
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    fn default_title(&self) -> String {
+        "Free decay: damping ratio per cycle against amplitude".into()
+    }
+
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        title: &str,
+    ) -> Result<(), PlotError> {
+        let (a_lo, a_hi) = log_range(self.amplitude_m);
+        let (mut z_lo, z_hi) = common::padded_range([self.damping_ratio], 0.08);
+        if self.damping_ratio.iter().all(|&z| z >= 0.0) {
+            z_lo = z_lo.max(0.0);
+        }
+        let mut chart = ChartBuilder::on(root)
+            .caption(title, common::caption_font())
+            .margin(common::scaled(root, 0.02, 8))
+            .x_label_area_size(common::scaled(root, 0.08, 40))
+            .y_label_area_size(common::scaled(root, 0.12, 60))
+            .build_cartesian_2d(
+                (a_lo..a_hi)
+                    .log_scale()
+                    .with_key_points(log_ticks(a_lo, a_hi)),
+                z_lo..z_hi,
+            )
+            .map_err(draw_err)?;
+        chart
+            .configure_mesh()
+            .x_desc("amplitude a (m, log scale)")
+            .y_desc("equivalent damping ratio ζ (–)")
+            .axis_desc_style(common::label_font())
+            .label_style(common::tick_font())
+            .light_line_style(BLACK.mix(0.05))
+            .bold_line_style(BLACK.mix(0.15))
+            .x_label_formatter(&|v| common::fmt_tick(*v))
+            .y_label_formatter(&|v| common::fmt_axis_tick(*v, z_lo, z_hi))
+            .draw()
+            .map_err(draw_err)?;
+        let color = series_color(0);
+        let pts: Vec<(f64, f64)> = self
+            .amplitude_m
+            .iter()
+            .copied()
+            .zip(self.damping_ratio.iter().copied())
+            .collect();
+        chart
+            .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
+            .map_err(draw_err)?
+            .label("ζ_k = δ_k / sqrt(4π² + δ_k²), one point per cycle")
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+            });
+        chart
+            .draw_series(pts.iter().map(|&p| Circle::new(p, 4, color.filled())))
+            .map_err(draw_err)?;
+        common::legend(&mut chart, SeriesLabelPosition::UpperRight)
+    }
+}
+
+/// The amplitude axis: the data's range widened by 10 % on the log scale (a factor 2 either
+/// side for a single amplitude).
+fn log_range(a: &[f64]) -> (f64, f64) {
+    let (lo, hi) = a
+        .iter()
+        .fold((f64::INFINITY, 0.0_f64), |(l, h), &v| (l.min(v), h.max(v)));
+    if hi <= lo {
+        return (lo / 2.0, hi * 2.0);
+    }
+    let pad = (hi / lo).powf(0.1);
+    (lo / pad, hi * pad)
+}
+
+/// Tick values of a log axis from `lo` to `hi` (> 0): 1, 2, 5 × 10ⁿ, or every digit × 10ⁿ when
+/// that gives fewer than 3 (an axis inside one decade, where plotters' own log ticks, at the
+/// powers of 10 only, leave it bare), or only the powers of 10 when there are more than 12.
+fn log_ticks(lo: f64, hi: f64) -> Vec<f64> {
+    let ticks = |mantissas: &[f64]| -> Vec<f64> {
+        let mut out = Vec::new();
+        let mut exp = lo.log10().floor() as i32;
+        while 10f64.powi(exp) <= hi {
+            let decade = 10f64.powi(exp);
+            out.extend(
+                mantissas
+                    .iter()
+                    .map(|m| m * decade)
+                    .filter(|v| (lo..=hi).contains(v)),
+            );
+            exp += 1;
+        }
+        out
+    };
+    let one_two_five = ticks(&[1.0, 2.0, 5.0]);
+    if one_two_five.len() > 12 {
+        return ticks(&[1.0]);
+    }
+    if one_two_five.len() >= 3 {
+        return one_two_five;
+    }
+    let digits = ticks(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]);
+    if digits.len() >= 2 {
+        digits
+    } else {
+        vec![lo, hi]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::log_ticks;
+
+    #[test]
+    fn log_ticks_label_an_axis_inside_one_decade() {
+        let close = |a: &[f64], b: &[f64]| {
+            a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x / y - 1.0).abs() < 1e-12)
+        };
+        let inside = log_ticks(1.5e-4, 9.5e-4);
+        let digits: Vec<f64> = (2..=9).map(|d| d as f64 * 1e-4).collect();
+        assert!(close(&inside, &digits), "{inside:?}");
+        let three_decades = log_ticks(0.9e-6, 1.1e-3);
+        assert_eq!(three_decades.len(), 10, "{three_decades:?}");
+        let many = log_ticks(0.9e-9, 1.1e-2);
+        let powers: Vec<f64> = (-9..=-2).map(|e| 10f64.powi(e)).collect();
+        assert!(close(&many, &powers), "{many:?}");
+        assert_eq!(log_ticks(1.0e-4, 1.05e-4), vec![1.0e-4, 1.05e-4]);
+    }
+}
