@@ -27,6 +27,8 @@ fn main() {
         primary: None,
         amplitude_m: 0.0,
         frequency_hz: 15.0,
+        force_n: 0.0,
+        direction: [0.0, 0.0, 1.0],
     };
     let mut p = DemParams::thesis_b_softened(1000.0);
     let widen = ((n as f64) / 250.0).sqrt();

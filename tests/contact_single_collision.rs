@@ -19,6 +19,8 @@ const STILL: BoxDrive = BoxDrive {
     primary: None,
     amplitude_m: 0.0,
     frequency_hz: 0.0,
+    force_n: 0.0,
+    direction: [0.0, 0.0, 1.0],
 };
 
 fn params(gamma_n: f64) -> DemParams {
@@ -43,7 +45,7 @@ fn two_sphere(p: &DemParams, v: f64, dt: f64) -> (f64, f64) {
         pos,
     )
     .unwrap();
-    w.gravity = 0.0;
+    w.gravity = [0.0; 3];
     w.set_velocities(&[[0.5 * v, 0.0, 0.0], [-0.5 * v, 0.0, 0.0]], &[[0.0; 3]; 2]);
     w.refresh();
     let mut in_contact = 0u64;
@@ -72,7 +74,7 @@ fn sphere_wall(p: &DemParams, v: f64, dt: f64) -> (f64, f64) {
         vec![[0.05, 0.05, r + 1e-6]],
     )
     .unwrap();
-    w.gravity = 0.0;
+    w.gravity = [0.0; 3];
     w.set_velocities(&[[0.0, 0.0, -v]], &[[0.0; 3]]);
     w.refresh();
     let mut in_contact = 0u64;

@@ -20,6 +20,8 @@ fn sliding_sphere_decelerates_at_mu_g_and_rolls_at_five_sevenths() {
         primary: None,
         amplitude_m: 0.0,
         frequency_hz: 0.0,
+        force_n: 0.0,
+        direction: [0.0, 0.0, 1.0],
     };
     let dt = 2e-7;
     let mut w = DemWorld::new(

@@ -35,6 +35,8 @@ fn cluster(p: &DemParams) -> DemWorld {
         primary: None,
         amplitude_m: 0.0,
         frequency_hz: 0.0,
+        force_n: 0.0,
+        direction: [0.0, 0.0, 1.0],
     };
     let mut w = DemWorld::new(
         &pdamp::setup::dem_model(p).unwrap(),
@@ -44,7 +46,7 @@ fn cluster(p: &DemParams) -> DemWorld {
         pos,
     )
     .unwrap();
-    w.gravity = 0.0;
+    w.gravity = [0.0; 3];
     let omega: Vec<[f64; 3]> = (0..n)
         .map(|_| [0, 1, 2].map(|_| rng.random_range(-50.0..50.0)))
         .collect();
@@ -179,6 +181,8 @@ fn too_large_time_step_is_reported_as_unstable() {
         primary: None,
         amplitude_m: 0.0,
         frequency_hz: 0.0,
+        force_n: 0.0,
+        direction: [0.0, 0.0, 1.0],
     };
     let pos = vec![[0.05 - r - 1e-5, 0.05, 0.05], [0.05 + r + 1e-5, 0.05, 0.05]];
     let mut w = DemWorld::new(
@@ -189,7 +193,7 @@ fn too_large_time_step_is_reported_as_unstable() {
         pos,
     )
     .unwrap();
-    w.gravity = 0.0;
+    w.gravity = [0.0; 3];
     w.set_velocities(&[[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]], &[[0.0; 3]; 2]);
     w.refresh();
     let e0 = w.energy_state().total_j();
@@ -215,7 +219,7 @@ fn too_large_time_step_is_reported_as_unstable() {
         vec![[0.05 - r - 1e-5, 0.05, 0.05], [0.05 + r + 1e-5, 0.05, 0.05]],
     )
     .unwrap();
-    w.gravity = 0.0;
+    w.gravity = [0.0; 3];
     w.set_velocities(&[[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]], &[[0.0; 3]; 2]);
     w.refresh();
     for _ in 0..2000 {

@@ -13,6 +13,8 @@ fn drive() -> BoxDrive {
         primary: None,
         amplitude_m: 4.5e-3,
         frequency_hz: 15.0,
+        force_n: 0.0,
+        direction: [0.0, 0.0, 1.0],
     }
 }
 

@@ -81,6 +81,8 @@ fn scene_b_kinematic_box_ledger_balances() {
         primary: None,
         amplitude_m: common::SCENE_B_AMPLITUDE_M,
         frequency_hz: 15.0,
+        force_n: 0.0,
+        direction: [0.0, 0.0, 1.0],
     };
     let cfg = DemRunConfig {
         duration_s: 0.2,

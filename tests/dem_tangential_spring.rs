@@ -32,6 +32,8 @@ fn still() -> BoxDrive {
         primary: None,
         amplitude_m: 0.0,
         frequency_hz: 0.0,
+        force_n: 0.0,
+        direction: [0.0, 0.0, 1.0],
     }
 }
 
@@ -105,7 +107,7 @@ fn oblique(p: &DemParams, v_n: f64, v_t: f64, dt: f64, steps: usize) -> (f64, f6
         vec![[0.05, 0.05, R + 1e-7]],
     )
     .unwrap();
-    w.gravity = 0.0;
+    w.gravity = [0.0; 3];
     w.set_velocities(&[[v_t, 0.0, -v_n]], &[[0.0; 3]]);
     w.refresh();
     for _ in 0..steps {
@@ -178,7 +180,7 @@ fn springs_are_carried_across_neighbour_rebuilds() {
             vec![[0.05, 0.05, 0.05], [0.0505, 0.05, 0.05 + 2.0 * R + 1e-7]],
         )
         .unwrap();
-        w.gravity = 0.0;
+        w.gravity = [0.0; 3];
         w.set_velocities(&[[0.0; 3], [-0.3, 0.1, -1.0]], &[[0.0; 3]; 2]);
         w.refresh();
         for _ in 0..1000 {
@@ -207,7 +209,7 @@ fn a_spring_starts_from_zero_when_the_grains_touch_again() {
     let model = pdamp::setup::dem_model(&p).unwrap();
     let world = |pos: Vec<[f64; 3]>, vel: &[[f64; 3]], omega: &[[f64; 3]]| {
         let mut w = DemWorld::new(&model, still(), 5e-8, vec![R, R], pos).unwrap();
-        w.gravity = 0.0;
+        w.gravity = [0.0; 3];
         w.set_velocities(vel, omega);
         w.refresh();
         w

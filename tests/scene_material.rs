@@ -164,3 +164,61 @@ fn check_scene_prints_the_material_and_the_derived_damping() {
     assert!(out.contains("from e = 0.97"), "{out}");
     assert!(out.contains("γ_s ="), "{out}");
 }
+
+/// `mass` instead of `count` (issue 41, Saeki's materials at one mass ratio): the count is
+/// round(mass / (ρ 4/3 π R³)) of the preset's density, so that a material change keeps the
+/// grain mass; both keys must agree; a mass without a single radius is refused by name.
+#[test]
+fn a_grain_mass_gives_the_count_of_each_material() {
+    let by_mass = |material: &str, extra: &str| {
+        Scene::from_toml(&BEADS.replace(
+            "material = \"glass\"\nbox = [0.04, 0.04, 0.06]\ncount = 500\nradius = 0.001",
+            &format!(
+                "material = \"{material}\"\nbox = [0.058, 0.038, 0.038]\nradius = 0.003\nmass = 0.026956\n{extra}"
+            ),
+        ))
+    };
+    let grain = |rho: f64| rho * 4.0 / 3.0 * std::f64::consts::PI * 0.003f64.powi(3);
+    for (m, rho, want) in [
+        ("lead", 11340.0, 21),
+        ("sus304", 7930.0, 30),
+        ("steel", 8030.0, 30),
+        ("acrylic", 1190.0, 200),
+    ] {
+        let s = by_mass(m, "").unwrap();
+        let d = dem(&s);
+        assert_eq!(d.count, want, "{m}");
+        // the nearest whole number of grains: within half a grain of the mass
+        assert!((d.count as f64 * grain(rho) - 0.026956).abs() <= 0.5 * grain(rho));
+        // saved and read again: count and mass agree
+        assert_eq!(Scene::from_toml(&s.to_toml().unwrap()).unwrap(), s);
+    }
+    let e = by_mass("steel", "count = 40").unwrap_err().to_string();
+    assert!(e.contains("damper.mass") && e.contains("count"), "{e}");
+    let e = Scene::from_toml(&BEADS.replace(
+        "count = 500\nradius = 0.001",
+        "mass = 0.01\nradius_min = 0.001\nradius_max = 0.002",
+    ))
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("damper.mass"), "{e}");
+    let e = by_mass("steel", "")
+        .map(|_| ())
+        .and(Scene::from_toml(&BEADS.replace("count = 500", "mass = -1.0")).map(|_| ()));
+    assert!(e.unwrap_err().to_string().contains("damper.mass"));
+}
+
+/// The linear law takes its stiffness from the yield strength: the presets fill it for
+/// `contact = "linear"` only (a Hertz scene is left as it was).
+#[test]
+fn presets_fill_the_yield_strength_of_the_linear_law_only() {
+    let linear = Scene::from_toml(&BEADS.replace(
+        "material = \"glass\"",
+        "material = \"sus304\"\ncontact = \"linear\"",
+    ))
+    .unwrap();
+    assert_eq!(dem(&linear).yield_strength, Some(2.05e8));
+    let hertz =
+        Scene::from_toml(&BEADS.replace("material = \"glass\"", "material = \"sus304\"")).unwrap();
+    assert_eq!(dem(&hertz).yield_strength, None);
+}

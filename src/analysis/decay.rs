@@ -80,7 +80,7 @@ impl Default for DecayOptions {
 }
 
 /// Why the envelope ends.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum DecayStop {
     /// The record ends while the oscillation goes on.
@@ -94,7 +94,7 @@ pub enum DecayStop {
 }
 
 /// One cycle of a free decay.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct DecayCycle {
     /// Cycle number, from 1.
     pub cycle: usize,
@@ -112,7 +112,7 @@ pub struct DecayCycle {
 
 /// The decay envelope: the cycles and summary figures (the `decay` block of a run's
 /// `summary.json`).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
 pub struct DecayEnvelope {
     /// Amplitude of the first cycle (m).
     pub initial_amplitude_m: f64,

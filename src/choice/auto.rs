@@ -245,6 +245,8 @@ fn concretise(
                 primary: None,
                 amplitude_m: scene.excitation.amplitude,
                 frequency_hz: scene.excitation.frequency,
+                force_n: 0.0,
+                direction: [0.0, 0.0, 1.0],
             };
             p.restitution = Some(design_restitution(&p, &drive)?);
             p.contact = ContactKind::Linear;

@@ -220,6 +220,8 @@ fn drive_of(scene: &Scene) -> BoxDrive {
         primary: None,
         amplitude_m: scene.excitation.amplitude,
         frequency_hz: scene.excitation.frequency,
+        force_n: 0.0,
+        direction: [0.0, 0.0, 1.0],
     }
 }
 
@@ -494,6 +496,8 @@ mod tests {
             primary: None,
             amplitude_m: 4.5e-3,
             frequency_hz: 15.0,
+            force_n: 0.0,
+            direction: [0.0, 0.0, 1.0],
         };
         let p = DemParams::thesis_b();
         let e1 = design_restitution(&p, &drive).unwrap();

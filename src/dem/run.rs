@@ -5,6 +5,7 @@ use std::time::Instant;
 
 use serde::Serialize;
 
+use crate::contact::lanes::dot;
 use crate::error::{ModelError, Quantity, SimError};
 use crate::packing::{advancing_front_packing, fcc_lattice, volume_fraction};
 use crate::units::G;
@@ -45,13 +46,21 @@ pub struct DemRunConfig {
     pub samples: bool,
     /// No samples before this time (s).
     pub sample_from_s: f64,
-    /// Gravitational acceleration g (m/s², along −z).
-    pub gravity_m_s2: f64,
+    /// Acceleration of gravity (m/s²), default [0, 0, −9.8].
+    pub gravity_m_s2: [f64; 3],
     /// Book the energy ledger (default true; `run.energy_ledger`). Off: the step computes no
     /// dissipated powers, the per-cycle energies are absent, the samples' ledger columns and
     /// residual are 0, the summary's relative error is NaN (null in `summary.json`), and the
     /// stability check loses its energy-growth test.
     pub energy_ledger: bool,
+    /// The primary's displacement along the drive axis at t = 0 (m, from the static
+    /// equilibrium of M alone; `primary.initial_displacement`): the box and the settled bed
+    /// in it are moved there before the drive starts. Default: the static equilibrium with
+    /// the bed's weight, m_p g·d / K.
+    pub initial_box_z_m: Option<f64>,
+    /// The primary's velocity along the drive axis at t = 0 (m/s), the grains left at rest
+    /// (`primary.initial_velocity`). Default 0.
+    pub initial_box_v_m_s: Option<f64>,
 }
 
 impl Default for DemRunConfig {
@@ -65,8 +74,10 @@ impl Default for DemRunConfig {
             dt_fraction: DEFAULT_DT_FRACTION,
             samples: true,
             sample_from_s: 0.0,
-            gravity_m_s2: G,
+            gravity_m_s2: [0.0, 0.0, -G],
             energy_ledger: true,
+            initial_box_z_m: None,
+            initial_box_v_m_s: None,
         }
     }
 }
@@ -337,6 +348,14 @@ pub(crate) fn run_dem_stepped(
     let step = step.on_sample_clock(cfg.sample_interval_s);
     let (dt, ts) = (step.dt_s, step.contact_time_s);
     let (mut world, bed) = settled_bed(model, drive, cfg, dt)?;
+    if drive.primary.is_some() {
+        if let Some(z0) = cfg.initial_box_z_m {
+            world.shift_box_to(z0);
+        }
+        if let Some(v0) = cfg.initial_box_v_m_s {
+            world.box_v = v0;
+        }
+    }
     world.start_drive();
     // the radius of grain 0 (its slot, once the grains are stored along the curve)
     let slot0 = world.grain_ids().iter().position(|&g| g == 0).unwrap_or(0);
@@ -347,7 +366,7 @@ pub(crate) fn run_dem_stepped(
     let mut steady = SteadyWindow::new(
         window(cfg.steady_fraction),
         bed.mass_kg,
-        cfg.gravity_m_s2,
+        dot(cfg.gravity_m_s2, cfg.gravity_m_s2).sqrt(),
         drive.frequency_hz,
     );
     let clock = StrobeClock {
@@ -464,14 +483,15 @@ fn settled_bed(
     world.gravity = cfg.gravity_m_s2;
     world.energy_ledger = cfg.energy_ledger;
     let m_p: f64 = world.mass.iter().sum();
+    // the static equilibrium along the drive axis d: K z = m_p g·d
     let z_hold = match drive.primary {
-        Some(p) => -m_p * cfg.gravity_m_s2 / p.stiffness_n_m,
+        Some(p) => m_p * dot(cfg.gravity_m_s2, drive.direction) / p.stiffness_n_m,
         None => drive.base(0.0).0,
     };
     world.shift_box_to(z_hold);
     let (settle_time_s, settle_steps) = settle(&mut world, model.settle_time_s);
     let (zcm, _, _) = world.z_stats();
-    let height_m = 2.0 * (zcm - world.box_z);
+    let height_m = 2.0 * (zcm - world.box_origin()[2]);
     let volume_fraction = volume_fraction(
         &world.radius,
         world.box_size[0] * world.box_size[1] * height_m,

@@ -134,10 +134,16 @@ impl TimeStepScales {
     }
 }
 
-/// Largest expected impact speed (m/s): v = max(2 U Ω, √(2 g Lz)) — twice the base's peak
-/// speed (grain and box moving against each other) or a free fall over the box height.
+/// Largest expected impact speed (m/s): v = max(2 A Ω, √(2 g Lz)) — twice the drive's peak
+/// speed (grain and box moving against each other; A = U for a base drive, the primary's
+/// forced amplitude F0/|K − MΩ² + iCΩ| when larger for a force drive) or a free fall over the
+/// box height (the floor of a free decay's estimate).
 pub fn impact_speed(drive: &BoxDrive, lz: f64) -> f64 {
-    let v_base = 2.0 * drive.amplitude_m * TWO_PI * drive.frequency_hz;
+    let mut a = drive.amplitude_m;
+    if drive.force_n != 0.0 {
+        a = a.max(drive.reference_amplitude_m().unwrap_or(0.0));
+    }
+    let v_base = 2.0 * a * TWO_PI * drive.frequency_hz;
     v_base.max((2.0 * G * lz).sqrt())
 }
 
@@ -341,15 +347,16 @@ pub fn check(world: &DemWorld, residual_j: f64, relative_balance: f64) -> Result
                 ),
             });
         }
-        let z = p[2] - world.box_z;
+        let o = world.box_origin();
+        let (x, y, z) = (p[0] - o[0], p[1] - o[1], p[2] - o[2]);
         let r = world.radius[i];
-        if p[0] < -r || p[0] > b[0] + r || p[1] < -r || p[1] > b[1] + r || z < -r || z > b[2] + r {
+        if x < -r || x > b[0] + r || y < -r || y > b[1] + r || z < -r || z > b[2] + r {
             return Err(SimError::Unstable {
                 t_s: t,
                 reason: format!(
-                    "grain {id} left the box (centre at {:?} m, box z = {:.4e} m): contacts too stiff for the \
+                    "grain {id} left the box (centre at {:?} m, box corner at {:?} m): contacts too stiff for the \
                      time step or impact speeds above the auto-dt estimate; lower the time step or its fraction of the contact time",
-                    p, world.box_z
+                    p, o
                 ),
             });
         }

@@ -163,7 +163,9 @@ impl EnergyWatch {
     /// (nothing booked; the series stays finite).
     fn sample_and_residual(&self, w: &DemWorld) -> (Sample, f64) {
         let e0 = &self.start;
-        let (zcm, lo, hi) = w.z_stats();
+        let (_, lo, hi) = w.z_stats();
+        let (zcm, _) = w.z_cm_state();
+        let o = w.box_origin();
         let (u, _) = w.base_now();
         let st = w.energy_state();
         let (res, l) = if w.energy_ledger {
@@ -176,8 +178,8 @@ impl EnergyWatch {
             base_u_m: u,
             box_z_m: w.box_z,
             box_v_m_s: w.box_v,
-            floor_z_m: w.box_z,
-            ceiling_z_m: w.box_z + w.box_size[2],
+            floor_z_m: o[2],
+            ceiling_z_m: o[2] + w.box_size[2],
             grain_z_m: zcm,
             model: ModelSample::Dem(DemSampleState {
                 grain_zmin_m: lo,

@@ -129,6 +129,16 @@ impl NodeCache {
                     self.q_visc[j][m] += wgt * c * rel[j] * rel[m];
                 }
             }
+            // a force drive's power F0 sin(Ωt) z' (its base terms above are zero)
+            let f0 = sd.force_amplitude;
+            if f0 != 0.0 {
+                for j in 0..5 {
+                    for m in 0..5 {
+                        self.q_work[j][m] +=
+                            wgt * 0.5 * f0 * (sin_l[j] * v_l[m] + sin_l[m] * v_l[j]);
+                    }
+                }
+            }
         }
     }
 
@@ -183,7 +193,8 @@ impl NodeCaches {
 }
 
 impl ImpactWorld {
-    /// Gauss–Legendre quadrature of the base work and viscous loss on [a, b].
+    /// Gauss–Legendre quadrature of the drive's work (base or force) and the viscous loss on
+    /// [a, b].
     pub(super) fn integrate(
         &self,
         led: &mut Ledger,
@@ -205,6 +216,9 @@ impl ImpactWorld {
             let (u, du) = (self.u_amp * sc.1, -self.u_amp * self.omega * sc.0);
             let rel_v = du - v;
             work += wgt * (self.k * (u - z) + self.c * rel_v) * du;
+            if sd.force_amplitude != 0.0 {
+                work += wgt * sd.force_amplitude * sc.0 * v;
+            }
             visc += wgt * self.c * rel_v * rel_v;
         }
         led.base_work.add(work * half);

@@ -51,10 +51,14 @@ impl ImpactWorld {
         let (free, loaded, box_mass, k, c, mut ts, reference) = match &setup.drive.primary {
             Some(p) => {
                 let (m, k, c) = (p.mass_kg, p.stiffness_n_m, p.damping_n_s_m);
-                let free = Sdof::new(m, k, c, u_amp, omega, 0.0);
-                let loaded = Sdof::new(m + mp, k, c, u_amp, omega, -mp * g);
+                let mut free = Sdof::new(m, k, c, u_amp, omega, 0.0);
+                let mut loaded = Sdof::new(m + mp, k, c, u_amp, omega, -mp * g);
+                if setup.drive.force_n != 0.0 {
+                    free = free.with_force(setup.drive.force_n);
+                    loaded = loaded.with_force(setup.drive.force_n);
+                }
                 let ts = free.time_scale().min(loaded.time_scale());
-                let reference = p.steady_amplitude_m(u_amp, omega);
+                let reference = setup.drive.reference_amplitude_m().unwrap_or(0.0);
                 (
                     BoxMotion::Spring(free),
                     BoxMotion::Spring(loaded),
@@ -247,6 +251,7 @@ impl ImpactWorld {
             analysis: None,
             analysis_error: None,
             replica: None,
+            decay: None,
         }
     }
 }

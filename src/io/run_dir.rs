@@ -6,6 +6,7 @@
 //! DIR/summary.json  the RunSummary (serde), with "auto_choice" when kind = "auto" chose
 //! DIR/strobe.csv    cycle,time_s,grain_z_m,box_z_m,grain_v_m_s,box_v_m_s (one row per period)
 //! DIR/replica.csv   cycle,time_s,{grain_z,grain_v,box_z,box_v}_{a,b},separation_rel (DEM, the two-replica test)
+//! DIR/decay.csv     cycle,time_s,amplitude_m,period_s,log_decrement,damping_ratio (a free decay)
 //! DIR/scene.toml    the scene as resolved from the file and its --set overrides
 //! DIR/snapshots/    DEM particle snapshots (damper.snapshot_interval; relative
 //!                   damper.snapshot_dir values are under DIR)
@@ -155,7 +156,8 @@ impl RunDir {
         CsvRecorder::create(&self.file(SERIES_CSV))
     }
 
-    /// Writes `strobe.csv`, `replica.csv` (if the summary has a replica test), `scene.toml`
+    /// Writes `strobe.csv`, `replica.csv` (if the summary has a replica test), `decay.csv`
+    /// (if it has a decay envelope), `scene.toml`
     /// and, last, `summary.json` (with `"auto_choice": auto_choice` if given); then removes
     /// the [`RUNNING`] marker: the directory is complete.
     ///
@@ -175,6 +177,9 @@ impl RunDir {
         crate::io::atomic_write(&self.file(STROBE_CSV), strobe_csv(summary).as_bytes())?;
         if let Some(csv) = replica_csv(summary) {
             crate::io::atomic_write(&self.file(REPLICA_CSV), csv.as_bytes())?;
+        }
+        if let Some(env) = &summary.decay {
+            crate::io::write_decay_csv(&self.file(crate::io::DECAY_CSV), env)?;
         }
         crate::io::atomic_write(&self.file(SCENE_TOML), scene.to_toml()?.as_bytes())?;
         crate::io::atomic_write(&self.file(SUMMARY_JSON), json.as_bytes())?;

@@ -51,6 +51,18 @@ impl PrimarySystem {
         )
     }
 
+    /// Steady-state amplitude (m) of the primary under a force F0 sin(Ω t) on its mass.
+    ///
+    /// # Formula
+    /// Z(Ω) = F0 / sqrt((K − MΩ²)² + (CΩ)²) (the receptance's modulus times F0).
+    ///
+    /// # Units
+    /// `force_n` N, `omega_rad_s` rad/s → m.
+    pub fn force_amplitude_m(&self, force_n: f64, omega_rad_s: f64) -> f64 {
+        let det = self.stiffness_n_m - self.mass_kg * omega_rad_s * omega_rad_s;
+        force_n / det.hypot(self.damping_n_s_m * omega_rad_s)
+    }
+
     /// [`PrimarySystem::steady_amplitude_m`] at forcing frequency `frequency_hz` (Hz), (2.1.21).
     pub fn steady_amplitude_at_hz(&self, base_amplitude_m: f64, frequency_hz: f64) -> f64 {
         self.steady_amplitude_m(base_amplitude_m, TWO_PI * frequency_hz)
@@ -76,16 +88,23 @@ impl PrimarySystem {
     }
 }
 
-/// How the box moves: on a primary system driven through its base, or kinematically with the
-/// base (`primary = None`). Base motion u(t) = U cos(Ωt), Ω = 2πf, t = 0 when the drive starts.
+/// How the box moves: on a primary system driven through its base or by a force on its mass
+/// (or released: free decay), or kinematically with the base (`primary = None`). Base motion
+/// u(t) = U cos(Ωt), force F(t) = F0 sin(Ωt), Ω = 2πf, t = 0 when the drive starts; the box
+/// moves along the unit vector `direction`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BoxDrive {
     /// Primary system, or `None` for a box moved kinematically with the base.
     pub primary: Option<PrimarySystem>,
-    /// Base amplitude U (m).
+    /// Base amplitude U (m); 0 for a force drive or a free decay.
     pub amplitude_m: f64,
-    /// Base frequency f (Hz).
+    /// Drive frequency f (Hz) (for a free decay: the clock of the periods and the section).
     pub frequency_hz: f64,
+    /// Force amplitude F0 (N) on the primary mass, F(t) = F0 sin(Ωt); 0 for a base drive or a
+    /// free decay.
+    pub force_n: f64,
+    /// Unit vector of the axis the primary and the box move along (`[0, 0, 1]`: vertical).
+    pub direction: [f64; 3],
 }
 
 impl BoxDrive {
@@ -94,6 +113,12 @@ impl BoxDrive {
     pub fn base(&self, t: f64) -> (f64, f64) {
         let (u, du, _) = base_motion(self.amplitude_m, self.omega_rad_s(), t);
         (u, du)
+    }
+
+    /// The drive force on the primary mass F(t) = F0 sin(Ωt) (N).
+    #[inline]
+    pub fn force(&self, t: f64) -> f64 {
+        self.force_n * (self.omega_rad_s() * t).sin()
     }
 
     /// Angular forcing frequency Ω = 2π f (rad/s).
@@ -106,11 +131,17 @@ impl BoxDrive {
         1.0 / self.frequency_hz
     }
 
-    /// Reference amplitude of the primary alone at this forcing, (2.1.21) with M (m); `None`
+    /// Reference amplitude of the primary alone at this forcing (m): (2.1.21) with M for a
+    /// base drive, F0/sqrt((K − MΩ²)² + (CΩ)²) for a force drive, 0 for a free decay; `None`
     /// for a kinematic box.
     pub fn reference_amplitude_m(&self) -> Option<f64> {
-        self.primary
-            .map(|p| p.steady_amplitude_m(self.amplitude_m, self.omega_rad_s()))
+        let p = self.primary?;
+        let w = self.omega_rad_s();
+        Some(if self.force_n != 0.0 {
+            p.force_amplitude_m(self.force_n, w)
+        } else {
+            p.steady_amplitude_m(self.amplitude_m, w)
+        })
     }
 }
 
@@ -125,11 +156,14 @@ pub struct Anchor {
     pub w0: f64,
 }
 
-/// Linear SDOF m z'' + c z' + k z = c u' + k u + f0, u(t) = U cos(Ω t), solved exactly.
+/// Linear SDOF m z'' + c z' + k z = c u' + k u + F0 sin(Ω t) + f0, u(t) = U cos(Ω t), solved
+/// exactly (a base drive U or a force drive F0, see [`Sdof::with_force`]).
 ///
 /// # Formula
 /// z(t) = z_p(t) + y(t): particular part z_p = Re[H U e^{iΩt}] + f0/k with
-/// H = (k + icΩ)/(k − mΩ² + icΩ) (so |z_p − f0/k| is (2.1.21)); homogeneous part, with
+/// H = (k + icΩ)/(k − mΩ² + icΩ) (so |z_p − f0/k| is (2.1.21)), or for the force drive
+/// z_p = Re[−i G F0 e^{iΩt}] + f0/k with G = 1/(k − mΩ² + icΩ) (|z_p − f0/k| =
+/// F0/sqrt((k − mΩ²)² + (cΩ)²)); homogeneous part, with
 /// a = c/(2m), ω0² = k/m, q = ω0² − a², τ = t − t0:
 /// y = e^{−aτ}[y0 C(τ) + (y0' + a y0) S(τ)], y' = e^{−aτ}[y0' C(τ) − (a y0' + ω0² y0) S(τ)],
 /// C = cos(√q τ), S = sin(√q τ)/√q (underdamped), cosh/sinh (overdamped), and their Taylor
@@ -152,6 +186,10 @@ pub struct Sdof {
     pub omega: f64,
     /// Constant force f0 (N), e.g. −m_p g for a particle resting on the floor.
     pub constant_force: f64,
+    /// Amplitude F0 (N) of the harmonic force F0 sin(Ω t) on the mass (0: base drive).
+    pub force_amplitude: f64,
+    /// The particular part's amplitude factor: U (base drive) or F0 (force drive).
+    resp: f64,
     a: f64,
     w0sq: f64,
     q: f64,
@@ -180,6 +218,8 @@ impl Sdof {
             base_amplitude: u_amp,
             omega,
             constant_force: f0,
+            force_amplitude: 0.0,
+            resp: u_amp,
             a,
             w0sq,
             q: w0sq - a * a,
@@ -187,6 +227,31 @@ impl Sdof {
             hi,
             zs: f0 / k,
         }
+    }
+
+    /// The same system driven by the force F0 sin(Ω t) on its mass (N) instead of its base
+    /// (the base amplitude is set to 0). F0 = 0 gives the undriven system (free decay).
+    pub fn with_force(self, force_amplitude: f64) -> Sdof {
+        let (m, k, c, w) = (self.mass, self.stiffness, self.damping, self.omega);
+        let det = k - m * w * w;
+        let co = c * w;
+        let den = det * det + co * co;
+        // −i G = −i (det − i cΩ)/den
+        Sdof {
+            base_amplitude: 0.0,
+            force_amplitude,
+            resp: force_amplitude,
+            hr: -co / den,
+            hi: -det / den,
+            ..self
+        }
+    }
+
+    /// The drive force F0 sin(Ω t) and its rate F0 Ω cos(Ω t) from (sin Ωt, cos Ωt) (N, N/s).
+    #[inline]
+    fn drive_force(&self, sin_cos_wt: (f64, f64)) -> (f64, f64) {
+        let f = self.force_amplitude;
+        (f * sin_cos_wt.0, f * self.omega * sin_cos_wt.1)
     }
 
     /// Base motion (u, u', u'') at time t (m, m/s, m/s²).
@@ -201,16 +266,16 @@ impl Sdof {
         self.particular_parts((self.omega * t).sin_cos())
     }
 
-    /// Steady-state amplitude of the particular solution |H| U (m), = (2.1.21).
+    /// Steady-state amplitude of the particular solution (m): |H| U, = (2.1.21), or |G| F0.
     pub fn steady_amplitude(&self) -> f64 {
-        self.base_amplitude * self.hr.hypot(self.hi)
+        self.resp * self.hr.hypot(self.hi)
     }
 
     /// [`Sdof::particular`] from (sin Ωt, cos Ωt).
     #[inline]
     pub fn particular_parts(&self, sin_cos_wt: (f64, f64)) -> (f64, f64) {
         let (s, c) = sin_cos_wt;
-        let u = self.base_amplitude;
+        let u = self.resp;
         let z = u * (self.hr * c - self.hi * s) + self.zs;
         let v = -u * self.omega * (self.hr * s + self.hi * c);
         (z, v)
@@ -253,7 +318,7 @@ impl Sdof {
         let (s, c) = sin_cos_wt;
         let y = an.y0 * ce + (an.w0 + self.a * an.y0) * se;
         let w = an.w0 * ce - (self.a * an.w0 + self.w0sq * an.y0) * se;
-        let u = self.base_amplitude;
+        let u = self.resp;
         let zp = u * (self.hr * c - self.hi * s) + self.zs;
         let vp = -u * self.omega * (self.hr * s + self.hi * c);
         (zp + y, vp + w)
@@ -287,7 +352,11 @@ impl Sdof {
     #[inline]
     pub fn accel(&self, t: f64, z: f64, v: f64) -> f64 {
         let (u, du, _) = self.base(t);
-        (self.stiffness * (u - z) + self.damping * (du - v) + self.constant_force) / self.mass
+        let mut f = self.stiffness * (u - z) + self.damping * (du - v) + self.constant_force;
+        if self.force_amplitude != 0.0 {
+            f += self.drive_force((self.omega * t).sin_cos()).0;
+        }
+        f / self.mass
     }
 
     /// [`Sdof::accel`] and [`Sdof::jerk`] from (sin Ωt, cos Ωt) at (z, z').
@@ -299,6 +368,14 @@ impl Sdof {
             -self.base_amplitude * self.omega * s,
             -self.base_amplitude * self.omega * self.omega * c,
         );
+        if self.force_amplitude != 0.0 {
+            let (f, df) = self.drive_force(sin_cos_wt);
+            let acc =
+                (self.stiffness * (u - z) + self.damping * (du - v) + self.constant_force + f)
+                    / self.mass;
+            let jerk = (self.stiffness * (du - v) + self.damping * (ddu - acc) + df) / self.mass;
+            return (acc, jerk);
+        }
         let acc =
             (self.stiffness * (u - z) + self.damping * (du - v) + self.constant_force) / self.mass;
         let jerk = (self.stiffness * (du - v) + self.damping * (ddu - acc)) / self.mass;
@@ -309,7 +386,11 @@ impl Sdof {
     #[inline]
     pub fn jerk(&self, t: f64, v: f64, acc: f64) -> f64 {
         let (_, du, ddu) = self.base(t);
-        (self.stiffness * (du - v) + self.damping * (ddu - acc)) / self.mass
+        let mut r = self.stiffness * (du - v) + self.damping * (ddu - acc);
+        if self.force_amplitude != 0.0 {
+            r += self.drive_force((self.omega * t).sin_cos()).1;
+        }
+        r / self.mass
     }
 
     /// Fastest time scale of the solution (s): the smallest of the forcing period, the natural

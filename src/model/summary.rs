@@ -183,6 +183,10 @@ pub struct RunSummary {
     /// The DEM two-replica test (`run.replica`), when run; its rows go to `replica.csv`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub replica: Option<crate::analysis::replica_test::ReplicaReport>,
+    /// A free decay's envelope per cycle (`excitation.kind = "free"`): amplitude, logarithmic
+    /// decrement and equivalent damping ratio ζ(amplitude) ([`crate::analysis::decay`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub decay: Option<crate::analysis::decay::DecayEnvelope>,
 }
 
 /// The nonlinear analysis of a run (`summary.analysis`): the [`AnalysisReport`] itself, typed

@@ -213,8 +213,9 @@ pub struct GrainState<'a> {
     pub force: &'a [[f64; 3]],
     /// Inner size of the container [Lx, Ly, Lz] (m).
     pub box_size: [f64; 3],
-    /// Position of the container's floor z (m); its side walls are at x ∈ {0, Lx}, y ∈ {0, Ly}.
-    pub box_z: f64,
+    /// The container's corner (its floor, x = y = 0) (m): walls at origin + {0, L} on each
+    /// axis.
+    pub box_origin: [f64; 3],
 }
 
 /// Receives what a run emits: its samples, stroboscopic points, particle snapshots and

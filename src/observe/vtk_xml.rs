@@ -55,19 +55,19 @@ pub fn write_grains_vtp(g: &GrainState<'_>, path: &Path) -> std::io::Result<()> 
     write_atomically(path, &s)
 }
 
-/// Writes the container of `g` (inner size `box_size`, floor at `box_z`) as VTK XML PolyData:
+/// Writes the container of `g` (inner size `box_size`, corner at `box_origin`) as VTK XML PolyData:
 /// 8 corners and 6 quads.
 ///
 /// # Errors
 /// I/O errors.
 pub fn write_box_vtp(g: &GrainState<'_>, path: &Path) -> std::io::Result<()> {
     let [lx, ly, lz] = g.box_size;
-    let z0 = g.box_z;
+    let o = g.box_origin;
     let corners = (0..8).map(|c| {
         [
-            if c & 1 == 0 { 0.0 } else { lx },
-            if c & 2 == 0 { 0.0 } else { ly },
-            z0 + if c & 4 == 0 { 0.0 } else { lz },
+            o[0] + if c & 1 == 0 { 0.0 } else { lx },
+            o[1] + if c & 2 == 0 { 0.0 } else { ly },
+            o[2] + if c & 4 == 0 { 0.0 } else { lz },
         ]
     });
     // faces as corner indices (bit 0: x, bit 1: y, bit 2: z), counter-clockwise from outside

@@ -107,8 +107,14 @@ pub enum SnapshotFormat {
 pub struct DemParams {
     /// Inner box size [Lx, Ly, Lz] (m). The floor is at the box position z, the ceiling Lz above.
     pub r#box: [f64; 3],
-    /// Number of spheres.
+    /// Number of spheres. May be left out when `mass` is given.
     pub count: usize,
+    /// Total grain mass (kg), instead of `count`: the bed holds round(mass / m_grain) grains of
+    /// the single `radius` (m_grain = ρ 4/3 π R³), so that a scene keeps its mass ratio when
+    /// `material` changes (the linear-DEM paper's §3.1 compares materials at one mass ratio).
+    /// Given with `count`, the two must agree to half a grain.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mass: Option<f64>,
     /// Sphere radius (m) when all grains are equal; the mean of `normal`.
     #[serde(default)]
     pub radius: Option<f64>,
@@ -127,9 +133,10 @@ pub struct DemParams {
     /// Table for `discrete` ([radius_m, weight]) or `empirical` ([radius_m, cumulative]) radii.
     #[serde(default)]
     pub radius_table: Option<Vec<[f64; 2]>>,
-    /// Grain material preset (`"steel"`, `"glass"`, `"lead"`, `"aluminium"`): fills
-    /// `density`, `youngs_modulus`, `poisson`, `friction` and `restitution` where the scene
-    /// leaves them out ([`crate::scene::material`], sources cited there).
+    /// Grain material preset (`"steel"`, `"sus304"`, `"glass"`, `"lead"`, `"aluminium"`,
+    /// `"acrylic"`): fills `density`, `youngs_modulus`, `poisson`, `friction`, `restitution`
+    /// and (linear law) `yield_strength` where the scene leaves them out
+    /// ([`crate::scene::material`], sources cited there).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub material: Option<crate::scene::material::MaterialPreset>,
     /// Grain density (kg/m³).
@@ -245,6 +252,7 @@ impl DemParams {
         DemParams {
             r#box: [0.03675, 0.03675, 0.1225],
             count: 250,
+            mass: None,
             radius: Some(0.003),
             radius_min: None,
             radius_max: None,
@@ -319,6 +327,64 @@ impl DemParams {
         Material {
             youngs_modulus: self.wall_youngs_modulus.unwrap_or(self.youngs_modulus),
             poisson: self.wall_poisson.unwrap_or(self.poisson),
+        }
+    }
+}
+
+/// The grain count of a raw `[damper]` table (`kind = "dem"`) that gives `mass` instead of
+/// `count`: round(mass / (ρ 4/3 π R³)), at least 1 (after the material preset filled ρ).
+/// With both keys, they must agree to half a grain. Returns whether the table changed.
+///
+/// # Errors
+/// [`SceneError`] naming `damper.mass` (not a positive number, no single `radius` or
+/// `density` to divide by, or disagreeing with `count`).
+pub(crate) fn count_from_mass(d: &mut toml::Table) -> Result<bool, crate::error::SceneError> {
+    use crate::error::SceneError;
+    if d.get("kind").and_then(toml::Value::as_str) != Some("dem") {
+        return Ok(false);
+    }
+    let Some(value) = d.get("mass") else {
+        return Ok(false);
+    };
+    let num = |v: &toml::Value| v.as_float().or_else(|| v.as_integer().map(|i| i as f64));
+    let mass = num(value)
+        .filter(|m| m.is_finite() && *m > 0.0)
+        .ok_or_else(|| {
+            SceneError::invalid("damper.mass", value, "must be a finite number > 0 (kg)")
+        })?;
+    let (Some(r), Some(rho)) = (
+        d.get("radius").and_then(num),
+        d.get("density").and_then(num),
+    ) else {
+        return Err(SceneError::invalid(
+            "damper.mass",
+            mass,
+            "needs a single grain radius (damper.radius, m) and a density (damper.density, \
+             kg/m³, or a material) to give the grain count; or write damper.count",
+        ));
+    };
+    let grain = rho * 4.0 / 3.0 * std::f64::consts::PI * r * r * r;
+    let count = (mass / grain).round().max(1.0);
+    if !(count.is_finite() && count <= 1e9) {
+        return Err(SceneError::invalid(
+            "damper.mass",
+            mass,
+            format!("gives {count:e} grains of {grain:e} kg: check damper.mass (kg), radius (m) and density (kg/m³)"),
+        ));
+    }
+    match d.get("count").and_then(toml::Value::as_integer) {
+        Some(n) if ((n as f64) * grain - mass).abs() > 0.5 * grain => Err(SceneError::invalid(
+            "damper.mass",
+            mass,
+            format!(
+                "disagrees with damper.count = {n} ({:e} kg of grains of {grain:e} kg): give one of them",
+                n as f64 * grain
+            ),
+        )),
+        Some(_) => Ok(false),
+        None => {
+            d.insert("count".into(), toml::Value::Integer(count as i64));
+            Ok(true)
         }
     }
 }

@@ -1,9 +1,10 @@
 //! `damper.material`: presets of common grain materials for a DEM damper.
 //!
 //! A preset fills the keys a scene leaves out — `density` (kg/m³), `youngs_modulus` (Pa),
-//! `poisson` (–), `friction` (–) and `restitution` (–, grain–grain at `restitution_speed`,
-//! default 1 m/s; only when the scene gives neither `gamma_n` nor `restitution`). Every key
-//! the scene sets itself wins, so a preset is a starting point:
+//! `poisson` (–), `friction` (–), `restitution` (–, grain–grain at `restitution_speed`,
+//! default 1 m/s; only when the scene gives neither `gamma_n` nor `restitution`) and, for the
+//! linear law (`contact = "linear"`), `yield_strength` (Pa). Every key the scene sets itself
+//! wins, so a preset is a starting point:
 //!
 //! ```toml
 //! [damper]
@@ -16,12 +17,17 @@
 //! the impact speed, the surfaces and the alloy, so theirs are typical values for a first
 //! estimate — measure or override them for a design.
 //!
-//! | preset | ρ (kg/m³) | E (Pa) | ν | e | μ | sources |
-//! |---|---|---|---|---|---|---|
-//! | `steel` | 8030 | 2.03e11 | 0.28 | 0.90 | 0.30 | ρ, E, ν, μ: the thesis's scene B (Sánchez 2012 §3.2); e: hardened steel spheres at ~1 m/s, Goldsmith, *Impact* (1960) |
-//! | `glass` | 2500 | 6.3e10 | 0.23 | 0.97 | 0.092 | ρ, E, ν: soda-lime glass, CRC Handbook of Chemistry and Physics (elastic constants); e, μ: glass spheres, Foerster, Louge, Chang & Allia, Phys. Fluids 6, 1108 (1994) |
-//! | `lead` | 11340 | 1.6e10 | 0.44 | 0.20 | 0.50 | ρ, E, ν: CRC Handbook (elastic constants of metals); e, μ: typical of a soft, plastically deforming metal (Goldsmith 1960) |
-//! | `aluminium` | 2700 | 7.0e10 | 0.33 | 0.70 | 0.40 | ρ, E, ν: CRC Handbook; e, μ: typical of aluminium alloys at ~1 m/s (Goldsmith 1960) |
+//! | preset | ρ (kg/m³) | E (Pa) | ν | e | μ | Y (Pa) | sources |
+//! |---|---|---|---|---|---|---|---|
+//! | `steel` | 8030 | 2.03e11 | 0.28 | 0.90 | 0.30 | 2.35e8 | ρ, E, ν, μ: the thesis's scene B (Sánchez 2012 §3.2); e: hardened steel spheres at ~1 m/s, Goldsmith, *Impact* (1960); Y: ordinary structural carbon steel (S235 / Q235, EN 10025 / GB/T 700 minimum) |
+//! | `sus304` | 7930 | 1.93e11 | 0.29 | 0.90 | 0.30 | 2.05e8 | ρ, E, ν: AISI 304 austenitic stainless, ASM Handbook vol. 1; Y: 0.2 % proof stress minimum of SUS304, JIS G 4303; e, μ: as `steel` |
+//! | `glass` | 2500 | 6.3e10 | 0.23 | 0.97 | 0.092 | — | ρ, E, ν: soda-lime glass, CRC Handbook of Chemistry and Physics (elastic constants); e, μ: glass spheres, Foerster, Louge, Chang & Allia, Phys. Fluids 6, 1108 (1994); brittle: no yield strength |
+//! | `lead` | 11340 | 1.6e10 | 0.44 | 0.20 | 0.50 | 5.5e6 | ρ, E, ν: CRC Handbook (elastic constants of metals); e, μ: typical of a soft, plastically deforming metal (Goldsmith 1960); Y: pure lead, ASM Handbook vol. 2 |
+//! | `aluminium` | 2700 | 7.0e10 | 0.33 | 0.70 | 0.40 | 2.76e8 | ρ, E, ν: CRC Handbook; e, μ: typical of aluminium alloys at ~1 m/s (Goldsmith 1960); Y: 6061-T6, ASM Handbook vol. 2 |
+//! | `acrylic` | 1190 | 3.2e9 | 0.35 | 0.80 | 0.40 | 7.0e7 | ρ, E, ν, Y: PMMA, Ashby & Jones, *Engineering Materials 1* (tables of density, modulus, yield strength); e, μ: typical of a glassy polymer at ~1 m/s, first estimates |
+//!
+//! The linear-DEM paper (`../shared/seeds`, §3.1, Saeki's experiment) takes its grains' ρ, E,
+//! ν and Y from handbooks as well (its Table 1 is not reproduced in the text we hold).
 
 use serde::{Deserialize, Serialize};
 
@@ -40,6 +46,10 @@ pub enum MaterialPreset {
     /// Aluminium alloy.
     #[serde(alias = "aluminum")]
     Aluminium,
+    /// SUS304 (AISI 304) austenitic stainless steel.
+    Sus304,
+    /// Acrylic (PMMA).
+    Acrylic,
 }
 
 /// The values a preset gives (SI units: kg/m³, Pa, –).
@@ -55,15 +65,19 @@ pub struct MaterialValues {
     pub restitution: f64,
     /// Grain–grain Coulomb friction μ (–).
     pub friction: f64,
+    /// Yield strength Y (Pa) for the linear law; `None` for a brittle material.
+    pub yield_strength: Option<f64>,
 }
 
 impl MaterialPreset {
     /// Every preset, in the order of the table above.
-    pub const ALL: [MaterialPreset; 4] = [
+    pub const ALL: [MaterialPreset; 6] = [
         MaterialPreset::Steel,
+        MaterialPreset::Sus304,
         MaterialPreset::Glass,
         MaterialPreset::Lead,
         MaterialPreset::Aluminium,
+        MaterialPreset::Acrylic,
     ];
 
     /// The preset's name as written in a scene.
@@ -73,6 +87,8 @@ impl MaterialPreset {
             MaterialPreset::Glass => "glass",
             MaterialPreset::Lead => "lead",
             MaterialPreset::Aluminium => "aluminium",
+            MaterialPreset::Sus304 => "sus304",
+            MaterialPreset::Acrylic => "acrylic",
         }
     }
 
@@ -86,11 +102,13 @@ impl MaterialPreset {
 
     /// The values of the preset (see the module table for their sources).
     pub fn values(self) -> MaterialValues {
-        let (density, youngs_modulus, poisson, restitution, friction) = match self {
-            MaterialPreset::Steel => (8030.0, 2.03e11, 0.28, 0.90, 0.30),
-            MaterialPreset::Glass => (2500.0, 6.3e10, 0.23, 0.97, 0.092),
-            MaterialPreset::Lead => (11340.0, 1.6e10, 0.44, 0.20, 0.50),
-            MaterialPreset::Aluminium => (2700.0, 7.0e10, 0.33, 0.70, 0.40),
+        let (density, youngs_modulus, poisson, restitution, friction, yield_strength) = match self {
+            MaterialPreset::Steel => (8030.0, 2.03e11, 0.28, 0.90, 0.30, Some(2.35e8)),
+            MaterialPreset::Sus304 => (7930.0, 1.93e11, 0.29, 0.90, 0.30, Some(2.05e8)),
+            MaterialPreset::Glass => (2500.0, 6.3e10, 0.23, 0.97, 0.092, None),
+            MaterialPreset::Lead => (11340.0, 1.6e10, 0.44, 0.20, 0.50, Some(5.5e6)),
+            MaterialPreset::Aluminium => (2700.0, 7.0e10, 0.33, 0.70, 0.40, Some(2.76e8)),
+            MaterialPreset::Acrylic => (1190.0, 3.2e9, 0.35, 0.80, 0.40, Some(7.0e7)),
         };
         MaterialValues {
             density,
@@ -98,6 +116,7 @@ impl MaterialPreset {
             poisson,
             restitution,
             friction,
+            yield_strength,
         }
     }
 }
@@ -140,6 +159,12 @@ pub(crate) fn fill_from_preset(damper: &mut toml::Table) -> Result<(), SceneErro
         damper
             .entry("restitution".to_string())
             .or_insert(toml::Value::Float(v.restitution));
+    }
+    let linear = damper.get("contact").and_then(toml::Value::as_str) == Some("linear");
+    if let (true, Some(y)) = (linear, v.yield_strength) {
+        damper
+            .entry("yield_strength".to_string())
+            .or_insert(toml::Value::Float(y));
     }
     Ok(())
 }

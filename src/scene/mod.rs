@@ -31,6 +31,7 @@
 mod checks;
 pub mod damper;
 pub mod dem;
+pub mod environment;
 pub mod excitation;
 pub mod keys;
 pub mod material;
@@ -41,7 +42,8 @@ pub mod primary;
 pub mod run;
 
 pub use damper::{Damper, ImpactParams};
-pub use excitation::Excitation;
+pub use environment::Environment;
+pub use excitation::{DriveKind, Excitation};
 pub use outputs::Outputs;
 pub use overrides::{parse_assignment, SceneSource};
 pub use primary::Primary;
@@ -64,7 +66,8 @@ pub struct Scene {
     /// kinematically (infinite mass), e.g. the bouncing ball on a vibrating table.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub primary: Option<Primary>,
-    /// Harmonic base motion u(t) = U cos(2π f t).
+    /// The drive: base motion u(t) = U cos(2π f t), a force on the primary, or none (free
+    /// decay), along `excitation.direction`.
     pub excitation: Excitation,
     /// The damper carried by the primary (default: none).
     #[serde(default)]
@@ -75,6 +78,9 @@ pub struct Scene {
     /// `[damper] kind = "auto"` (see [`outputs::Outputs`]).
     #[serde(default)]
     pub outputs: Outputs,
+    /// Body forces (`[environment]`, optional): gravity as a vector.
+    #[serde(default, skip_serializing_if = "Environment::is_empty")]
+    pub environment: Environment,
 }
 
 fn default_gravity() -> f64 {
@@ -86,14 +92,23 @@ impl Scene {
     pub(crate) fn parse_validated(text: &str) -> Result<Scene, SceneError> {
         let parse_err = |e: toml::de::Error| SceneError::Parse(clean_toml_error(&e));
         let mut table: toml::Table = text.parse().map_err(parse_err)?;
-        let scene: Scene = match table.get_mut("damper") {
+        environment::check_one_gravity(&table)?;
+        let mut edited = excitation::prepare(&mut table)?;
+        edited |= primary::move_run_initial_state(&mut table)?;
+        if let Some(toml::Value::Table(d)) = table.get_mut("damper") {
             // a material preset fills the keys the scene leaves out
-            Some(toml::Value::Table(d)) if d.contains_key("material") => {
+            if d.contains_key("material") {
                 material::fill_from_preset(d)?;
-                table.try_into().map_err(parse_err)?
+                edited = true;
             }
+            // then `mass` gives the count
+            edited |= dem::count_from_mass(d)?;
+        }
+        let scene: Scene = if edited {
+            table.try_into().map_err(parse_err)?
+        } else {
             // straight from the text, so that errors name the line
-            _ => toml::from_str(text).map_err(parse_err)?,
+            toml::from_str(text).map_err(parse_err)?
         };
         scene.validate()?;
         Ok(scene)
@@ -125,6 +140,8 @@ impl Scene {
             p.validate()?;
         }
         self.excitation.validate()?;
+        self.environment.validate()?;
+        self.check_drive()?;
         self.damper.validate()?;
         self.run.validate()?;
         self.outputs.validate()?;
@@ -148,6 +165,44 @@ impl Scene {
             ));
         }
         self.check_not_undamped_resonance()?;
+        Ok(())
+    }
+
+    /// The acceleration of gravity (m/s²): `environment.gravity`, else `[0, 0, −gravity]`.
+    pub fn gravity_vector(&self) -> [f64; 3] {
+        self.environment
+            .gravity
+            .unwrap_or([0.0, 0.0, -self.gravity])
+    }
+
+    /// A force drive or a free decay needs a primary; a free decay needs an initial state
+    /// away from rest.
+    fn check_drive(&self) -> Result<(), SceneError> {
+        let kind = self.excitation.kind;
+        if kind == DriveKind::Base {
+            return Ok(());
+        }
+        let Some(p) = &self.primary else {
+            return Err(SceneError::Missing {
+                field: "primary".into(),
+                hint: format!(
+                    "excitation.kind = \"{}\" acts on a spring-mounted primary: add a [primary] \
+                     table (mass, stiffness, damping)",
+                    kind.name()
+                ),
+            });
+        };
+        let at_rest = p.initial_displacement.is_none_or(|z| z == 0.0)
+            && p.initial_velocity.is_none_or(|v| v == 0.0);
+        if kind == DriveKind::Free && at_rest {
+            return Err(SceneError::Missing {
+                field: "primary.initial_displacement".into(),
+                hint: "a free decay starts away from rest: write primary.initial_displacement = \
+                       z0 (m, from the static equilibrium) and/or primary.initial_velocity = v0 \
+                       (m/s)"
+                    .into(),
+            });
+        }
         Ok(())
     }
 

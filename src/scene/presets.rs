@@ -12,10 +12,7 @@ impl Scene {
         Scene {
             gravity: crate::units::G,
             primary: Some(Primary::new(2.37, 21500.0, 7.6)),
-            excitation: Excitation {
-                amplitude: 0.0045,
-                frequency: 15.0,
-            },
+            excitation: Excitation::base(0.0045, 15.0),
             damper: Damper::Impact(ImpactParams {
                 mass: 0.227,
                 gap: 0.0835,
@@ -25,6 +22,7 @@ impl Scene {
             }),
             run: Run::with_duration(13.12),
             outputs: Default::default(),
+            environment: Default::default(),
         }
     }
 

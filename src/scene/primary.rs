@@ -117,3 +117,41 @@ impl Primary {
         Ok(())
     }
 }
+
+/// `run.initial_displacement` and `run.initial_velocity` are accepted as spellings of
+/// `primary.initial_displacement` / `primary.initial_velocity` (the primary's state at t = 0;
+/// one place in the typed scene): moved there in the raw table. Returns whether it changed.
+///
+/// # Errors
+/// [`SceneError::Invalid`] when a key is given in both places, or without a `[primary]`.
+pub(crate) fn move_run_initial_state(table: &mut toml::Table) -> Result<bool, SceneError> {
+    let mut moved = Vec::new();
+    if let Some(toml::Value::Table(run)) = table.get_mut("run") {
+        for key in ["initial_displacement", "initial_velocity"] {
+            if let Some(v) = run.remove(key) {
+                moved.push((key, v));
+            }
+        }
+    }
+    if moved.is_empty() {
+        return Ok(false);
+    }
+    let Some(toml::Value::Table(p)) = table.get_mut("primary") else {
+        return Err(SceneError::invalid(
+            format!("run.{}", moved[0].0),
+            &moved[0].1,
+            "sets the primary's initial state, and the scene has no [primary] table",
+        ));
+    };
+    for (key, v) in moved {
+        if p.contains_key(key) {
+            return Err(SceneError::invalid(
+                format!("run.{key}"),
+                &v,
+                format!("is also given as primary.{key}: keep one"),
+            ));
+        }
+        p.insert(key.into(), v);
+    }
+    Ok(true)
+}

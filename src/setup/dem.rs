@@ -35,8 +35,9 @@ pub struct DemSetup {
     pub model: DemModel,
     /// The box drive (primary + base motion, or a kinematic box).
     pub drive: BoxDrive,
-    /// Gravitational acceleration g (m/s², along −z).
-    pub gravity_m_s2: f64,
+    /// Acceleration of gravity (m/s²), `[0, 0, −g]` unless `environment.gravity` says
+    /// otherwise.
+    pub gravity_m_s2: [f64; 3],
     /// Duration, steady-state and analysis windows (s).
     pub window: RunWindow,
     /// Fraction of the run treated as steady state (–).
@@ -61,6 +62,10 @@ pub struct DemSetup {
     pub replica: ReplicaChoice,
     /// Book the energy ledger (`run.energy_ledger`).
     pub energy_ledger: bool,
+    /// `primary.initial_displacement` (m), see [`DemRunConfig::initial_box_z_m`].
+    pub initial_box_z_m: Option<f64>,
+    /// `primary.initial_velocity` (m/s).
+    pub initial_box_v_m_s: Option<f64>,
 }
 
 impl DemSetup {
@@ -95,6 +100,8 @@ impl DemSetup {
             sample_from_s: opts.sample_from_s,
             gravity_m_s2: self.gravity_m_s2,
             energy_ledger: self.energy_ledger,
+            initial_box_z_m: self.initial_box_z_m,
+            initial_box_v_m_s: self.initial_box_v_m_s,
         }
     }
 }
@@ -130,11 +137,7 @@ pub fn dem_setup(scene: &Scene) -> Result<DemSetup, SceneError> {
         ));
     };
     let model = dem_model(params)?;
-    let drive = BoxDrive {
-        primary: scene.primary.as_ref().map(|p| p.system()),
-        amplitude_m: scene.excitation.amplitude,
-        frequency_hz: scene.excitation.frequency,
-    };
+    let drive = super::drive::box_drive(scene);
     let dt = match scene.run.dt {
         Some(DtSpec::Seconds(s)) => DtChoice::Seconds(s),
         _ => DtChoice::Auto,
@@ -147,7 +150,7 @@ pub fn dem_setup(scene: &Scene) -> Result<DemSetup, SceneError> {
     Ok(DemSetup {
         model,
         drive,
-        gravity_m_s2: scene.gravity,
+        gravity_m_s2: scene.gravity_vector(),
         window: window(scene),
         steady_fraction: scene.run.steady_fraction,
         analysis_fraction: scene.run.analysis_fraction,
@@ -168,6 +171,8 @@ pub fn dem_setup(scene: &Scene) -> Result<DemSetup, SceneError> {
         }),
         replica: scene.run.replica,
         energy_ledger: scene.run.energy_ledger,
+        initial_box_z_m: scene.primary.as_ref().and_then(|p| p.initial_displacement),
+        initial_box_v_m_s: scene.primary.as_ref().and_then(|p| p.initial_velocity),
     })
 }
 
@@ -342,6 +347,7 @@ pub fn simulate(
         analysis: None,
         analysis_error: None,
         replica,
+        decay: None,
     })
 }
 
@@ -362,6 +368,8 @@ mod tests {
             primary: None,
             amplitude_m: 4.5e-3,
             frequency_hz: 15.0,
+            force_n: 0.0,
+            direction: [0.0, 0.0, 1.0],
         };
         let (dt, ts) = choose_dt(&p, &d, None, DT_FRACTION).unwrap();
         assert!((dt - ts / 50.0).abs() < 1e-20);
@@ -389,6 +397,8 @@ mod tests {
             primary: None,
             amplitude_m: 4.5e-3,
             frequency_hz: 15.0,
+            force_n: 0.0,
+            direction: [0.0, 0.0, 1.0],
         };
         let (dt, _) = choose_dt(&model, &drive, None, DT_FRACTION).unwrap();
         let per_sample = 25;

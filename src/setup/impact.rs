@@ -5,7 +5,6 @@ use crate::error::{SceneError, SimError};
 use crate::impact::{
     ImpactParticle, ImpactSetup, ImpactWorld, ModelLyapunov, ModelLyapunovOptions,
 };
-use crate::model::BoxDrive;
 use crate::scene::{Damper, Scene};
 
 use super::keys::keyed;
@@ -33,13 +32,29 @@ pub fn impact_setup(scene: &Scene) -> Result<ImpactSetup, SceneError> {
             ))
         }
     };
+    let g = scene.gravity_vector();
+    if particle.is_some()
+        && !(scene.excitation.is_vertical() && g[0] == 0.0 && g[1] == 0.0 && g[2] <= 0.0)
+    {
+        let (key, value) = if scene.excitation.is_vertical() {
+            ("environment.gravity", format!("{g:?}"))
+        } else {
+            (
+                "excitation.direction",
+                format!("{:?}", scene.excitation.direction),
+            )
+        };
+        return Err(SceneError::invalid(
+            key,
+            value,
+            "the one-particle impact model is vertical only (its particle flies under gravity \
+             along −z, driven along z): use damper.kind = \"dem\" for a drive or gravity off \
+             the vertical",
+        ));
+    }
     Ok(ImpactSetup {
-        gravity_m_s2: scene.gravity,
-        drive: BoxDrive {
-            primary: scene.primary.as_ref().map(|p| p.system()),
-            amplitude_m: scene.excitation.amplitude,
-            frequency_hz: scene.excitation.frequency,
-        },
+        gravity_m_s2: -g[2],
+        drive: super::drive::box_drive(scene),
         particle,
         initial_box_z_m: scene.primary.as_ref().and_then(|p| p.initial_displacement),
         initial_box_v_m_s: scene.primary.as_ref().and_then(|p| p.initial_velocity),

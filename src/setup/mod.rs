@@ -19,13 +19,17 @@
 //! [`ModelError`]: crate::error::ModelError
 
 pub mod dem;
+mod drive;
+mod free_decay;
 pub mod impact;
+
 mod keys;
 pub mod plan;
 mod resolve;
 mod window;
 
 pub use dem::{dem_model, DemSetup};
+pub use drive::box_drive;
 pub use impact::{model_lyapunov_of_scene, two_trajectory_lyapunov_of_scene};
 pub use keys::{keyed, scene_error, scene_key};
 pub use plan::RunPlan;
@@ -126,6 +130,19 @@ impl Resolved {
 /// # Errors
 /// The simulator's errors; output errors of the observer.
 pub fn simulate(
+    resolved: &Resolved,
+    obs: &mut dyn Observer,
+    opts: &RunOptions,
+) -> Result<RunSummary, SimError> {
+    if resolved.scene.excitation.kind == crate::scene::DriveKind::Free {
+        let f = resolved.scene.frequency_hz();
+        return free_decay::simulate_free(f, obs, opts, |o, r| simulate_driven(resolved, o, r));
+    }
+    simulate_driven(resolved, obs, opts)
+}
+
+/// [`simulate`] without the free decay's envelope.
+fn simulate_driven(
     resolved: &Resolved,
     obs: &mut dyn Observer,
     opts: &RunOptions,

@@ -140,6 +140,18 @@ pub fn reproduce(
             }
         },
     }
+    // ---- the linear-DEM paper's dampers ----
+    if super::saeki::NAMES.iter().any(|n| want(n)) {
+        match (&s.dem, opts.skip_dem, dem_figures::available()) {
+            (None, _, _) => skipped.push(format!(
+                "linear-DEM paper figures: not part of {} mode (use --quick or --full)",
+                s.mode.as_str()
+            )),
+            (Some(_), true, _) => skipped.push("linear-DEM paper figures: --no-dem".into()),
+            (Some(_), false, Err(why)) => skipped.push(format!("linear-DEM paper figures: {why}")),
+            (Some(_), false, Ok(())) => figures.push(super::saeki::saeki_materials(&ctx)?),
+        }
+    }
     if let (Some(e0), Some(e8)) = (&frf_e0, &frf_e8) {
         figures.insert(
             0,

@@ -69,6 +69,16 @@ pub fn run_resolved(
         return crate::setup::simulate(resolved, obs, opts);
     }
     let scene = &resolved.scene;
+    if scene.excitation.kind == crate::scene::DriveKind::Free {
+        // a decaying motion has no steady state to classify: its figure is the envelope
+        let mut s = crate::setup::simulate(resolved, obs, opts)?;
+        s.analysis_error = Some(
+            "a free decay has no steady state: no regime verdict (the decay envelope is in \
+             `decay`, decay.csv)"
+                .into(),
+        );
+        return Ok(s);
+    }
     let steady = crate::setup::steady_series(scene);
     let mut collector = SteadyCollector::new(scene.analysis_start_s());
     // the analysis wants evenly spaced samples: use the coarser of the two clocks only when the

@@ -112,10 +112,7 @@ pub fn scene(gamma: f64, e: f64, frequency: f64, n: u32, periods: f64) -> Scene 
     Scene {
         gravity: g,
         primary: None,
-        excitation: Excitation {
-            amplitude,
-            frequency,
-        },
+        excitation: Excitation::base(amplitude, frequency),
         damper: Damper::Impact(ImpactParams {
             mass: 1.0,
             gap: f64::INFINITY,
@@ -129,6 +126,7 @@ pub fn scene(gamma: f64, e: f64, frequency: f64, n: u32, periods: f64) -> Scene 
             ..Run::with_duration(1.0)
         },
         outputs: Default::default(),
+        environment: Default::default(),
     }
 }
 

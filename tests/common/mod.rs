@@ -45,6 +45,8 @@ pub fn scene_b_drive(frequency_hz: f64) -> BoxDrive {
         primary: Some(scene_b_primary()),
         amplitude_m: SCENE_B_AMPLITUDE_M,
         frequency_hz,
+        force_n: 0.0,
+        direction: [0.0, 0.0, 1.0],
     }
 }
 

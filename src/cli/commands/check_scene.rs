@@ -2,7 +2,7 @@
 //! its derived quantities — exactly the checks `pdamp simulate` runs before it starts
 //! (resolve, time-step guard, packing, step/sample/snapshot bounds, output size).
 
-use pdamp::scene::Damper;
+use pdamp::scene::{Damper, DriveKind};
 use std::path::PathBuf;
 
 /// Arguments of `pdamp check-scene`.
@@ -39,18 +39,43 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         ),
         None => println!("primary: none (container moves with the base)"),
     }
-    let gamma = if scene.gravity > 0.0 {
-        format!(
-            "{:.6}",
-            scene.excitation.amplitude * omega * omega / scene.gravity
-        )
+    let g = scene.gravity_vector();
+    let g_abs = (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt();
+    let gamma = if g_abs > 0.0 {
+        format!("{:.6}", scene.excitation.amplitude * omega * omega / g_abs)
     } else {
         "inf (g = 0)".into()
     };
+    let e = &scene.excitation;
+    let drive = match e.kind {
+        DriveKind::Base => format!(
+            "base, U = {} m, f = {f} Hz, Γ = UΩ²/g = {gamma}",
+            e.amplitude
+        ),
+        DriveKind::Force => format!(
+            "force F0 sin(2π f t), F0 = {} N, f = {f} Hz{}",
+            e.force_n(),
+            scene
+                .primary
+                .as_ref()
+                .map(|p| format!(
+                    ", primary alone: Z = {:.6e} m",
+                    p.system().force_amplitude_m(e.force_n(), omega)
+                ))
+                .unwrap_or_default()
+        ),
+        DriveKind::Free => {
+            let p = scene.primary.as_ref();
+            format!(
+                "free decay from z0 = {} m, v0 = {} m/s (clock f = {f} Hz)",
+                p.and_then(|p| p.initial_displacement).unwrap_or(0.0),
+                p.and_then(|p| p.initial_velocity).unwrap_or(0.0)
+            )
+        }
+    };
     println!(
-        "excitation: U = {} m, f = {} Hz, Γ = UΩ²/g = {gamma}; run: {:.6} s ({:.1} periods), steady from {:.6} s",
-        scene.excitation.amplitude,
-        f,
+        "excitation: {drive}, along {:?}, gravity {g:?} m/s²; run: {:.6} s ({:.1} periods), steady from {:.6} s",
+        e.unit_direction(),
         scene.duration_s(),
         scene.duration_s() * f,
         scene.steady_start_s()

@@ -138,6 +138,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .map(|e| format!("{e:.2e}"))
             .unwrap_or_else(|| "n/a (kinematic box)".into()),
     );
+    if let Some(d) = &summary.decay {
+        println!(
+            "decay: {} cycles from amplitude {:.4e} m, damping ratio ζ = {:.4e} (first cycle) … \
+             {:.4e} (last), mean {:.4e}; decay.csv",
+            d.cycle_count,
+            d.initial_amplitude_m,
+            d.first_damping_ratio,
+            d.last_damping_ratio,
+            d.mean_damping_ratio
+        );
+    }
     if let Some(r) = &summary.replica {
         println!(
             "replica (δ0 = {:e} m, {} strobes): {}",

@@ -94,7 +94,8 @@ impl DemWorld {
             let w = self.omega[i];
             s.kinetic_j += 0.5 * self.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
             s.rotational_j += 0.5 / self.inv_inertia[i] * (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-            s.potential_j += self.mass[i] * self.gravity * self.pos[i][2];
+            let (g, p) = (self.gravity, self.pos[i]);
+            s.potential_j -= self.mass[i] * (g[0] * p[0] + g[1] * p[1] + g[2] * p[2]);
         }
         let elastic = |k: f64, z: f64| match self.laws.contact.normal {
             NormalLaw::HertzKuwabaraKono { .. } => 0.4 * k * z * z * z.sqrt(),
@@ -135,13 +136,18 @@ impl DemWorld {
 
     /// Overlaps with the six walls (x−, x+, y−, y+, floor, ceiling) (m); ≤ 0 = no contact.
     pub fn wall_overlaps(&self, i: usize) -> [f64; 6] {
-        let (p, r, b) = (self.pos[i], self.radius[i], self.box_size);
-        let z = p[2] - self.box_z;
+        let (p, r, b, o) = (
+            self.pos[i],
+            self.radius[i],
+            self.box_size,
+            self.box_origin(),
+        );
+        let (x, y, z) = (p[0] - o[0], p[1] - o[1], p[2] - o[2]);
         [
-            r - p[0],
-            r - (b[0] - p[0]),
-            r - p[1],
-            r - (b[1] - p[1]),
+            r - x,
+            r - (b[0] - x),
+            r - y,
+            r - (b[1] - y),
             r - z,
             r - (b[2] - z),
         ]
@@ -158,20 +164,23 @@ impl DemWorld {
         m
     }
 
-    /// Centre of mass height z_cm and vertical velocity v_cm of the grains at the end of the
-    /// last [`DemWorld::step`] (m, m/s), as the step summed them (chunk by chunk, in its
+    /// Centre of mass z_cm and its velocity v_cm along the drive axis d of the grains at the
+    /// end of the last [`DemWorld::step`] (m, m/s; the height and vertical velocity for the
+    /// default vertical axis), as the step summed them (chunk by chunk, in its
     /// last phase: no extra pass over the grains); NaN before the first step. Equal to
     /// [`DemWorld::z_cm_state`] up to round-off right after a step.
     pub fn step_cm(&self) -> (f64, f64) {
         self.step_cm
     }
 
-    /// Centre of mass height z_cm and vertical velocity v_cm of the grains (m, m/s).
+    /// Centre of mass z_cm and its velocity v_cm along the drive axis d (m, m/s; height and
+    /// vertical velocity for the default vertical axis).
     pub fn z_cm_state(&self) -> (f64, f64) {
         let (mut zm, mut vm, mut mt) = (0.0, 0.0, 0.0);
+        let d = self.drive.direction;
         for ((p, v), m) in self.pos.iter().zip(&self.vel).zip(&self.mass) {
-            zm += m * p[2];
-            vm += m * v[2];
+            zm += m * dot(*p, d);
+            vm += m * dot(*v, d);
             mt += m;
         }
         (zm / mt, vm / mt)

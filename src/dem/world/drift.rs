@@ -23,8 +23,8 @@ pub(super) struct Drift<'a> {
     pub(super) h: f64,
     pub(super) dt: f64,
     pub(super) rotations: bool,
-    /// The box's vertical displacement since the last neighbour build (m).
-    pub(super) shift_z: f64,
+    /// The box's displacement since the last neighbour build (m).
+    pub(super) shift: [f64; 3],
     /// Write prefetches of the stored lines ([`WritePrefetch`]).
     pub(super) prefetch: Option<WritePrefetch>,
 }
@@ -39,7 +39,7 @@ impl<'a> Drift<'a> {
         (inv_mass, inv_inertia): (&'a [f64], &'a [f64]),
         reference: &'a [[f64; 3]],
         (dt, rotations): (f64, bool),
-        (shift_z, prefetch): (f64, Option<WritePrefetch>),
+        (shift, prefetch): ([f64; 3], Option<WritePrefetch>),
     ) -> Self {
         let n = kin[0].len();
         let [pos, vel, vel_pred, omega, omega_pred] = kin.map(Parts::new);
@@ -55,7 +55,7 @@ impl<'a> Drift<'a> {
             h: 0.5 * dt,
             dt,
             rotations,
-            shift_z,
+            shift,
             prefetch,
         }
     }
@@ -96,7 +96,7 @@ impl<'a> Drift<'a> {
                 &self.inv_mass[r],
                 (self.h, self.dt),
                 refs,
-                [0.0, 0.0, self.shift_z],
+                self.shift,
                 self.prefetch,
             )
         }

@@ -27,7 +27,7 @@ pub(super) type LoopOut = (f64, f64, f64);
 impl DemWorld {
     /// The force pass (with the drift of the blocks if `drift`, see [`Self::contacts`]),
     /// booking the dissipated powers if the ledger is on.
-    pub(super) fn forces_of(&mut self, kick: bool, drift: Option<f64>) -> Option<(f64, f64)> {
+    pub(super) fn forces_of(&mut self, kick: bool, drift: Option<[f64; 3]>) -> Option<(f64, f64)> {
         if self.energy_ledger {
             self.forces_ledger::<true>(kick, drift)
         } else {
@@ -41,7 +41,7 @@ impl DemWorld {
     pub(super) fn forces_ledger<const LEDGER: bool>(
         &mut self,
         kick: bool,
-        drift: Option<f64>,
+        drift: Option<[f64; 3]>,
     ) -> Option<(f64, f64)> {
         // the laws are matched once per step (the normal law here, the tangential one in
         // `contacts_with`); each arm runs loops monomorphised on the normal and tangential
@@ -64,7 +64,7 @@ impl DemWorld {
     pub(super) fn contacts_with<N: NormalKernel, const LEDGER: bool>(
         &mut self,
         kick: bool,
-        drift: Option<f64>,
+        drift: Option<[f64; 3]>,
     ) -> Option<LoopOut> {
         match self.laws.tangential_kind() {
             TangentialLaw::None => self.contacts::<N, NoTangential, LEDGER>(kick, drift),
@@ -110,7 +110,7 @@ impl DemWorld {
     pub(super) fn contacts<N: NormalKernel, T: TangentialKernel, const LEDGER: bool>(
         &mut self,
         kick: bool,
-        drift: Option<f64>,
+        drift: Option<[f64; 3]>,
     ) -> Option<LoopOut> {
         debug_assert!(
             drift.is_none() || !T::HISTORY,
@@ -147,7 +147,7 @@ impl DemWorld {
                 (&self.inv_mass, &self.inv_inertia),
                 self.neighbors.reference().0,
                 (dt, rot),
-                (drift.unwrap_or(0.0), self.prefetch),
+                (drift.unwrap_or([0.0; 3]), self.prefetch),
             );
             let force = Parts::new(&mut self.force);
             let torque = Parts::new(&mut self.torque);
@@ -311,9 +311,10 @@ impl DemWorld {
                     &self.cross_response
                 },
                 box_size: b,
-                floor: self.box_z,
-                ceil: self.box_z + b[2],
-                wall_v: self.box_v_pred,
+                origin: self.box_origin(),
+                ceil: self.box_origin()[2] + b[2],
+                wall_v: self.drive.direction.map(|d| d * self.box_v_pred),
+                axis: self.drive.direction,
                 friction: self.laws.friction(true),
                 clamp: self.laws.contact.attraction == AttractionPolicy::Clamp,
                 rotations: rot,

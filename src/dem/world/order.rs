@@ -36,9 +36,10 @@ impl DemWorld {
                 orientation: self.orientation.as_deref(),
                 force: &self.force,
                 box_size: self.box_size,
-                box_z: self.box_z,
+                box_origin: self.box_origin(),
             };
         }
+        let box_origin = self.box_origin();
         let b = self.by_id.get_or_insert_with(Default::default);
         let id = &self.id;
         scatter_by_id(&self.pos, id, &mut b.pos);
@@ -62,7 +63,7 @@ impl DemWorld {
             orientation: self.orientation.as_ref().map(|_| &b.orientation[..]),
             force: &b.force,
             box_size: self.box_size,
-            box_z: self.box_z,
+            box_origin,
         }
     }
 
@@ -81,7 +82,7 @@ impl DemWorld {
     /// torques are carried too (the force pass after the rebuild overwrites them). Leaves the
     /// new slot of each old slot in `self.sort.inv`.
     pub(super) fn sort_along_curve(&mut self) {
-        let shift = [0.0, 0.0, self.box_z];
+        let shift = self.box_origin();
         let s = &mut self.sort;
         self.neighbors.curve_order(&self.pos, shift, &mut s.order);
         let order = &s.order;

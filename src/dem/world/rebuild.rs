@@ -26,7 +26,7 @@ impl DemWorld {
     /// Rebuilds the neighbour list, the per-pair coefficients (computed here only, never in
     /// the step) and carries the tangential springs of the contacts over to the new list.
     pub(super) fn rebuild_neighbors(&mut self) {
-        let shift = [0.0, 0.0, self.box_z];
+        let shift = self.box_origin();
         let carry = self.laws.tangential_kind().has_history();
         let key = |p: &Pair| ((p.i.min(p.j) as u64) << 32) | p.i.max(p.j) as u64;
         // a spring as seen from the lower grain of its pair, and back (the flip is its own

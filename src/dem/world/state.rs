@@ -72,12 +72,15 @@ pub struct DemWorld {
     pub orientation: Option<Vec<UnitQuaternion<f64>>>,
     /// Inner box size [Lx, Ly, Lz] (m).
     pub box_size: [f64; 3],
-    /// Box (floor) position z (m).
+    /// Box displacement along the drive axis `drive.direction` d (m): the box's corner (its
+    /// floor, x = y = 0 corner) is at `box_z`·d ([`DemWorld::box_origin`]); with the default
+    /// vertical axis, the floor's height.
     pub box_z: f64,
-    /// Box velocity z' (m/s).
+    /// Box velocity along the drive axis (m/s).
     pub box_v: f64,
     pub(super) box_a: f64,
-    /// Vertical force of the grains on the box F_gz (N), from the last force evaluation.
+    /// Force of the grains on the box along the drive axis, F_gz = F·d (N), from the last
+    /// force evaluation.
     pub grain_force_n: f64,
     /// The drive (primary and base motion).
     pub drive: BoxDrive,
@@ -85,8 +88,8 @@ pub struct DemWorld {
     pub drive_on: bool,
     /// Extra drag rate 1/τ (1/s) on the grains while settling (0 when driven).
     pub settle_drag: f64,
-    /// Gravitational acceleration g (m/s², along −z); default 9.8 (tests may set 0).
-    pub gravity: f64,
+    /// Acceleration of gravity (m/s²); default [0, 0, −9.8] (tests may set 0).
+    pub gravity: [f64; 3],
     /// Energy flows since the drive started (collision and friction also accumulate while
     /// settling; [`DemWorld::start_drive`] resets the ledger).
     pub ledger: EnergyLedger,
@@ -287,7 +290,7 @@ impl DemWorld {
             drive,
             drive_on: false,
             settle_drag: 0.0,
-            gravity: G,
+            gravity: [0.0, 0.0, -G],
             ledger: EnergyLedger::default(),
             energy_ledger: true,
             base_power_prev: 0.0,

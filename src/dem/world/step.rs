@@ -36,10 +36,7 @@ impl DemWorld {
         self.ledger = EnergyLedger::default();
         if self.drive.primary.is_none() {
             let (u, v) = self.drive.base(0.0);
-            let dz = u - self.box_z;
-            for p in &mut self.pos {
-                p[2] += dz;
-            }
+            self.move_grains_along_axis(u - self.box_z);
             self.box_z = u;
             self.box_v = v;
         }
@@ -50,13 +47,29 @@ impl DemWorld {
         self.viscous_power_prev = vp;
     }
 
-    /// Moves the box (and the grains with it) to `z` (m) without changing velocities.
+    /// Moves the box (and the grains with it) to `z` (m) along the drive axis without
+    /// changing velocities.
     pub fn shift_box_to(&mut self, z: f64) {
-        let dz = z - self.box_z;
-        for p in &mut self.pos {
-            p[2] += dz;
-        }
+        self.move_grains_along_axis(z - self.box_z);
         self.box_z = z;
+    }
+
+    /// Moves every grain by `dz` (m) along the drive axis.
+    fn move_grains_along_axis(&mut self, dz: f64) {
+        let d = self.drive.direction;
+        let s = [d[0] * dz, d[1] * dz, d[2] * dz];
+        for p in &mut self.pos {
+            p[0] += s[0];
+            p[1] += s[1];
+            p[2] += s[2];
+        }
+    }
+
+    /// The box's corner (floor, x = y = 0) now: `box_z`·d (m).
+    #[inline]
+    pub fn box_origin(&self) -> [f64; 3] {
+        let d = self.drive.direction;
+        [d[0] * self.box_z, d[1] * self.box_z, d[2] * self.box_z]
     }
 
     /// Advances one time step.
@@ -71,7 +84,8 @@ impl DemWorld {
     ///    grain–wall contacts, their torques and F_gz (2.2.8–2.2.15); velocity-dependent terms
     ///    use the predicted full-step velocity v(t+dt/2) + (dt/2) F(t)/m, so that damping and
     ///    its ledger entry are second-order accurate (with v(t+dt/2) the ledger misses O(dt));
-    /// 5. box equation (2.1.22): M z'' = −C(z' − u') − K(z − u) + F_gz;
+    /// 5. box equation (2.1.22): M z'' = −C(z' − u') − K(z − u) + F_gz (+ F0 sin Ωt for a
+    ///    force drive), z along the drive axis d and F_gz = F·d;
     /// 6. second half kick;
     /// 7. energy ledger: collision and friction dissipation, viscous loss in C, base work.
     pub fn step(&mut self) {
@@ -93,7 +107,8 @@ impl DemWorld {
             }
         }
         // half kick + drift of the grains, fused with the Verlet-list displacement check
-        let shift = self.box_z - self.neighbors.reference().1[2];
+        let (o, r) = (self.box_origin(), self.neighbors.reference().1);
+        let shift = [o[0] - r[0], o[1] - r[1], o[2] - r[2]];
         self.mode = self.choose_mode();
         self.box_v_pred = if primary_free {
             self.box_v + h * self.box_a
@@ -137,22 +152,31 @@ impl DemWorld {
         match self.drive.primary {
             Some(p) if self.drive_on => {
                 let (u, du) = self.drive.base(self.t);
-                (-p.damping_n_s_m * (self.box_v_pred - du) - p.stiffness_n_m * (self.box_z - u)
-                    + self.grain_force_n)
-                    / p.mass_kg
+                let mut f = -p.damping_n_s_m * (self.box_v_pred - du)
+                    - p.stiffness_n_m * (self.box_z - u)
+                    + self.grain_force_n;
+                if self.drive.force_n != 0.0 {
+                    f += self.drive.force(self.t);
+                }
+                f / p.mass_kg
             }
             _ => 0.0,
         }
     }
 
-    /// (power of the base on the system, viscous power in C) now (W).
+    /// (power of the drive on the system — the base's, or the force's F(t) z' —, viscous power
+    /// in C) now (W).
     pub(super) fn box_powers(&self) -> (f64, f64) {
         let (u, du) = self.drive.base(self.t);
         match self.drive.primary {
             Some(p) => {
                 let rel_v = self.box_v - du;
                 let f_spring = p.stiffness_n_m * (self.box_z - u) + p.damping_n_s_m * rel_v;
-                (-f_spring * du, p.damping_n_s_m * rel_v * rel_v)
+                let mut drive = -f_spring * du;
+                if self.drive.force_n != 0.0 {
+                    drive += self.drive.force(self.t) * self.box_v;
+                }
+                (drive, p.damping_n_s_m * rel_v * rel_v)
             }
             None => (-self.grain_force_n * du, 0.0),
         }
@@ -164,9 +188,7 @@ impl DemWorld {
         self.vel_pred.copy_from_slice(&self.vel);
         self.omega_pred.copy_from_slice(&self.omega);
         self.box_v_pred = self.box_v;
-        let rebuild = self
-            .neighbors
-            .needs_rebuild(&self.pos, [0.0, 0.0, self.box_z]);
+        let rebuild = self.neighbors.needs_rebuild(&self.pos, self.box_origin());
         self.forces(rebuild, false)
     }
 
@@ -200,8 +222,8 @@ impl DemWorld {
 
     /// Steps 1–2 for the grains: half kick, drift, predicted velocities (and the spins' half
     /// kick), chunk by chunk; returns the largest squared displacement since the last
-    /// neighbour build relative to the box's vertical displacement `shift_z` (m²).
-    pub(super) fn kick_drift_phase(&mut self, shift_z: f64) -> f64 {
+    /// neighbour build relative to the box's displacement `shift` (m²).
+    pub(super) fn kick_drift_phase(&mut self, shift: [f64; 3]) -> f64 {
         let n = self.pos.len();
         let rot = self.laws.rotations;
         let units = n.div_ceil(GRAIN_CHUNK);
@@ -221,7 +243,7 @@ impl DemWorld {
             (&self.inv_mass, &self.inv_inertia),
             self.neighbors.reference().0,
             (self.dt, rot),
-            (shift_z, self.prefetch),
+            (shift, self.prefetch),
         );
         exec.units(units, &|c| {
             let r = c * GRAIN_CHUNK..((c + 1) * GRAIN_CHUNK).min(n);
@@ -234,7 +256,7 @@ impl DemWorld {
         self.partials.iter().fold(0.0, |a, s| a.max(s[0]))
     }
 
-    /// Steps 1–2 for the grains (half kick, drift) with the box displaced by `shift_z` (m)
+    /// Steps 1–2 for the grains (half kick, drift) with the box displaced by `shift` (m)
     /// since the last neighbour build, then the neighbour check and the force pass (with the
     /// second half kick). Returns the dissipated powers (collision, friction) (W).
     ///
@@ -244,17 +266,17 @@ impl DemWorld {
     /// recomputed from gravity up, nothing else was written) and done again after the
     /// rebuild, so the result is the same bits as drifting first. Laws with springs drift
     /// first: their pass writes the springs, which a rebuild carries over.
-    pub(super) fn drift_and_forces(&mut self, shift_z: f64) -> (f64, f64) {
+    pub(super) fn drift_and_forces(&mut self, shift: [f64; 3]) -> (f64, f64) {
         let fuse = self.fuse_drift
             && !self.laws.tangential_kind().has_history()
             && self.neighbors.reference().0.len() == self.len();
         if fuse {
-            if let Some(out) = self.forces_of(true, Some(shift_z)) {
+            if let Some(out) = self.forces_of(true, Some(shift)) {
                 return out;
             }
             self.rebuild_neighbors();
         } else {
-            let max_d2 = self.kick_drift_phase(shift_z);
+            let max_d2 = self.kick_drift_phase(shift);
             if self.neighbors.exceeded(max_d2) {
                 self.rebuild_neighbors();
             }

@@ -4,7 +4,7 @@
 
 use std::mem::MaybeUninit;
 
-use crate::contact::lanes::{get_lane, set_lane, F64x8, Lanes};
+use crate::contact::lanes::{dot, get_lane, set_lane, F64x8, Lanes};
 use crate::contact::response::{
     contact_response, ContactCoefficients, ContactKinematics, NormalKernel, TangentialKernel,
 };
@@ -23,8 +23,8 @@ pub(crate) struct Weight<'a> {
     pub(crate) mass: &'a [f64],
     /// Grain velocities (m/s), read for the drag.
     pub(crate) vel: View<'a, [f64; 3]>,
-    /// Gravity (m/s²).
-    pub(crate) gravity: f64,
+    /// Acceleration of gravity (m/s²).
+    pub(crate) gravity: [f64; 3],
     /// Settling drag rate (1/s; 0 in a run).
     pub(crate) drag: f64,
     /// Whether torques are computed (then zeroed here).
@@ -32,7 +32,7 @@ pub(crate) struct Weight<'a> {
 }
 
 /// Gravity and settling drag on grains `first..first + force.len()` (a block, before its own
-/// pairs): F = −m g e_z − m β v, and a zero torque (N, N m).
+/// pairs): F = m g − m β v, and a zero torque (N, N m).
 pub(crate) fn init_forces(
     w: &Weight,
     first: usize,
@@ -42,7 +42,8 @@ pub(crate) fn init_forces(
     for (k, (f, t)) in force.iter_mut().zip(torque.iter_mut()).enumerate() {
         let i = first + k;
         let m = w.mass[i];
-        *f = [0.0, 0.0, -m * w.gravity];
+        let g = w.gravity;
+        *f = [m * g[0], m * g[1], m * g[2]];
         if w.drag > 0.0 {
             let (s, v) = (-m * w.drag, w.vel.at(i));
             f[0] += s * v[0];
@@ -80,9 +81,14 @@ pub(crate) struct GrainCtx<'a> {
     /// States of the cross pairs (their responses, from the pair pass).
     pub(crate) cross_state: &'a [PairResponse],
     pub(crate) box_size: [f64; 3],
-    pub(crate) floor: f64,
+    /// The box's corner (floor, x = y = 0) (m).
+    pub(crate) origin: [f64; 3],
+    /// Height of the ceiling, `origin[2] + box_size[2]` (m).
     pub(crate) ceil: f64,
-    pub(crate) wall_v: f64,
+    /// Velocity of the box (m/s).
+    pub(crate) wall_v: [f64; 3],
+    /// The drive axis d (unit vector): F_gz is the walls' force along it.
+    pub(crate) axis: [f64; 3],
     pub(crate) friction: f64,
     pub(crate) clamp: bool,
     pub(crate) rotations: bool,
@@ -125,7 +131,8 @@ pub(crate) fn grain_chunk_avx2<N: NormalKernel, T: TangentialKernel, const LEDGE
 /// One chunk of grains from `first`, whose `force` and `torque` hold gravity, drag and the
 /// block's own pairs already: each grain's cross pairs gathered in pair order (so the sums do
 /// not depend on the threads), then its contacts with the six walls through the same
-/// [`contact_response`]. Returns the chunk's (F_gz, collision power, friction power) (N, W, W).
+/// [`contact_response`]. Returns the chunk's (F_gz, collision power, friction power, Σ m z,
+/// Σ m ż) (N, W, W, kg m, kg m/s): F_gz and z along the drive axis d.
 ///
 /// With `ctx.kick` the chunk's grains then get the step's second half kick (2.2.5),
 /// v ← v + (dt/2) F/m and ω ← ω + (dt/2) τ/I, their forces being complete.
@@ -180,12 +187,13 @@ pub(crate) fn grain_chunk_impl<
         }
         // far from every wall (most grains of a wide bed): nothing to do (one branch for
         // the six tests, `&` not `&&`: a small box has grains near some wall at random)
-        let p = ctx.pos[i];
-        if (p[0] > r)
-            & (p[0] < ctx.box_size[0] - r)
-            & (p[1] > r)
-            & (p[1] < ctx.box_size[1] - r)
-            & (p[2] > ctx.floor + r)
+        let (p, o) = (ctx.pos[i], ctx.origin);
+        let (x, y) = (p[0] - o[0], p[1] - o[1]);
+        if (x > r)
+            & (x < ctx.box_size[0] - r)
+            & (y > r)
+            & (y < ctx.box_size[1] - r)
+            & (p[2] > o[2] + r)
             & (p[2] < ctx.ceil - r)
         {
             if T::HISTORY {
@@ -249,7 +257,7 @@ pub(crate) fn grain_chunk_impl<
                 ti[1] -= r * t[1];
                 ti[2] -= r * t[2];
             }
-            fgz -= f[2];
+            fgz -= dot(f, ctx.axis);
         }
     }
     let (mut mz, mut mv) = (0.0, 0.0);
@@ -260,11 +268,12 @@ pub(crate) fn grain_chunk_impl<
         if ctx.rotations {
             half_kick(omega, torque, &ctx.inv_inertia[first..first + n], h);
         }
-        // the centre of mass at the end of the step (its height and vertical velocity)
+        // the centre of mass at the end of the step along the drive axis (its height and
+        // vertical velocity for the vertical axis)
         for (k, v) in vel.iter().enumerate() {
             let m = ctx.mass[first + k];
-            mz += m * ctx.pos[first + k][2];
-            mv += m * v[2];
+            mz += m * dot(ctx.pos[first + k], ctx.axis);
+            mv += m * dot(*v, ctx.axis);
         }
     }
     [fgz, p_coll, p_fric, mz, mv]
@@ -274,13 +283,14 @@ pub(crate) fn grain_chunk_impl<
 /// Wall w has the normal ±e_{w/2}, + for even w (pointing into the box).
 #[inline(always)]
 pub(crate) fn wall_overlaps(ctx: &GrainCtx, i: usize) -> [f64; 6] {
-    let (p, r, b) = (ctx.pos[i], ctx.radius[i], ctx.box_size);
+    let (p, r, b, o) = (ctx.pos[i], ctx.radius[i], ctx.box_size, ctx.origin);
+    let (x, y) = (p[0] - o[0], p[1] - o[1]);
     [
-        r - p[0],
-        r - (b[0] - p[0]),
-        r - p[1],
-        r - (b[1] - p[1]),
-        r - (p[2] - ctx.floor),
+        r - x,
+        r - (b[0] - x),
+        r - y,
+        r - (b[1] - y),
+        r - (p[2] - o[2]),
         r - (ctx.ceil - p[2]),
     ]
 }
@@ -306,7 +316,12 @@ impl<L: Lanes> WallLanes<L> {
         n[axis] = s;
         set_lane(&mut k.normal, l, n);
         set_lane(&mut k.spin, l, [r * om[0], r * om[1], r * om[2]]);
-        set_lane(&mut k.v_rel, l, [vp[0], vp[1], vp[2] - ctx.wall_v]);
+        let wv = ctx.wall_v;
+        set_lane(
+            &mut k.v_rel,
+            l,
+            [vp[0] - wv[0], vp[1] - wv[1], vp[2] - wv[2]],
+        );
         if ctx.uniform.is_none() {
             set_lane(&mut self.coef, l, ctx.wall_coef[i]);
         }
