@@ -182,3 +182,37 @@ fn builtin_table_is_the_committed_study_and_reads() {
     let c = choose(&scene(tol(1e-9))).unwrap();
     assert_eq!(c.setting, "reference");
 }
+
+#[test]
+fn a_drive_the_table_was_not_measured_on_runs_as_written() {
+    // the same scene and outputs that pick the one-particle model on a vertical base drive
+    // (rules_on_a_synthetic_table) run as written when driven horizontally, by a force, or
+    // under another gravity: the table does not cover them (issue 41)
+    let table = read_settings(SYNTHETIC, "synthetic").unwrap();
+    let frf = Outputs {
+        frf_only: true,
+        ..tol(0.1)
+    };
+    let mut horizontal = scene(frf.clone());
+    horizontal.excitation.direction = Some([1.0, 0.0, 0.0]);
+    let mut force = scene(frf.clone());
+    force.excitation.kind = pdamp::scene::DriveKind::Force;
+    force.excitation.amplitude = 0.0;
+    force.excitation.force_amplitude = Some(1.0);
+    let mut tilted = scene(frf);
+    tilted.environment.gravity = Some([0.0, 5.0, -8.0]);
+    for (s, what) in [
+        (horizontal, "along [1.0"),
+        (force, "force drive"),
+        (tilted, "own gravity"),
+    ] {
+        s.validate().unwrap();
+        let c = choose_with(&s, &table).unwrap();
+        assert_eq!((c.model.as_str(), c.setting.as_str()), ("dem", "reference"));
+        assert!(
+            c.reason.contains("measured on a vertical base drive") && c.reason.contains(what),
+            "{}",
+            c.reason
+        );
+    }
+}

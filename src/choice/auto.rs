@@ -150,9 +150,16 @@ pub fn choose_with(scene: &Scene, table: &[MeasuredSetting]) -> Result<AutoChoic
         .iter()
         .find(|s| s.axis == Axis::Reference)
         .ok_or_else(|| SceneError::Parse("trade-off table has no reference row".into()))?;
+    // the table was measured on a vertical base drive under gravity along −z: another drive,
+    // axis or gravity is not covered by it, and runs as written
+    let e = &scene.excitation;
+    let measured_drive = e.kind == crate::scene::DriveKind::Base
+        && e.is_vertical()
+        && scene.environment.gravity.is_none();
     let mut eligible: Vec<&MeasuredSetting> = table
         .iter()
         .filter(|s| delivers(s, o) && measured_enough(s, reference) && accurate_enough(s, o))
+        .filter(|_| measured_drive)
         .collect();
     let cost = |s: &MeasuredSetting| s.core_seconds_per_point.unwrap_or(f64::INFINITY);
     eligible.sort_by(|a, b| cost(a).total_cmp(&cost(b)));
@@ -173,6 +180,21 @@ pub fn choose_with(scene: &Scene, table: &[MeasuredSetting]) -> Result<AutoChoic
                 s.regime_compared,
                 s.speedup.map_or("n/a".into(), |x| format!("{x:.1}×")),
                 s.frequencies_compared
+            ),
+        ),
+        None if !measured_drive => (
+            reference,
+            format!(
+                "the settings were measured on a vertical base drive under gravity along −z, \
+                 and this scene has a {} drive along {:?}{}: the scene is run as written (the \
+                 reference's settings)",
+                e.kind.name(),
+                e.unit_direction(),
+                if scene.environment.gravity.is_some() {
+                    " with its own gravity"
+                } else {
+                    ""
+                }
             ),
         ),
         None => (
