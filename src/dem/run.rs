@@ -61,6 +61,9 @@ pub struct DemRunConfig {
     /// The primary's velocity along the drive axis at t = 0 (m/s), the grains left at rest
     /// (`primary.initial_velocity`). Default 0.
     pub initial_box_v_m_s: Option<f64>,
+    /// The rotating frame the damper sits on (centrifugal and Coriolis forces on the grains),
+    /// if any.
+    pub rotation: Option<crate::model::FrameRotation>,
 }
 
 impl Default for DemRunConfig {
@@ -78,6 +81,7 @@ impl Default for DemRunConfig {
             energy_ledger: true,
             initial_box_z_m: None,
             initial_box_v_m_s: None,
+            rotation: None,
         }
     }
 }
@@ -481,6 +485,7 @@ fn settled_bed(
 ) -> Result<(DemWorld, SettledBed), SimError> {
     let mut world = initial_world(model, drive, dt, 0.0)?;
     world.gravity = cfg.gravity_m_s2;
+    world.rotation = cfg.rotation;
     world.energy_ledger = cfg.energy_ledger;
     let m_p: f64 = world.mass.iter().sum();
     // the static equilibrium along the drive axis d: K z = m_p g·d

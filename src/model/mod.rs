@@ -4,6 +4,7 @@
 
 pub mod dem_extras;
 pub mod primary;
+pub mod rotation;
 pub mod summary;
 
 /// Revision of the simulators' physics: which trajectories this build computes. Every stored
@@ -16,6 +17,7 @@ pub const PHYSICS_REVISION: u32 = 1;
 
 pub use dem_extras::DemExtras;
 pub use primary::{base_motion, Anchor, BoxDrive, PrimarySystem, Sdof};
+pub use rotation::FrameRotation;
 pub use summary::{
     EnergyTotals, RunAnalysis, RunOptions, RunSummary, RunWindow, StrobePoint,
     DEFAULT_ANALYSIS_FRACTION, DEFAULT_SAMPLE_INTERVAL_S, DEFAULT_STEADY_FRACTION,

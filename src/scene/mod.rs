@@ -142,6 +142,7 @@ impl Scene {
         self.excitation.validate()?;
         self.environment.validate()?;
         self.check_drive()?;
+        self.check_rotation()?;
         self.damper.validate()?;
         self.run.validate()?;
         self.outputs.validate()?;
@@ -202,6 +203,42 @@ impl Scene {
                        (m/s)"
                     .into(),
             });
+        }
+        Ok(())
+    }
+
+    /// A rotating frame acts on DEM grains only, and the primary must move along the rotation
+    /// axis (across it, the primary would feel its own centrifugal stiffness, not modelled).
+    fn check_rotation(&self) -> Result<(), SceneError> {
+        let Some(r) = &self.environment.rotation else {
+            return Ok(());
+        };
+        if !matches!(self.damper, Damper::Dem(_) | Damper::Auto(_)) {
+            return Err(SceneError::invalid(
+                "environment.rotation",
+                format!("{} rpm", r.rpm),
+                "acts on the grains of a DEM damper (damper.kind = \"dem\"); the one-particle \
+                 model and the bare primary do not take it",
+            ));
+        }
+        let (a, _) = r.unit_axes();
+        let d = self.excitation.unit_direction();
+        let c = [
+            a[1] * d[2] - a[2] * d[1],
+            a[2] * d[0] - a[0] * d[2],
+            a[0] * d[1] - a[1] * d[0],
+        ];
+        if (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt() > 1e-9 {
+            return Err(SceneError::invalid(
+                "excitation.direction",
+                format!("{d:?}"),
+                format!(
+                    "must be along the rotation axis {:?} (environment.rotation.axis): a primary \
+                     moving across the axis would feel its own centrifugal stiffness, which is \
+                     not modelled",
+                    r.axis
+                ),
+            ));
         }
         Ok(())
     }

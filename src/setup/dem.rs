@@ -66,6 +66,9 @@ pub struct DemSetup {
     pub initial_box_z_m: Option<f64>,
     /// `primary.initial_velocity` (m/s).
     pub initial_box_v_m_s: Option<f64>,
+    /// `environment.rotation`: the rotating frame, its axis placed from the container's centre
+    /// at rest (m).
+    pub rotation: Option<crate::model::FrameRotation>,
 }
 
 impl DemSetup {
@@ -102,6 +105,7 @@ impl DemSetup {
             energy_ledger: self.energy_ledger,
             initial_box_z_m: self.initial_box_z_m,
             initial_box_v_m_s: self.initial_box_v_m_s,
+            rotation: self.rotation,
         }
     }
 }
@@ -173,6 +177,11 @@ pub fn dem_setup(scene: &Scene) -> Result<DemSetup, SceneError> {
         energy_ledger: scene.run.energy_ledger,
         initial_box_z_m: scene.primary.as_ref().and_then(|p| p.initial_displacement),
         initial_box_v_m_s: scene.primary.as_ref().and_then(|p| p.initial_velocity),
+        rotation: scene
+            .environment
+            .rotation
+            .as_ref()
+            .map(|r| r.frame(params.r#box.map(|l| 0.5 * l))),
     })
 }
 

@@ -96,6 +96,9 @@ impl DemWorld {
             s.rotational_j += 0.5 / self.inv_inertia[i] * (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
             let (g, p) = (self.gravity, self.pos[i]);
             s.potential_j -= self.mass[i] * (g[0] * p[0] + g[1] * p[1] + g[2] * p[2]);
+            if let Some(r) = &self.rotation {
+                s.potential_j += r.potential_j(self.mass[i], p);
+            }
         }
         let elastic = |k: f64, z: f64| match self.laws.contact.normal {
             NormalLaw::HertzKuwabaraKono { .. } => 0.4 * k * z * z * z.sqrt(),

@@ -170,6 +170,9 @@ impl DemWorld {
             let weight = Weight {
                 mass: &self.mass,
                 vel: kin.vel.view(),
+                pos: kin.pos.view(),
+                vel_pred: kin.vel_pred.view(),
+                rotation: self.rotation,
                 gravity: self.gravity,
                 drag: self.settle_drag,
                 rotations: rot,

@@ -90,6 +90,9 @@ pub struct DemWorld {
     pub settle_drag: f64,
     /// Acceleration of gravity (m/s²); default [0, 0, −9.8] (tests may set 0).
     pub gravity: [f64; 3],
+    /// The rotating frame the damper sits on: centrifugal and Coriolis accelerations of every
+    /// grain (none by default).
+    pub rotation: Option<crate::model::FrameRotation>,
     /// Energy flows since the drive started (collision and friction also accumulate while
     /// settling; [`DemWorld::start_drive`] resets the ledger).
     pub ledger: EnergyLedger,
@@ -291,6 +294,7 @@ impl DemWorld {
             drive_on: false,
             settle_drag: 0.0,
             gravity: [0.0, 0.0, -G],
+            rotation: None,
             ledger: EnergyLedger::default(),
             energy_ledger: true,
             base_power_prev: 0.0,

@@ -25,6 +25,13 @@ pub(crate) struct Weight<'a> {
     pub(crate) vel: View<'a, [f64; 3]>,
     /// Acceleration of gravity (m/s²).
     pub(crate) gravity: [f64; 3],
+    /// Centres (m), read for the rotating frame's centrifugal force.
+    pub(crate) pos: View<'a, [f64; 3]>,
+    /// Predicted full-step velocities (m/s), read for the Coriolis force (second order, as the
+    /// contacts' damping).
+    pub(crate) vel_pred: View<'a, [f64; 3]>,
+    /// The rotating frame, if any ([`crate::model::rotation`]).
+    pub(crate) rotation: Option<crate::model::FrameRotation>,
     /// Settling drag rate (1/s; 0 in a run).
     pub(crate) drag: f64,
     /// Whether torques are computed (then zeroed here).
@@ -32,7 +39,8 @@ pub(crate) struct Weight<'a> {
 }
 
 /// Gravity and settling drag on grains `first..first + force.len()` (a block, before its own
-/// pairs): F = m g − m β v, and a zero torque (N, N m).
+/// pairs): F = m g − m β v (+ m (|Ω|² R⊥ − 2 Ω × v) in a rotating frame), and a zero torque
+/// (N, N m).
 pub(crate) fn init_forces(
     w: &Weight,
     first: usize,
@@ -44,6 +52,12 @@ pub(crate) fn init_forces(
         let m = w.mass[i];
         let g = w.gravity;
         *f = [m * g[0], m * g[1], m * g[2]];
+        if let Some(r) = &w.rotation {
+            let a = r.acceleration(w.pos.at(i), w.vel_pred.at(i));
+            f[0] += m * a[0];
+            f[1] += m * a[1];
+            f[2] += m * a[2];
+        }
         if w.drag > 0.0 {
             let (s, v) = (-m * w.drag, w.vel.at(i));
             f[0] += s * v[0];
