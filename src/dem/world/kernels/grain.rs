@@ -284,10 +284,19 @@ pub(crate) fn grain_chunk_impl<
         }
         // the centre of mass at the end of the step along the drive axis (its height and
         // vertical velocity for the vertical axis)
-        for (k, v) in vel.iter().enumerate() {
-            let m = ctx.mass[first + k];
-            mz += m * dot(ctx.pos[first + k], ctx.axis);
-            mv += m * dot(*v, ctx.axis);
+        if ctx.axis == [0.0, 0.0, 1.0] {
+            // the vertical axis: the same sums without the zero terms
+            for (k, v) in vel.iter().enumerate() {
+                let m = ctx.mass[first + k];
+                mz += m * ctx.pos[first + k][2];
+                mv += m * v[2];
+            }
+        } else {
+            for (k, v) in vel.iter().enumerate() {
+                let m = ctx.mass[first + k];
+                mz += m * dot(ctx.pos[first + k], ctx.axis);
+                mv += m * dot(*v, ctx.axis);
+            }
         }
     }
     [fgz, p_coll, p_fric, mz, mv]
