@@ -89,31 +89,16 @@ fn force_drive_of_the_primary_alone_gives_the_receptance() {
 /// RK4 of M z'' + C z' + K z = F0 sin(Ωt) from (z0, v0), `n` steps of `dt`.
 fn rk4_force(
     (m, k, c, f0, w): (f64, f64, f64, f64, f64),
-    (z0, v0): (f64, f64),
+    init: (f64, f64),
     dt: f64,
     n: usize,
 ) -> Vec<(f64, f64)> {
-    let acc = |t: f64, z: f64, v: f64| (f0 * (w * t).sin() - k * z - c * v) / m;
-    let mut out = Vec::with_capacity(n + 1);
-    let (mut z, mut v) = (z0, v0);
-    out.push((z, v));
-    for i in 0..n {
-        let t = i as f64 * dt;
-        let (k1z, k1v) = (v, acc(t, z, v));
-        let (k2z, k2v) = (
-            v + 0.5 * dt * k1v,
-            acc(t + 0.5 * dt, z + 0.5 * dt * k1z, v + 0.5 * dt * k1v),
-        );
-        let (k3z, k3v) = (
-            v + 0.5 * dt * k2v,
-            acc(t + 0.5 * dt, z + 0.5 * dt * k2z, v + 0.5 * dt * k2v),
-        );
-        let (k4z, k4v) = (v + dt * k3v, acc(t + dt, z + dt * k3z, v + dt * k3v));
-        z += dt / 6.0 * (k1z + 2.0 * k2z + 2.0 * k3z + k4z);
-        v += dt / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
-        out.push((z, v));
-    }
-    out
+    common::rk4(
+        |t, z, v| (f0 * (w * t).sin() - k * z - c * v) / m,
+        init,
+        dt,
+        n,
+    )
 }
 
 fn series_against_rk4(scene: &Scene, f0: f64) {

@@ -74,30 +74,11 @@ fn closed_form_matches_2_1_21_over_frequencies_and_damping() {
 /// `sys` = (M, K, C, U, Ω), `init` = (z0, v0); `n` steps of `dt`.
 fn rk4(sys: (f64, f64, f64, f64, f64), init: (f64, f64), dt: f64, n: usize) -> Vec<(f64, f64)> {
     let (m, k, c, u, w) = sys;
-    let (z0, v0) = init;
     let acc = |t: f64, z: f64, v: f64| {
         let (s, co) = (w * t).sin_cos();
         (k * (u * co - z) + c * (-u * w * s - v)) / m
     };
-    let (mut z, mut v, mut t) = (z0, v0, 0.0);
-    let mut out = vec![(z, v)];
-    for _ in 0..n {
-        let (k1z, k1v) = (v, acc(t, z, v));
-        let (k2z, k2v) = (
-            v + 0.5 * dt * k1v,
-            acc(t + 0.5 * dt, z + 0.5 * dt * k1z, v + 0.5 * dt * k1v),
-        );
-        let (k3z, k3v) = (
-            v + 0.5 * dt * k2v,
-            acc(t + 0.5 * dt, z + 0.5 * dt * k2z, v + 0.5 * dt * k2v),
-        );
-        let (k4z, k4v) = (v + dt * k3v, acc(t + dt, z + dt * k3z, v + dt * k3v));
-        z += dt / 6.0 * (k1z + 2.0 * k2z + 2.0 * k3z + k4z);
-        v += dt / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
-        t += dt;
-        out.push((z, v));
-    }
-    out
+    common::rk4(acc, init, dt, n)
 }
 
 #[test]

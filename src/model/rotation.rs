@@ -51,6 +51,7 @@ impl FrameRotation {
     }
 }
 
+// (the model layer sits below `contact`, whose vector helpers the engines use)
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }

@@ -186,3 +186,33 @@ sample_interval = 1e-3
 dt = "auto"
 dt_fraction = 0.02
 "#;
+
+/// Classical RK4 of z'' = acc(t, z, z') from `init` = (z0, v0) at t = 0, `n` steps of `dt`: the
+/// independent integrator the closed forms are checked against. Returns (z, z') at every step.
+pub fn rk4(
+    acc: impl Fn(f64, f64, f64) -> f64,
+    init: (f64, f64),
+    dt: f64,
+    n: usize,
+) -> Vec<(f64, f64)> {
+    let (mut z, mut v) = init;
+    let mut out = Vec::with_capacity(n + 1);
+    out.push((z, v));
+    for i in 0..n {
+        let t = i as f64 * dt;
+        let (k1z, k1v) = (v, acc(t, z, v));
+        let (k2z, k2v) = (
+            v + 0.5 * dt * k1v,
+            acc(t + 0.5 * dt, z + 0.5 * dt * k1z, v + 0.5 * dt * k1v),
+        );
+        let (k3z, k3v) = (
+            v + 0.5 * dt * k2v,
+            acc(t + 0.5 * dt, z + 0.5 * dt * k2z, v + 0.5 * dt * k2v),
+        );
+        let (k4z, k4v) = (v + dt * k3v, acc(t + dt, z + dt * k3z, v + dt * k3v));
+        z += dt / 6.0 * (k1z + 2.0 * k2z + 2.0 * k3z + k4z);
+        v += dt / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
+        out.push((z, v));
+    }
+    out
+}
