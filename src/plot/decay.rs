@@ -57,9 +57,12 @@ impl Figure for DecayFigure<'_> {
         title: &str,
     ) -> Result<(), PlotError> {
         let (a_lo, a_hi) = log_range(self.amplitude_m);
-        let (mut z_lo, z_hi) = common::padded_range([self.damping_ratio], 0.08);
+        let (mut z_lo, mut z_hi) = common::padded_range([self.damping_ratio], 0.08);
         if self.damping_ratio.iter().all(|&z| z >= 0.0) {
-            z_lo = z_lo.max(0.0);
+            // ζ from 0: a constant damping ratio (a linear primary) reads as a flat line, not
+            // as its last digits' scatter blown up to the axis's height
+            z_lo = 0.0;
+            z_hi = z_hi.max(1.2 * self.damping_ratio.iter().cloned().fold(0.0, f64::max));
         }
         let mut chart = ChartBuilder::on(root)
             .caption(title, common::caption_font())
