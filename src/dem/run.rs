@@ -7,7 +7,6 @@ use serde::Serialize;
 
 use crate::contact::lanes::dot;
 use crate::error::{ModelError, Quantity, SimError};
-use crate::packing::{advancing_front_packing, fcc_lattice, volume_fraction};
 use crate::units::G;
 
 use crate::model::{
@@ -15,9 +14,11 @@ use crate::model::{
 };
 use crate::observe::{DemSampleState, ModelSample, Observer, Sample, SampleKind};
 
+pub use super::bed::{initial_positions, initial_world, settle};
+use super::bed::{release, settled_bed};
 use super::bed_impacts::BedImpacts;
 use super::energy::{balance, EnergyLedger};
-use super::model::{DemModel, Packing};
+use super::model::DemModel;
 pub use super::stability::DtChoice;
 use super::stability::{TimeStep, TimeStepScales, DEFAULT_DT_FRACTION};
 use super::steady::{strobe_state, EnergyWatch, SteadyWindow, StrobeClock};
@@ -218,75 +219,6 @@ pub struct DemSummary {
     pub cycles_steady: f64,
 }
 
-/// The grains' initial centres (m) by the model's packing: a jittered FCC lattice or the
-/// advancing front. Also the resolve step's check that the grains fit the box.
-///
-/// # Errors
-/// [`ModelError`] ([`crate::error::Quantity::GrainCount`]) if the grains do not fit.
-pub fn initial_positions(model: &DemModel) -> Result<Vec<[f64; 3]>, ModelError> {
-    match model.packing {
-        Packing::Lattice { seed } => fcc_lattice(
-            model.box_size_m,
-            model.grains.radius_m.len(),
-            model.grains.r_max_m,
-            0.05,
-            seed ^ 0x5eed,
-        ),
-        Packing::AdvancingFront => {
-            advancing_front_packing(model.box_size_m, &model.grains.radius_m)
-        }
-    }
-}
-
-/// Builds the initial bed of `model` (its grains placed on a lattice or by the advancing
-/// front) at rest, with the box held still at `box_z` (m).
-///
-/// # Errors
-/// Grains that do not fit the box (packing errors); [`DemWorld::new`]'s errors.
-pub fn initial_world(
-    model: &DemModel,
-    drive: BoxDrive,
-    dt: f64,
-    box_z: f64,
-) -> Result<DemWorld, SimError> {
-    let radii = model.grains.radius_m.clone();
-    let pos = initial_positions(model)?;
-    let mut w = DemWorld::new(model, drive, dt, radii, pos)?;
-    w.shift_box_to(box_z);
-    w.refresh();
-    Ok(w)
-}
-
-/// Lets the bed settle under gravity with the box held still and a drag of rate 1/0.05 s⁻¹
-/// on the grains, until the mean grain speed is below 1 mm/s (after at least 0.05 s) or
-/// `max_time_s` elapsed. Returns (settling time s, steps).
-pub fn settle(world: &mut DemWorld, max_time_s: f64) -> (f64, u64) {
-    world.drive_on = false;
-    world.settle_drag = 1.0 / 0.05;
-    world.refresh();
-    let check_every = ((1e-3 / world.dt).round() as u64).max(1);
-    let mut t = 0.0;
-    let mut steps = 0u64;
-    while t < max_time_s {
-        world.step();
-        t += world.dt;
-        steps += 1;
-        if steps.is_multiple_of(check_every) && t > 0.05 {
-            let mean_v = world
-                .vel
-                .iter()
-                .map(|v| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt())
-                .sum::<f64>()
-                / world.len() as f64;
-            if mean_v < 1e-3 {
-                break;
-            }
-        }
-    }
-    world.settle_drag = 0.0;
-    (t, steps)
-}
-
 /// CPU time of the calling thread (s), from `/proc/thread-self/stat` (utime + stime, in
 /// clock ticks of 1/100 s); `None` where unavailable.
 pub fn thread_cpu_time_s() -> Option<f64> {
@@ -351,15 +283,9 @@ pub(crate) fn run_dem_stepped(
     check_run_window(cfg)?;
     let step = step.on_sample_clock(cfg.sample_interval_s);
     let (dt, ts) = (step.dt_s, step.contact_time_s);
-    let (mut world, bed) = settled_bed(model, drive, cfg, dt)?;
-    if drive.primary.is_some() {
-        if let Some(z0) = cfg.initial_box_z_m {
-            world.shift_box_to(z0);
-        }
-        if let Some(v0) = cfg.initial_box_v_m_s {
-            world.box_v = v0;
-        }
-    }
+    let forces = (cfg.gravity_m_s2, cfg.rotation, cfg.energy_ledger);
+    let (mut world, bed) = settled_bed(model, drive, forces, dt)?;
+    release(&mut world, cfg.initial_box_z_m, cfg.initial_box_v_m_s);
     world.start_drive();
     // the radius of grain 0 (its slot, once the grains are stored along the curve)
     let slot0 = world.grain_ids().iter().position(|&g| g == 0).unwrap_or(0);
@@ -464,51 +390,6 @@ fn check_run_window(cfg: &DemRunConfig) -> Result<(), SimError> {
         .into());
     }
     Ok(())
-}
-
-/// The settled bed before the drive.
-struct SettledBed {
-    mass_kg: f64,
-    height_m: f64,
-    volume_fraction: f64,
-    settle_time_s: f64,
-    settle_steps: u64,
-}
-
-/// The initial bed, settled under gravity with the box held at its start position: u(0) for
-/// a kinematic box, the static equilibrium with the grains' weight for a primary.
-fn settled_bed(
-    model: &DemModel,
-    drive: BoxDrive,
-    cfg: &DemRunConfig,
-    dt: f64,
-) -> Result<(DemWorld, SettledBed), SimError> {
-    let mut world = initial_world(model, drive, dt, 0.0)?;
-    world.gravity = cfg.gravity_m_s2;
-    world.rotation = cfg.rotation;
-    world.energy_ledger = cfg.energy_ledger;
-    let m_p: f64 = world.mass.iter().sum();
-    // the static equilibrium along the drive axis d: K z = m_p g·d
-    let z_hold = match drive.primary {
-        Some(p) => m_p * dot(cfg.gravity_m_s2, drive.direction) / p.stiffness_n_m,
-        None => drive.base(0.0).0,
-    };
-    world.shift_box_to(z_hold);
-    let (settle_time_s, settle_steps) = settle(&mut world, model.settle_time_s);
-    let (zcm, _, _) = world.z_stats();
-    let height_m = 2.0 * (zcm - world.box_origin()[2]);
-    let volume_fraction = volume_fraction(
-        &world.radius,
-        world.box_size[0] * world.box_size[1] * height_m,
-    );
-    let bed = SettledBed {
-        mass_kg: m_p,
-        height_m,
-        volume_fraction,
-        settle_time_s,
-        settle_steps,
-    };
-    Ok((world, bed))
 }
 
 /// Every how many steps the driven run samples, snapshots and reports progress.

@@ -288,7 +288,7 @@ impl DemWorld {
         self.grain_partials.clear();
         self.grain_partials.resize(units, [0.0; 5]);
         {
-            let b = self.box_size;
+            let (b, origin) = (self.box_size, self.box_origin());
             let gctx = GrainCtx {
                 simd: self.simd,
                 uniform: self.uniform,
@@ -314,8 +314,8 @@ impl DemWorld {
                     &self.cross_response
                 },
                 box_size: b,
-                origin: self.box_origin(),
-                ceil: self.box_origin()[2] + b[2],
+                origin,
+                ceil: origin[2] + b[2],
                 wall_v: self.drive.direction.map(|d| d * self.box_v_pred),
                 axis: self.drive.direction,
                 friction: self.laws.friction(true),
