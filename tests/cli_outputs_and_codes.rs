@@ -1,5 +1,6 @@
 //! Where a run's snapshots go when `damper.snapshot_dir` is absolute, the exit status of a
-//! sweep whose points fail, and the guard on an infinite contact time (issue 14).
+//! sweep whose points fail, the guard on an infinite contact time (issue 14), and `fit-frf`
+//! refusing a force-driven sweep (issue 41).
 
 mod scratch;
 
@@ -179,4 +180,46 @@ fn completions_and_man_pages_cover_every_subcommand() {
     let page = std::fs::read_to_string(dir.path().join("pdamp-simulate.1")).unwrap();
     assert!(page.contains(".TH pdamp-simulate") && page.contains("\\-\\-out"));
     assert!(dir.path().join("pdamp.1").is_file());
+}
+
+#[test]
+fn fit_frf_refuses_a_force_driven_sweep() {
+    // the base-drive form (2.1.21) would misread a force drive's response (issue 41)
+    let dir = scratch::tempdir().unwrap();
+    let csv = dir.path().join("sweep.csv");
+    std::fs::write(
+        &csv,
+        "point,excitation.frequency,frequency_hz,amplitude_m\n0,5,5,0.001\n1,6,6,0.002\n2,7,7,0.001\n",
+    )
+    .unwrap();
+    let spec = |kind: &str| {
+        serde_json::json!({
+            "scene": format!("[primary]\nmass = 1.0\nstiffness = 1000.0\ndamping = 1.0\n\
+                              [excitation]\nkind = \"{kind}\"\nforce_amplitude = 1.0\nfrequency = 5.0\n\
+                              [damper]\nkind = \"none\"\n[run]\nperiods = 10\n"),
+            "set": [],
+            "vary": [],
+            "analysis": false,
+        })
+        .to_string()
+    };
+    std::fs::write(dir.path().join("sweep.json"), spec("force")).unwrap();
+    let args = [
+        "fit-frf",
+        "--stiffness",
+        "1000",
+        "--base-amplitude",
+        "0.001",
+    ];
+    let out = pdamp(&args, &[&csv]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.contains("excitation.kind = \"force\""),
+        "{err}"
+    );
+    // the same table from a base drive is fitted
+    std::fs::write(dir.path().join("sweep.json"), spec("base")).unwrap();
+    let out = pdamp(&args, &[&csv]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!err.contains("excitation.kind"), "{err}");
 }

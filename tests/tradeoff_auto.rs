@@ -199,18 +199,34 @@ fn a_drive_the_table_was_not_measured_on_runs_as_written() {
     force.excitation.kind = pdamp::scene::DriveKind::Force;
     force.excitation.amplitude = 0.0;
     force.excitation.force_amplitude = Some(1.0);
-    let mut tilted = scene(frf);
+    let mut tilted = scene(frf.clone());
     tilted.environment.gravity = Some([0.0, 5.0, -8.0]);
+    // nor a cylinder, nor a rotating frame
+    let mut cylinder = scene(frf.clone());
+    if let Damper::Auto(p) = &mut cylinder.damper {
+        p.container = pdamp::scene::dem::ContainerKind::Cylinder;
+        (p.diameter, p.length) = (Some(0.04), Some(0.1225));
+        p.r#box = [0.04, 0.04, 0.1225];
+    }
+    let mut rotating = scene(frf);
+    rotating.environment.rotation = Some(pdamp::scene::environment::Rotation {
+        radius: 0.4,
+        rpm: 138.0,
+        axis: [0.0, 0.0, 1.0],
+        radial: [1.0, 0.0, 0.0],
+    });
     for (s, what) in [
         (horizontal, "along [1.0"),
         (force, "force drive"),
         (tilted, "own gravity"),
+        (cylinder, "in a cylinder"),
+        (rotating, "rotating frame"),
     ] {
         s.validate().unwrap();
         let c = choose_with(&s, &table).unwrap();
         assert_eq!((c.model.as_str(), c.setting.as_str()), ("dem", "reference"));
         assert!(
-            c.reason.contains("measured on a vertical base drive") && c.reason.contains(what),
+            c.reason.contains("on a box on a vertical base drive") && c.reason.contains(what),
             "{}",
             c.reason
         );

@@ -17,6 +17,7 @@ pub mod box_grid;
 pub mod cao;
 pub mod correlation_dimension;
 pub mod decay;
+pub mod decay_zones;
 pub mod embedding;
 pub mod false_nearest_neighbors;
 pub mod frf_fit;

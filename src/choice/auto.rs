@@ -150,12 +150,16 @@ pub fn choose_with(scene: &Scene, table: &[MeasuredSetting]) -> Result<AutoChoic
         .iter()
         .find(|s| s.axis == Axis::Reference)
         .ok_or_else(|| SceneError::Parse("trade-off table has no reference row".into()))?;
-    // the table was measured on a vertical base drive under gravity along −z: another drive,
-    // axis or gravity is not covered by it, and runs as written
+    // the table was measured on a box on a vertical base drive under gravity along −z: another
+    // drive, axis, gravity, a rotating frame or a cylinder is not covered by it, and runs as
+    // written
     let e = &scene.excitation;
+    let in_a_box = params.container.is_box();
     let measured_drive = e.kind == crate::scene::DriveKind::Base
         && e.is_vertical()
-        && scene.environment.gravity.is_none();
+        && scene.environment.gravity.is_none()
+        && scene.environment.rotation.is_none()
+        && in_a_box;
     let mut eligible: Vec<&MeasuredSetting> = table
         .iter()
         .filter(|s| delivers(s, o) && measured_enough(s, reference) && accurate_enough(s, o))
@@ -185,16 +189,22 @@ pub fn choose_with(scene: &Scene, table: &[MeasuredSetting]) -> Result<AutoChoic
         None if !measured_drive => (
             reference,
             format!(
-                "the settings were measured on a vertical base drive under gravity along −z, \
-                 and this scene has a {} drive along {:?}{}: the scene is run as written (the \
-                 reference's settings)",
+                "the settings were measured on a box on a vertical base drive under gravity \
+                 along −z, and this scene has a {} drive along {:?}{}{}{}: the scene is run as \
+                 written (the reference's settings)",
                 e.kind.name(),
                 e.unit_direction(),
                 if scene.environment.gravity.is_some() {
                     " with its own gravity"
                 } else {
                     ""
-                }
+                },
+                if scene.environment.rotation.is_some() {
+                    " in a rotating frame"
+                } else {
+                    ""
+                },
+                if in_a_box { "" } else { " in a cylinder" }
             ),
         ),
         None => (

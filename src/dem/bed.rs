@@ -4,29 +4,45 @@
 
 use crate::contact::lanes::dot;
 use crate::error::{ModelError, SimError};
-use crate::packing::{advancing_front_packing, fcc_lattice, volume_fraction};
+use crate::packing::{advancing_front_packing, cylinder_rings, fcc_lattice, volume_fraction};
 
 use super::model::{DemModel, Packing};
 use super::world::{BoxDrive, DemWorld};
-use crate::model::FrameRotation;
+use crate::model::{Container, FrameRotation};
 
-/// The grains' initial centres (m) by the model's packing: a jittered FCC lattice or the
-/// advancing front. Also the resolve step's check that the grains fit the box.
+/// The grains' initial centres (m) by the model's packing: a jittered FCC lattice (stacked
+/// rings in a cylinder) or the advancing front. Also the resolve step's check that the grains fit the box.
 ///
 /// # Errors
 /// [`ModelError`] ([`crate::error::Quantity::GrainCount`]) if the grains do not fit.
 pub fn initial_positions(model: &DemModel) -> Result<Vec<[f64; 3]>, ModelError> {
     match model.packing {
-        Packing::Lattice { seed } => fcc_lattice(
-            model.box_size_m,
-            model.grains.radius_m.len(),
-            model.grains.r_max_m,
-            0.05,
-            seed ^ 0x5eed,
-        ),
-        Packing::AdvancingFront => {
-            advancing_front_packing(model.box_size_m, &model.grains.radius_m)
-        }
+        Packing::Lattice { seed } => match &model.container {
+            Container::Box => fcc_lattice(
+                model.box_size_m,
+                model.grains.radius_m.len(),
+                model.grains.r_max_m,
+                0.05,
+                seed ^ 0x5eed,
+            ),
+            Container::Cylinder(c) => cylinder_rings(
+                c,
+                model.grains.radius_m.len(),
+                model.grains.r_max_m,
+                0.05,
+                seed ^ 0x5eed,
+            ),
+        },
+        Packing::AdvancingFront => match model.container {
+            Container::Box => advancing_front_packing(model.box_size_m, &model.grains.radius_m),
+            Container::Cylinder(_) => Err(ModelError::new(
+                crate::error::Quantity::GrainCount,
+                model.grains.radius_m.len(),
+                "the advancing-front packing fills boxes only: use the lattice packing in a \
+                 cylinder"
+                    .to_string(),
+            )),
+        },
     }
 }
 
@@ -114,7 +130,7 @@ pub(super) fn settled_bed(
     let height_m = 2.0 * (zcm - world.box_origin()[2]);
     let volume_fraction = volume_fraction(
         &world.radius,
-        world.box_size[0] * world.box_size[1] * height_m,
+        world.container.volume_below_m3(world.box_size, height_m),
     );
     let bed = SettledBed {
         mass_kg: m_p,

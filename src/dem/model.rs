@@ -84,8 +84,10 @@ pub enum Packing {
 /// A resolved DEM damper: box, grains, contact model and the bed's construction.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DemModel {
-    /// Inner box size [Lx, Ly, Lz] (m).
+    /// Inner box size [Lx, Ly, Lz] (m): the box, or the cylinder's bounding box.
     pub box_size_m: [f64; 3],
+    /// The cavity's shape inside `box_size_m`.
+    pub container: crate::model::Container,
     /// The grains (radii, masses, material).
     pub grains: Grains,
     /// Contact laws (grain–grain, grain–wall) and the attraction policy.

@@ -348,15 +348,21 @@ pub fn check(world: &DemWorld, residual_j: f64, relative_balance: f64) -> Result
             });
         }
         let o = world.box_origin();
-        let (x, y, z) = (p[0] - o[0], p[1] - o[1], p[2] - o[2]);
+        let q = [p[0] - o[0], p[1] - o[1], p[2] - o[2]];
         let r = world.radius[i];
-        if x < -r || x > b[0] + r || y < -r || y > b[1] + r || z < -r || z > b[2] + r {
+        // the centre more than a radius beyond a wall (x < −r, x > Lx + r, …; ρ > R_c + r)
+        if world
+            .container
+            .overlaps(b, q, r)
+            .iter()
+            .any(|&z| z > 2.0 * r)
+        {
             return Err(SimError::Unstable {
                 t_s: t,
                 reason: format!(
-                    "grain {id} left the box (centre at {:?} m, box corner at {:?} m): contacts too stiff for the \
+                    "grain {id} left the {} (centre at {:?} m, box corner at {:?} m): contacts too stiff for the \
                      time step or impact speeds above the auto-dt estimate; lower the time step or its fraction of the contact time",
-                    p, o
+                    world.container.name(), p, o
                 ),
             });
         }

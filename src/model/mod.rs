@@ -2,6 +2,7 @@
 //! system under harmonic base excitation (2.1.2), its closed-form solution between events and
 //! its analytic steady-state amplitude (2.1.21); and what every run reports ([`summary`]).
 
+pub mod container;
 pub mod dem_extras;
 pub mod primary;
 pub mod rotation;
@@ -15,6 +16,7 @@ pub mod summary;
 /// and says when that happened.
 pub const PHYSICS_REVISION: u32 = 1;
 
+pub use container::{Container, Cylinder};
 pub use dem_extras::DemExtras;
 pub use primary::{base_motion, Anchor, BoxDrive, PrimarySystem, Sdof};
 pub use rotation::FrameRotation;

@@ -216,6 +216,8 @@ pub struct GrainState<'a> {
     /// The container's corner (its floor, x = y = 0) (m): walls at origin + {0, L} on each
     /// axis.
     pub box_origin: [f64; 3],
+    /// The cavity's shape inside the box (a box, or a cylinder inscribed in it).
+    pub container: crate::model::Container,
 }
 
 /// Receives what a run emits: its samples, stroboscopic points, particle snapshots and

@@ -61,6 +61,9 @@ pub fn write_grains_vtp(g: &GrainState<'_>, path: &Path) -> std::io::Result<()> 
 /// # Errors
 /// I/O errors.
 pub fn write_box_vtp(g: &GrainState<'_>, path: &Path) -> std::io::Result<()> {
+    if let crate::model::Container::Cylinder(c) = g.container {
+        return write_cylinder_vtp(&c, g.box_origin, path);
+    }
     let [lx, ly, lz] = g.box_size;
     let o = g.box_origin;
     let corners = (0..8).map(|c| {
@@ -85,6 +88,45 @@ pub fn write_box_vtp(g: &GrainState<'_>, path: &Path) -> std::io::Result<()> {
     s.push_str("      <Polys>\n");
     index_array(&mut s, "connectivity", FACES.iter().flatten().copied());
     index_array(&mut s, "offsets", (1..=6).map(|k| 4 * k));
+    s.push_str("      </Polys>\n");
+    footer(&mut s);
+    write_atomically(path, &s)
+}
+
+/// Sides of the polygon a cylinder's circle is drawn as.
+const CYLINDER_SIDES: usize = 48;
+
+/// Writes a cylinder (bounding box corner at `origin`) as VTK XML PolyData: its two end circles
+/// as polygons of [`CYLINDER_SIDES`] sides, the curved wall as as many quads.
+///
+/// # Errors
+/// I/O errors.
+fn write_cylinder_vtp(
+    c: &crate::model::Cylinder,
+    origin: [f64; 3],
+    path: &Path,
+) -> std::io::Result<()> {
+    let (a, (u, v)) = (c.axis, c.across());
+    let k = CYLINDER_SIDES;
+    let ring = |end: usize| {
+        (0..k).map(move |j| {
+            let phi = std::f64::consts::TAU * j as f64 / k as f64;
+            let mut p = origin;
+            p[u] += c.radius_m * (1.0 + phi.cos());
+            p[v] += c.radius_m * (1.0 + phi.sin());
+            p[a] += end as f64 * c.length_m;
+            p
+        })
+    };
+    let mut s = String::with_capacity(8192);
+    header(&mut s, 2 * k, 0, k + 2);
+    points(&mut s, ring(0).chain(ring(1)));
+    s.push_str("      <Polys>\n");
+    let sides = (0..k).flat_map(|j| [j, (j + 1) % k, k + (j + 1) % k, k + j]);
+    let caps = (0..k).rev().chain(k..2 * k);
+    index_array(&mut s, "connectivity", sides.chain(caps));
+    let offsets = (1..=k).map(|j| 4 * j).chain([4 * k + k, 4 * k + 2 * k]);
+    index_array(&mut s, "offsets", offsets);
     s.push_str("      </Polys>\n");
     footer(&mut s);
     write_atomically(path, &s)

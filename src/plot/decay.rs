@@ -10,13 +10,19 @@ use plotters::prelude::*;
 use super::common::{self, check_finite, check_len, draw_err, series_color, Figure};
 use crate::error::PlotError;
 
-/// The figure: one marker per cycle, joined in cycle order.
-#[derive(Debug, Clone, PartialEq)]
+/// The figure: one marker per cycle, joined in cycle order; optionally the primary's own
+/// damping ratio as a dashed line and the zones of [`crate::analysis::decay_zones`].
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct DecayFigure<'a> {
     /// Cycle amplitudes a_k (m), all > 0.
     pub amplitude_m: &'a [f64],
     /// Equivalent damping ratios ζ_k (–), same length.
     pub damping_ratio: &'a [f64],
+    /// The primary's own damping ratio ζ₀ (–), drawn dashed.
+    pub primary_damping_ratio: Option<f64>,
+    /// Amplitudes (m) where zone I ends and zone III starts, drawn as dotted verticals with
+    /// the zones' numerals between them.
+    pub zone_edges_m: Option<[f64; 2]>,
 }
 
 impl Figure for DecayFigure<'_> {
@@ -105,7 +111,68 @@ impl Figure for DecayFigure<'_> {
         chart
             .draw_series(pts.iter().map(|&p| Circle::new(p, 4, color.filled())))
             .map_err(draw_err)?;
+        if let Some(z0) = self.primary_damping_ratio {
+            let grey = BLACK.mix(0.6);
+            chart
+                .draw_series(DashedLineSeries::new(
+                    [(a_lo, z0), (a_hi, z0)],
+                    8,
+                    5,
+                    grey.stroke_width(2),
+                ))
+                .map_err(draw_err)?
+                .label(format!("the primary's own ζ₀ = {z0:.4}"))
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], grey.stroke_width(2))
+                });
+        }
+        if let Some([liquid, solid]) = self.zone_edges_m {
+            self.draw_zones(&mut chart, (a_lo, a_hi), z_hi, [liquid, solid])?;
+        }
         common::legend(&mut chart, SeriesLabelPosition::UpperRight)
+    }
+}
+
+impl DecayFigure<'_> {
+    /// Dotted verticals at the zone edges (amplitude decreasing to the left: zone III at the
+    /// small amplitudes) and the numerals I, II, III at the top of each zone.
+    fn draw_zones<DB: DrawingBackend, X: Ranged<ValueType = f64>>(
+        &self,
+        chart: &mut ChartContext<'_, DB, Cartesian2d<X, plotters::coord::types::RangedCoordf64>>,
+        (a_lo, a_hi): (f64, f64),
+        z_hi: f64,
+        [liquid, solid]: [f64; 2],
+    ) -> Result<(), PlotError> {
+        let edge = BLACK.mix(0.5);
+        for a in [liquid, solid] {
+            if a > a_lo && a < a_hi {
+                chart
+                    .draw_series(DashedLineSeries::new(
+                        [(a, 0.0), (a, z_hi)],
+                        3,
+                        4,
+                        edge.stroke_width(1),
+                    ))
+                    .map_err(draw_err)?;
+            }
+        }
+        // each numeral at the geometric middle of its zone's amplitudes
+        let mid = |lo: f64, hi: f64| (lo.max(a_lo) * hi.min(a_hi)).sqrt();
+        let zones = [
+            ("I", mid(liquid, a_hi)),
+            ("II", mid(solid, liquid)),
+            ("III", mid(a_lo, solid)),
+        ];
+        let font = common::label_font();
+        chart
+            .draw_series(
+                zones
+                    .iter()
+                    .filter(|(_, a)| a.is_finite())
+                    .map(|(name, a)| Text::new(name.to_string(), (*a, 0.72 * z_hi), font.clone())),
+            )
+            .map_err(draw_err)?;
+        Ok(())
     }
 }
 

@@ -24,7 +24,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::contact::material::Material;
 
+mod container;
 mod validate;
+
+pub(crate) use container::box_from_cylinder;
+pub use container::{AxisName, ContainerKind};
 
 /// Contact law family of the scene (`damper.contact`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -107,6 +111,19 @@ pub enum SnapshotFormat {
 pub struct DemParams {
     /// Inner box size [Lx, Ly, Lz] (m). The floor is at the box position z, the ceiling Lz above.
     pub r#box: [f64; 3],
+    /// Shape of the cavity: `"box"` (default, of size `box`) or `"cylinder"` (`diameter`,
+    /// `length`, `axis`; `box` is then its bounding box, filled in).
+    #[serde(default, skip_serializing_if = "ContainerKind::is_box")]
+    pub container: ContainerKind,
+    /// A cylinder's inner diameter D (m).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub diameter: Option<f64>,
+    /// A cylinder's inner length L between its end caps (m).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub length: Option<f64>,
+    /// A cylinder's axis: `"x"`, `"y"` or `"z"` (default `"z"`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub axis: Option<AxisName>,
     /// Number of spheres. May be left out when `mass` is given.
     pub count: usize,
     /// Total grain mass (kg), instead of `count`: the bed holds round(mass / m_grain) grains of
@@ -251,6 +268,10 @@ impl DemParams {
     pub fn thesis_b() -> Self {
         DemParams {
             r#box: [0.03675, 0.03675, 0.1225],
+            container: ContainerKind::Box,
+            diameter: None,
+            length: None,
+            axis: None,
             count: 250,
             mass: None,
             radius: Some(0.003),

@@ -206,6 +206,7 @@ pub fn dem_model(params: &DemParams) -> Result<DemModel, SceneError> {
     );
     let model = DemModel {
         box_size_m: params.r#box,
+        container: params.container_shape(),
         grains,
         contact: contact_model(params)?,
         rotations: params.rotations,

@@ -312,7 +312,7 @@ fn dem_plan(d: &DemSetup, duration_s: f64) -> Result<RunPlan, SceneError> {
         steps,
         samples: 0.0,
         snapshot_files,
-        fill_fraction: Some(solid / (lx * ly * lz)),
+        fill_fraction: Some(solid / d.model.container.volume_m3([lx, ly, lz])),
         output_bytes: snapshot_bytes_per_grain * n,
         run_time_s: steps * n.max(1.0) / DEM_GRAIN_STEPS_PER_S,
         sample_interval_s: 0.0,

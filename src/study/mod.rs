@@ -2,7 +2,7 @@
 //!
 //! [`reproduce::reproduce`] regenerates the figure set of SPEC §7 (`pdamp reproduce`): the
 //! orchestrator (`reproduce.rs`) calls one file per figure family (`impact_frf`, `impact_gap`,
-//! `impact_series`, `impact_regimes`, `dem_figures`, `chapter4`, `saeki`), which share `pipeline`
+//! `impact_series`, `impact_regimes`, `dem_figures`, `chapter4`, `saeki`, `els`), which share `pipeline`
 //! (sweeps and runs) and `kit` (scene B's values, fits, shared drawings); `readme` writes
 //! `OUT/README.md` from the [`ReproduceReport`], whose commands are
 //! [`command::Command`]s built from the sweeps and runs that were made. Imports go one way: orchestrator → families →
@@ -12,6 +12,7 @@ pub mod chapter4;
 pub mod check;
 pub mod command;
 pub mod dem_figures;
+mod els;
 mod impact_frf;
 mod impact_gap;
 mod impact_regimes;

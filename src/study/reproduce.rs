@@ -141,7 +141,11 @@ pub fn reproduce(
         },
     }
     // ---- the linear-DEM paper's dampers ----
-    if super::saeki::NAMES.iter().any(|n| want(n)) {
+    let paper_wanted = super::saeki::NAMES
+        .iter()
+        .chain(&super::els::NAMES)
+        .any(|n| want(n));
+    if paper_wanted {
         match (&s.dem, opts.skip_dem, dem_figures::available()) {
             (None, _, _) => skipped.push(format!(
                 "linear-DEM paper figures: not part of {} mode (use --quick or --full)",
@@ -149,7 +153,14 @@ pub fn reproduce(
             )),
             (Some(_), true, _) => skipped.push("linear-DEM paper figures: --no-dem".into()),
             (Some(_), false, Err(why)) => skipped.push(format!("linear-DEM paper figures: {why}")),
-            (Some(_), false, Ok(())) => figures.push(super::saeki::saeki_materials(&ctx)?),
+            (Some(_), false, Ok(())) => {
+                if super::saeki::NAMES.iter().any(|n| want(n)) {
+                    figures.push(super::saeki::saeki_materials(&ctx)?);
+                }
+                if super::els::NAMES.iter().any(|n| want(n)) {
+                    figures.push(super::els::els_decay(&ctx)?);
+                }
+            }
         }
     }
     if let (Some(e0), Some(e8)) = (&frf_e0, &frf_e8) {

@@ -87,7 +87,19 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             p.mass, p.gap, p.restitution
         ),
         Damper::Dem(d) => {
-            println!("damper: dem, {} grains, box {:?} m", d.count, d.r#box);
+            match d.container_shape() {
+                pdamp::model::Container::Box => {
+                    println!("damper: dem, {} grains, box {:?} m", d.count, d.r#box)
+                }
+                pdamp::model::Container::Cylinder(c) => println!(
+                    "damper: dem, {} grains, cylinder D = {} m, L = {} m along {} (box {:?} m)",
+                    d.count,
+                    2.0 * c.radius_m,
+                    c.length_m,
+                    ["x", "y", "z"][c.axis],
+                    d.r#box
+                ),
+            }
             println!(
                 "grains: {}ρ = {} kg/m³, E = {:e} Pa, ν = {}, μ = {}",
                 d.material

@@ -72,8 +72,42 @@ fn auto_group(table: &Table) -> Option<String> {
     (keys.len() == 1).then(|| keys[0].clone())
 }
 
+/// The drive kind of the sweep whose table is `input`, read from the `sweep.json` beside it
+/// (its scene and `--set`s; `None` without one).
+fn sweep_drive_kind(input: &std::path::Path) -> Option<String> {
+    let spec = input.parent()?.join("sweep.json");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(spec).ok()?).ok()?;
+    let set_kind = json["set"].as_array().and_then(|sets| {
+        sets.iter().rev().find_map(|a| {
+            let text = a.as_str().map(str::to_string).or_else(|| {
+                let (k, v) = (a.get(0)?.as_str()?, a.get(1)?);
+                Some(format!("{k}={v}"))
+            })?;
+            let (k, v) = text.split_once('=')?;
+            (k.trim() == "excitation.kind").then(|| v.trim().trim_matches('"').to_string())
+        })
+    });
+    let scene: toml::Table = json["scene"].as_str()?.parse().ok()?;
+    let kind = scene
+        .get("excitation")
+        .and_then(|e| e.get("kind"))
+        .and_then(toml::Value::as_str)
+        .map(str::to_string);
+    set_kind.or(kind)
+}
+
 /// Run `pdamp fit-frf`.
 pub fn run(args: Args) -> anyhow::Result<()> {
+    if let Some(kind) = sweep_drive_kind(&args.input).filter(|k| k != "base") {
+        bail!(
+            "{}: the sweep's drive is excitation.kind = \"{kind}\"; fit-frf fits the base-drive \
+             response (2.1.21) Z = U sqrt((K² + (CΩ)²)/((K − MΩ²)² + (CΩ)²)) and would misread it \
+             (a force drive's response is F0 / sqrt((K − MΩ²)² + (CΩ)²); a free decay has none: \
+             its damping is in decay.csv)",
+            args.input.display()
+        );
+    }
     let table = Table::read(&args.input)?;
     let f = table.f64_column("frequency_hz")?;
     let z = table.f64_column("amplitude_m")?;

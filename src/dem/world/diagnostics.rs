@@ -137,23 +137,12 @@ impl DemWorld {
         s
     }
 
-    /// Overlaps with the six walls (x−, x+, y−, y+, floor, ceiling) (m); ≤ 0 = no contact.
+    /// Overlaps with the six walls (x−, x+, y−, y+, floor, ceiling; a cylinder's in the slots
+    /// of [`crate::model::container`]) (m); ≤ 0 = no contact.
     pub fn wall_overlaps(&self, i: usize) -> [f64; 6] {
-        let (p, r, b, o) = (
-            self.pos[i],
-            self.radius[i],
-            self.box_size,
-            self.box_origin(),
-        );
-        let (x, y, z) = (p[0] - o[0], p[1] - o[1], p[2] - o[2]);
-        [
-            r - x,
-            r - (b[0] - x),
-            r - y,
-            r - (b[1] - y),
-            r - z,
-            r - (b[2] - z),
-        ]
+        let (p, o) = (self.pos[i], self.box_origin());
+        let q = [p[0] - o[0], p[1] - o[1], p[2] - o[2]];
+        self.container.overlaps(self.box_size, q, self.radius[i])
     }
 
     /// Total linear momentum Σ m v (kg m/s).

@@ -314,6 +314,10 @@ impl DemWorld {
                     &self.cross_response
                 },
                 box_size: b,
+                cylinder: match self.container {
+                    crate::model::Container::Box => None,
+                    crate::model::Container::Cylinder(c) => Some(c),
+                },
                 origin,
                 ceil: origin[2] + b[2],
                 wall_v: self.drive.direction.map(|d| d * self.box_v_pred),

@@ -37,6 +37,7 @@ impl DemWorld {
                 force: &self.force,
                 box_size: self.box_size,
                 box_origin: self.box_origin(),
+                container: self.container,
             };
         }
         let box_origin = self.box_origin();
@@ -64,6 +65,7 @@ impl DemWorld {
             force: &b.force,
             box_size: self.box_size,
             box_origin,
+            container: self.container,
         }
     }
 

@@ -70,8 +70,10 @@ pub struct DemWorld {
     pub(super) inv_inertia: Vec<f64>,
     /// Orientations (only when the scene asks for them).
     pub orientation: Option<Vec<UnitQuaternion<f64>>>,
-    /// Inner box size [Lx, Ly, Lz] (m).
+    /// Inner box size [Lx, Ly, Lz] (m): the box, or the cylinder's bounding box.
     pub box_size: [f64; 3],
+    /// The cavity's shape inside `box_size`.
+    pub container: crate::model::Container,
     /// Box displacement along the drive axis `drive.direction` d (m): the box's corner (its
     /// floor, x = y = 0 corner) is at `box_z`·d ([`DemWorld::box_origin`]); with the default
     /// vertical axis, the floor's height.
@@ -286,6 +288,7 @@ impl DemWorld {
                 .orientations
                 .then(|| vec![UnitQuaternion::identity(); n]),
             box_size: model.box_size_m,
+            container: model.container,
             box_z: 0.0,
             box_v: 0.0,
             box_a: 0.0,

@@ -52,6 +52,7 @@ pub fn decay(
     let fig = DecayFigure {
         amplitude_m: &amplitude_m,
         damping_ratio: &damping_ratio,
+        ..DecayFigure::default()
     };
     draw(&fig, out, opts)?;
     write_plotted_data(first, out, &cycle, &amplitude_m, &damping_ratio)

@@ -219,6 +219,7 @@ impl DemParams {
         {
             positive(k, v, "metres")?;
         }
+        self.validate_container()?;
         if self.count == 0 {
             return Err(SceneError::invalid("damper.count", 0, "must be ≥ 1 grain"));
         }
@@ -315,16 +316,18 @@ impl DemParams {
             ));
         }
         let v_grains = self.count as f64 * 4.0 / 3.0 * std::f64::consts::PI * rmax.powi(3);
-        let v_box = self.r#box[0] * self.r#box[1] * self.r#box[2];
+        let shape = self.container_shape();
+        let v_box = shape.volume_m3(self.r#box);
         if v_grains > 0.58 * v_box {
             return Err(SceneError::invalid(
                 "damper.count",
                 self.count,
                 format!(
-                    "{} grains up to R = {rmax:.3e} m fill {:.0} % of the box; a random packing holds \
-                     at most ~58 %: lower count or radius, or enlarge damper.box",
+                    "{} grains up to R = {rmax:.3e} m fill {:.0} % of the {}; a random packing holds \
+                     at most ~58 %: lower count or radius, or enlarge the container",
                     self.count,
-                    100.0 * v_grains / v_box
+                    100.0 * v_grains / v_box,
+                    shape.name()
                 ),
             ));
         }

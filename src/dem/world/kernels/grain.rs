@@ -11,6 +11,7 @@ use crate::contact::response::{
 use crate::dem::blocks::GRAIN_CHUNK;
 use crate::dem::team::View;
 use crate::integrate::half_kick;
+use crate::model::Cylinder;
 use crate::neighbor::J_ROLE;
 use crate::simd::Simd;
 
@@ -95,6 +96,9 @@ pub(crate) struct GrainCtx<'a> {
     /// States of the cross pairs (their responses, from the pair pass).
     pub(crate) cross_state: &'a [PairResponse],
     pub(crate) box_size: [f64; 3],
+    /// The cylinder inscribed in the box, if the cavity is one (its curved wall and end caps
+    /// replace the box's six walls, [`crate::model::container`]).
+    pub(crate) cylinder: Option<Cylinder>,
     /// The box's corner (floor, x = y = 0) (m).
     pub(crate) origin: [f64; 3],
     /// Height of the ceiling, `origin[2] + box_size[2]` (m).
@@ -203,13 +207,18 @@ pub(crate) fn grain_chunk_impl<
         // the six tests, `&` not `&&`: a small box has grains near some wall at random)
         let (p, o) = (ctx.pos[i], ctx.origin);
         let (x, y) = (p[0] - o[0], p[1] - o[1]);
-        if (x > r)
-            & (x < ctx.box_size[0] - r)
-            & (y > r)
-            & (y < ctx.box_size[1] - r)
-            & (p[2] > o[2] + r)
-            & (p[2] < ctx.ceil - r)
-        {
+        let clear = match &ctx.cylinder {
+            None => {
+                (x > r)
+                    & (x < ctx.box_size[0] - r)
+                    & (y > r)
+                    & (y < ctx.box_size[1] - r)
+                    & (p[2] > o[2] + r)
+                    & (p[2] < ctx.ceil - r)
+            }
+            Some(c) => c.clear_of_walls([x, y, p[2] - o[2]], r),
+        };
+        if clear {
             if T::HISTORY {
                 *hist = [[0.0; 3]; 6];
             }
@@ -303,11 +312,15 @@ pub(crate) fn grain_chunk_impl<
 }
 
 /// Overlaps of grain i with the walls x−, x+, y−, y+, floor, ceiling (m); ≤ 0: no contact.
-/// Wall w has the normal ±e_{w/2}, + for even w (pointing into the box).
+/// Wall w has the normal ±e_{w/2}, + for even w (pointing into the box). In a cylinder, the
+/// slots of [`crate::model::container`].
 #[inline(always)]
 pub(crate) fn wall_overlaps(ctx: &GrainCtx, i: usize) -> [f64; 6] {
     let (p, r, b, o) = (ctx.pos[i], ctx.radius[i], ctx.box_size, ctx.origin);
     let (x, y) = (p[0] - o[0], p[1] - o[1]);
+    if let Some(c) = &ctx.cylinder {
+        return c.overlaps([x, y, p[2] - o[2]], r);
+    }
     [
         r - x,
         r - (b[0] - x),
@@ -327,7 +340,8 @@ pub(crate) struct WallLanes<L> {
 }
 
 impl<L: Lanes> WallLanes<L> {
-    /// Puts grain i's contact with wall `w` (normal ±e_{w/2}, + for even w) in lane `l`.
+    /// Puts grain i's contact with wall `w` (normal ±e_{w/2}, + for even w; a cylinder's
+    /// curved wall: towards its axis) in lane `l`.
     #[inline(always)]
     pub(crate) fn gather(&mut self, ctx: &GrainCtx, i: usize, w: usize, l: usize) {
         let r = ctx.radius[i];
@@ -336,7 +350,13 @@ impl<L: Lanes> WallLanes<L> {
         let k = &mut self.kin;
         k.overlap_m.set(l, wall_overlaps(ctx, i)[w]);
         let mut n = [0.0; 3];
-        n[axis] = s;
+        match &ctx.cylinder {
+            None => n[axis] = s,
+            Some(c) => {
+                let (p, o) = (ctx.pos[i], ctx.origin);
+                n = c.normal([p[0] - o[0], p[1] - o[1], p[2] - o[2]], w);
+            }
+        }
         set_lane(&mut k.normal, l, n);
         set_lane(&mut k.spin, l, [r * om[0], r * om[1], r * om[2]]);
         let wv = ctx.wall_v;

@@ -1,0 +1,238 @@
+//! `damper.container`: the DEM damper's cavity, a box (`box = [Lx, Ly, Lz]`, the default) or a
+//! circular cylinder:
+//!
+//! ```toml
+//! [damper]
+//! kind = "dem"
+//! container = "cylinder"
+//! diameter = 0.0125   # m, inner
+//! length = 0.037      # m, between the end caps
+//! axis = "z"          # "x", "y" or "z" (default "z")
+//! ```
+//!
+//! A cylinder's `box` is its bounding box (the length along the axis, the diameter across),
+//! filled in before the scene is read, so that everything sized by the box (the neighbour
+//! grid, the rotating frame's centre, the packing's lattice) sees the cylinder's extent.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::SceneError;
+use crate::model::{Container, Cylinder};
+
+use super::DemParams;
+
+/// Shape of the cavity (`damper.container`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ContainerKind {
+    /// A rectangular box of inner size `box`.
+    #[default]
+    Box,
+    /// A circular cylinder of inner `diameter` and `length` along `axis`.
+    Cylinder,
+}
+
+impl ContainerKind {
+    /// True for the default (left out of saved scenes).
+    pub fn is_box(&self) -> bool {
+        *self == ContainerKind::Box
+    }
+}
+
+/// A coordinate axis (`damper.axis`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AxisName {
+    /// x
+    X,
+    /// y
+    Y,
+    /// z
+    Z,
+}
+
+impl AxisName {
+    /// 0, 1 or 2.
+    pub fn index(self) -> usize {
+        match self {
+            AxisName::X => 0,
+            AxisName::Y => 1,
+            AxisName::Z => 2,
+        }
+    }
+}
+
+const CYLINDER_KEYS: [&str; 3] = ["diameter", "length", "axis"];
+
+/// Fills a cylinder's `box` (its bounding box) in a raw `[damper]` table (`kind = "dem"`,
+/// `container = "cylinder"`). Returns whether the table changed.
+///
+/// # Errors
+/// [`SceneError`] naming the key: a cylinder without `diameter` or `length` (or with values
+/// that are not positive numbers), an unknown `axis`, a cylinder's `box` other than its
+/// bounding box, or a cylinder's keys in a box.
+pub(crate) fn box_from_cylinder(d: &mut toml::Table) -> Result<bool, SceneError> {
+    if d.get("kind").and_then(toml::Value::as_str) != Some("dem") {
+        return Ok(false);
+    }
+    let cylinder = match d.get("container") {
+        None => false,
+        Some(v) => match v.as_str() {
+            Some("box") => false,
+            Some("cylinder") => true,
+            _ => {
+                return Err(SceneError::invalid(
+                    "damper.container",
+                    v,
+                    "must be \"box\" (with damper.box) or \"cylinder\" (with damper.diameter, \
+                     damper.length, damper.axis)",
+                ))
+            }
+        },
+    };
+    if !cylinder {
+        if let Some(k) = CYLINDER_KEYS.iter().find(|k| d.contains_key(**k)) {
+            return Err(SceneError::invalid(
+                format!("damper.{k}"),
+                &d[*k],
+                "is a cylinder's key: set damper.container = \"cylinder\" (or leave it out and \
+                 give the box's size as damper.box = [Lx, Ly, Lz])",
+            ));
+        }
+        return Ok(false);
+    }
+    let num = |key: &str| -> Result<f64, SceneError> {
+        let v = d.get(key).ok_or_else(|| {
+            SceneError::invalid(
+                format!("damper.{key}"),
+                "(missing)",
+                "a cylinder needs damper.diameter and damper.length (m, inner)",
+            )
+        })?;
+        v.as_float()
+            .or_else(|| v.as_integer().map(|i| i as f64))
+            .filter(|x| x.is_finite() && *x > 0.0)
+            .ok_or_else(|| {
+                SceneError::invalid(format!("damper.{key}"), v, "must be a number > 0 (m)")
+            })
+    };
+    let (diameter, length) = (num("diameter")?, num("length")?);
+    let axis = match d.get("axis") {
+        None => AxisName::Z,
+        Some(v) => match v.as_str() {
+            Some("x") => AxisName::X,
+            Some("y") => AxisName::Y,
+            Some("z") => AxisName::Z,
+            _ => {
+                return Err(SceneError::invalid(
+                    "damper.axis",
+                    v,
+                    "must be \"x\", \"y\" or \"z\" (the cylinder's axis)",
+                ))
+            }
+        },
+    };
+    let b = Cylinder::new(axis.index(), diameter, length).bounding_box();
+    if let Some(given) = d.get("box") {
+        let same = given.as_array().is_some_and(|a| {
+            a.len() == 3
+                && a.iter().zip(b).all(|(v, l)| {
+                    v.as_float()
+                        .or_else(|| v.as_integer().map(|i| i as f64))
+                        .is_some_and(|x| (x - l).abs() <= 1e-12 * l)
+                })
+        });
+        if !same {
+            return Err(SceneError::invalid(
+                "damper.box",
+                given,
+                format!(
+                    "a cylinder's box is its bounding box {b:?} m (from damper.diameter and \
+                     damper.length): leave damper.box out"
+                ),
+            ));
+        }
+        return Ok(false);
+    }
+    d.insert(
+        "box".into(),
+        toml::Value::Array(b.iter().map(|&l| toml::Value::Float(l)).collect()),
+    );
+    Ok(true)
+}
+
+impl DemParams {
+    /// The cavity's shape in the engine's terms (after [`DemParams::validate`]).
+    pub fn container_shape(&self) -> Container {
+        match (self.container, self.diameter, self.length) {
+            (ContainerKind::Cylinder, Some(d), Some(l)) => Container::Cylinder(Cylinder::new(
+                self.axis.unwrap_or(AxisName::Z).index(),
+                d,
+                l,
+            )),
+            _ => Container::Box,
+        }
+    }
+
+    /// The container's keys agree: a cylinder has a diameter and a length whose bounding box
+    /// is `box`; a box has none of the cylinder's keys.
+    ///
+    /// # Errors
+    /// [`SceneError`] naming the key.
+    pub(super) fn validate_container(&self) -> Result<(), SceneError> {
+        if self.container.is_box() {
+            let given = [
+                ("damper.diameter", self.diameter.is_some()),
+                ("damper.length", self.length.is_some()),
+                ("damper.axis", self.axis.is_some()),
+            ];
+            if let Some((k, _)) = given.iter().find(|(_, g)| *g) {
+                return Err(SceneError::invalid(
+                    *k,
+                    "(given)",
+                    "is a cylinder's key: set damper.container = \"cylinder\"",
+                ));
+            }
+            return Ok(());
+        }
+        if self.packing == super::PackingKind::AdvancingFront {
+            return Err(SceneError::invalid(
+                "damper.packing",
+                "advancing-front",
+                "the advancing-front packing fills boxes only: use \"lattice\" in a cylinder",
+            ));
+        }
+        for (k, v) in [
+            ("damper.diameter", self.diameter),
+            ("damper.length", self.length),
+        ] {
+            match v {
+                Some(x) if x.is_finite() && x > 0.0 => {}
+                _ => {
+                    return Err(SceneError::invalid(
+                        k,
+                        format!("{v:?}"),
+                        "a cylinder needs a diameter and a length > 0 (m)",
+                    ))
+                }
+            }
+        }
+        let b = match self.container_shape() {
+            Container::Cylinder(c) => c.bounding_box(),
+            Container::Box => self.r#box,
+        };
+        if self
+            .r#box
+            .iter()
+            .zip(b)
+            .any(|(x, l)| (x - l).abs() > 1e-12 * l)
+        {
+            return Err(SceneError::invalid(
+                "damper.box",
+                format!("{:?}", self.r#box),
+                format!("a cylinder's box is its bounding box {b:?} m: leave damper.box out"),
+            ));
+        }
+        Ok(())
+    }
+}
