@@ -24,11 +24,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::contact::material::Material;
 
-mod container;
+pub(crate) mod container;
 mod validate;
-
-pub(crate) use container::box_from_cylinder;
-pub use container::{AxisName, ContainerKind};
 
 /// Contact law family of the scene (`damper.contact`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -58,6 +55,47 @@ pub enum TangentialKind {
     /// (`linear` only).
     #[serde(rename = "linear-spring", alias = "linear_spring")]
     LinearSpring,
+}
+
+/// Shape of the cavity (`damper.container`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ContainerKind {
+    /// A rectangular box of inner size `box`.
+    #[default]
+    Box,
+    /// A circular cylinder of inner `diameter` and `length` along `axis`.
+    Cylinder,
+}
+
+impl ContainerKind {
+    /// True for the default (left out of saved scenes).
+    pub fn is_box(&self) -> bool {
+        *self == ContainerKind::Box
+    }
+}
+
+/// A coordinate axis (`damper.axis`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AxisName {
+    /// x
+    X,
+    /// y
+    Y,
+    /// z
+    Z,
+}
+
+impl AxisName {
+    /// 0, 1 or 2.
+    pub fn index(self) -> usize {
+        match self {
+            AxisName::X => 0,
+            AxisName::Y => 1,
+            AxisName::Z => 2,
+        }
+    }
 }
 
 /// How the initial bed is built (`damper.packing`).

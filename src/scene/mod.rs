@@ -104,7 +104,7 @@ impl Scene {
             // then `mass` gives the count
             edited |= dem::count_from_mass(d)?;
             // a cylinder's bounding box is its `box`
-            edited |= dem::box_from_cylinder(d)?;
+            edited |= dem::container::box_from_cylinder(d)?;
         }
         let scene: Scene = if edited {
             table.try_into().map_err(parse_err)?

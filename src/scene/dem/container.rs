@@ -14,53 +14,10 @@
 //! filled in before the scene is read, so that everything sized by the box (the neighbour
 //! grid, the rotating frame's centre, the packing's lattice) sees the cylinder's extent.
 
-use serde::{Deserialize, Serialize};
-
 use crate::error::SceneError;
 use crate::model::{Container, Cylinder};
 
-use super::DemParams;
-
-/// Shape of the cavity (`damper.container`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum ContainerKind {
-    /// A rectangular box of inner size `box`.
-    #[default]
-    Box,
-    /// A circular cylinder of inner `diameter` and `length` along `axis`.
-    Cylinder,
-}
-
-impl ContainerKind {
-    /// True for the default (left out of saved scenes).
-    pub fn is_box(&self) -> bool {
-        *self == ContainerKind::Box
-    }
-}
-
-/// A coordinate axis (`damper.axis`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum AxisName {
-    /// x
-    X,
-    /// y
-    Y,
-    /// z
-    Z,
-}
-
-impl AxisName {
-    /// 0, 1 or 2.
-    pub fn index(self) -> usize {
-        match self {
-            AxisName::X => 0,
-            AxisName::Y => 1,
-            AxisName::Z => 2,
-        }
-    }
-}
+use super::{AxisName, ContainerKind, DemParams};
 
 const CYLINDER_KEYS: [&str; 3] = ["diameter", "length", "axis"];
 
