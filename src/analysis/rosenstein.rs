@@ -7,13 +7,14 @@
 //! delay vectors (read from the series, not copied) gives each reference's exact nearest
 //! neighbour outside the Theiler window in one pruned descent that skips the window's points
 //! (TISEAN grows a box radius from `-r` by 10 % per round until every reference has a
-//! neighbour: the same neighbour); the previous reference's neighbour, one step on, seeds the
-//! search. The tree is built in parallel (the halves of a split of more than 16 384 points at
-//! once: the same tree as a serial build's, its shape depending on N only). References are
-//! processed in fixed chunks in parallel and summed in chunk order (thread-count
-//! independent); within a chunk the logarithms of the squared distances are summed as running
-//! products (mantissa and binary exponent), one logarithm per Δn and chunk. Cost
-//! O(N log N + N · steps · m).
+//! neighbour: the same neighbour). The references are queried in the tree's point order, so
+//! that consecutive queries share their leaves in cache, in parallel over fixed blocks (each
+//! answer is exact, so neither order nor thread count changes it). The tree is built in
+//! parallel (the halves of a split of more than 16 384 points at once: the same tree as a
+//! serial build's, its shape depending on N only). The pairs are then followed in time order,
+//! in fixed chunks in parallel summed in chunk order (thread-count independent); within a
+//! chunk the logarithms of the squared distances are summed as running products (mantissa
+//! and binary exponent), one logarithm per Δn and chunk. Cost O(N log N + N · steps · m).
 
 use rayon::prelude::*;
 
@@ -200,7 +201,7 @@ fn run<const K: usize>(s: &[f64], o: &RosensteinOptions, eps0: f64) -> Result<Su
         tau,
         len: n_cand,
     };
-    let tree = ExclusionTree::new(&pts);
+    let nearest = ExclusionTree::new(&pts).all_nearest(&pts, n_ref, o.theiler);
     let len = o.steps + 1;
     let span_k = len + (K - 1) * tau;
     let eps0_2 = eps0 * eps0;
@@ -218,16 +219,17 @@ fn run<const K: usize>(s: &[f64], o: &RosensteinOptions, eps0: f64) -> Result<Su
             let mut e2s = vec![0.0f64; span_k];
             let mut since = 0u32;
             let mut refs = 0usize;
-            let mut stack = Vec::with_capacity(64);
-            let mut hint = None;
             let mut prev: Option<(usize, usize)> = None;
-            for n in c * CHUNK..((c + 1) * CHUNK).min(n_ref) {
-                let found = tree.nearest(&pts, n, o.theiler, hint, &mut stack);
-                // the previous reference's neighbour, one step on, seeds the next search
-                hint = found.map(|(j, _, _)| j + 1);
-                let Some((j, d2, duplicate)) = found else {
+            for (n, found) in nearest
+                .iter()
+                .enumerate()
+                .take(((c + 1) * CHUNK).min(n_ref))
+                .skip(c * CHUNK)
+            {
+                if found.j == u32::MAX {
                     continue;
-                };
+                }
+                let (j, d2, duplicate) = (found.j as usize, found.d2, found.duplicate);
                 // TISEAN: a reference with an exact duplicate is done in the first round
                 // (radius eps0) and keeps a neighbour only if one lies within eps0
                 if duplicate && d2 > eps0_2 {

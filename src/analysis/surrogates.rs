@@ -302,7 +302,6 @@ impl Prepared {
         // (order key of s_i, i): unique keys, so an unstable sort gives the one order; u32
         // indices: a series of 2^32 samples would need 32 GB for its spectrum alone
         let mut keyed: Vec<(u64, u32)> = (0..n as u32).map(|i| (0, i)).collect();
-        let mut previous: Vec<u32> = vec![u32::MAX; n];
         let scale = 1.0 / n as f64;
         let last = spec.len() - 1;
         let mut iterations = 0;
@@ -314,20 +313,16 @@ impl Prepared {
             self.forward
                 .process_with_scratch(&mut input, &mut spec, &mut fwd_scratch)
                 .expect("buffer lengths come from the plan");
-            for (k, c) in spec.iter_mut().enumerate() {
-                let a = self.amplitudes[k];
-                if k == 0 || (k == last && n.is_multiple_of(2)) {
-                    // real bins: DC keeps the data's mean, Nyquist keeps r's sign
-                    let sign = if k == 0 {
-                        self.spectrum[0].re.signum()
-                    } else if c.re < 0.0 {
-                        -1.0
-                    } else {
-                        1.0
-                    };
-                    *c = Complex::new(sign * a, 0.0);
-                    continue;
-                }
+            // real bins: DC keeps the data's mean, Nyquist (even N) keeps r's sign
+            spec[0] = Complex::new(self.spectrum[0].re.signum() * self.amplitudes[0], 0.0);
+            let inner = if n.is_multiple_of(2) {
+                let sign = if spec[last].re < 0.0 { -1.0 } else { 1.0 };
+                spec[last] = Complex::new(sign * self.amplitudes[last], 0.0);
+                1..last
+            } else {
+                1..last + 1
+            };
+            for (c, &a) in spec[inner.clone()].iter_mut().zip(&self.amplitudes[inner]) {
                 // |c| without hypot's care for overflow (|c|² is far below f64::MAX here)
                 let norm = (c.re * c.re + c.im * c.im).sqrt();
                 *c = if norm > 0.0 {
@@ -345,12 +340,12 @@ impl Prepared {
             for e in &mut keyed {
                 e.0 = total_order_key(s[e.1 as usize]);
             }
-            keyed.sort_unstable();
-            let mut same = true;
-            for (rank, (&(_, i), p)) in keyed.iter().zip(&mut previous).enumerate() {
-                r[i as usize] = self.sorted[rank];
-                same &= *p == i;
-                *p = i;
+            let moved = sort_nearly_sorted(&mut keyed);
+            // `keyed` was left in the previous iteration's order, so that order is unchanged
+            // iff the sort moved nothing (the first iteration starts from index order)
+            let same = iterations > 1 && !moved;
+            for (&(_, i), &v) in keyed.iter().zip(&self.sorted) {
+                r[i as usize] = v;
             }
             if same {
                 converged = true;
@@ -371,6 +366,33 @@ impl Prepared {
             discrepancy: rms / self.std,
         }
     }
+}
+
+/// Sorts `v` ascending; returns whether any element moved.
+///
+/// An insertion sort: from the second iteration on, `v` holds the previous iteration's order
+/// with new keys, and IAAFT changes that order less and less (none at all at convergence), so
+/// the sort costs O(N + inversions). After more than 8N moves (the first iterations, far from
+/// sorted) it finishes with `sort_unstable`. The pairs are distinct (unique indices), so the
+/// result is the one sorted order whichever sort makes it.
+fn sort_nearly_sorted(v: &mut [(u64, u32)]) -> bool {
+    let budget = v.len() * 8;
+    let mut moves = 0usize;
+    for i in 1..v.len() {
+        let x = v[i];
+        let mut j = i;
+        while j > 0 && v[j - 1] > x {
+            v[j] = v[j - 1];
+            j -= 1;
+        }
+        v[j] = x;
+        moves += i - j;
+        if moves > budget {
+            v.sort_unstable();
+            return true;
+        }
+    }
+    moves > 0
 }
 
 /// A `u64` whose unsigned order is [`f64::total_cmp`]'s order of `v`.
