@@ -84,6 +84,18 @@ pub fn fcc_lattice(
             ),
         ));
     }
+    Ok(lowest_jittered(sites, n, r_max, gap, seed))
+}
+
+/// The `n` lowest of `sites` (by z, then y, then x), each coordinate jittered by up to
+/// `gap` · `r_max` / 2 (m), seeded by `seed`, so that a dropped bed does not stay crystalline.
+pub(crate) fn lowest_jittered(
+    mut sites: Vec<[f64; 3]>,
+    n: usize,
+    r_max: f64,
+    gap: f64,
+    seed: u64,
+) -> Vec<[f64; 3]> {
     sites.sort_by(|p, q| {
         p[2].total_cmp(&q[2])
             .then(p[1].total_cmp(&q[1]))
@@ -97,7 +109,7 @@ pub fn fcc_lattice(
             *c += rng.random_range(-j..=j);
         }
     }
-    Ok(sites)
+    sites
 }
 
 #[cfg(test)]

@@ -9,8 +9,6 @@
 //! narrower than a grain. Alternate layers are turned by half a site. The n lowest sites are
 //! kept (z up), each jittered by up to gap · r_max / 2 (seeded), as the FCC lattice does.
 
-use rand::{RngExt, SeedableRng};
-
 use crate::error::{ModelError, Quantity};
 use crate::model::Cylinder;
 
@@ -81,20 +79,7 @@ pub fn cylinder_rings(
             sites.push(p);
         }
     }
-    sites.sort_by(|p, q| {
-        p[2].total_cmp(&q[2])
-            .then(p[1].total_cmp(&q[1]))
-            .then(p[0].total_cmp(&q[0]))
-    });
-    sites.truncate(n);
-    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-    let j = 0.5 * gap * r_max;
-    for p in &mut sites {
-        for c in p.iter_mut() {
-            *c += rng.random_range(-j..=j);
-        }
-    }
-    Ok(sites)
+    Ok(super::lattice::lowest_jittered(sites, n, r_max, gap, seed))
 }
 
 #[cfg(test)]
