@@ -124,8 +124,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         summary.model,
         pdamp::observe::fmt_num(summary.frequency_hz),
         summary.amplitude_m,
+        // (a free decay has no steady amplitude of the primary alone)
         summary
             .reference_amplitude_m
+            .filter(|_| summary.decay.is_none())
             .map(|r| format!(" (primary alone: {r:.6e} m)"))
             .unwrap_or_default(),
         if summary.impacts_per_cycle.is_finite() {
