@@ -133,6 +133,14 @@ pub fn stored_values(dir: &Path, key: &str) -> Option<Vec<toml::Value>> {
     manifest.values().into_iter().nth(i)
 }
 
+/// The scene every point of the sweep stored in `dir` shares (its `sweep.json`: the scene with
+/// the `--set` overrides applied, varied keys as in the base scene); `None` if `dir` holds no
+/// sweep or its scene no longer parses.
+pub fn stored_scene(dir: &Path) -> Option<SceneSource> {
+    let (scene, _, _) = Manifest::read(dir).ok()?.identity().ok()?;
+    Some(scene)
+}
+
 fn collect_sweep_dirs(dir: &Path, depth: usize, out: &mut Vec<PathBuf>) {
     if dir.join("sweep.json").is_file() {
         out.push(dir.to_path_buf());

@@ -72,34 +72,29 @@ fn auto_group(table: &Table) -> Option<String> {
     (keys.len() == 1).then(|| keys[0].clone())
 }
 
-/// The drive kind of the sweep whose table is `input`, read from the `sweep.json` beside it
-/// (its scene and `--set`s; `None` without one).
-fn sweep_drive_kind(input: &std::path::Path) -> Option<String> {
-    let spec = input.parent()?.join("sweep.json");
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(spec).ok()?).ok()?;
-    let set_kind = json["set"].as_array().and_then(|sets| {
-        sets.iter().rev().find_map(|a| {
-            let text = a.as_str().map(str::to_string).or_else(|| {
-                let (k, v) = (a.get(0)?.as_str()?, a.get(1)?);
-                Some(format!("{k}={v}"))
-            })?;
-            let (k, v) = text.split_once('=')?;
-            (k.trim() == "excitation.kind").then(|| v.trim().trim_matches('"').to_string())
-        })
-    });
-    let scene: toml::Table = json["scene"].as_str()?.parse().ok()?;
-    let kind = scene
-        .get("excitation")
-        .and_then(|e| e.get("kind"))
-        .and_then(toml::Value::as_str)
-        .map(str::to_string);
-    set_kind.or(kind)
+/// The drive kinds of the sweep whose table is `input`, from its `sweep.json` (the varied
+/// `excitation.kind`, or the kind of the scene its points share); empty without one.
+fn sweep_drive_kinds(input: &std::path::Path) -> Vec<String> {
+    use pdamp::sweep::catalog::{stored_scene, stored_values};
+    let Some(dir) = input.parent() else {
+        return Vec::new();
+    };
+    let name = |v: &toml::Value| v.as_str().map(str::to_string);
+    match stored_values(dir, "excitation.kind") {
+        Some(varied) => varied.iter().filter_map(name).collect(),
+        None => stored_scene(dir)
+            .and_then(|s| s.table().get("excitation")?.get("kind").and_then(name))
+            .into_iter()
+            .collect(),
+    }
 }
 
 /// Run `pdamp fit-frf`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    if let Some(kind) = sweep_drive_kind(&args.input).filter(|k| k != "base") {
+    if let Some(kind) = sweep_drive_kinds(&args.input)
+        .into_iter()
+        .find(|k| k != "base")
+    {
         bail!(
             "{}: the sweep's drive is excitation.kind = \"{kind}\"; fit-frf fits the base-drive \
              response (2.1.21) Z = U sqrt((K² + (CΩ)²)/((K − MΩ²)² + (CΩ)²)) and would misread it \

@@ -19,15 +19,13 @@ use crate::model::{Container, Cylinder};
 
 use super::{AxisName, ContainerKind, DemParams};
 
-const CYLINDER_KEYS: [&str; 3] = ["diameter", "length", "axis"];
-
 /// Fills a cylinder's `box` (its bounding box) in a raw `[damper]` table (`kind = "dem"`,
 /// `container = "cylinder"`). Returns whether the table changed.
 ///
 /// # Errors
-/// [`SceneError`] naming the key: a cylinder without `diameter` or `length` (or with values
-/// that are not positive numbers), an unknown `axis`, a cylinder's `box` other than its
-/// bounding box, or a cylinder's keys in a box.
+/// [`SceneError`] naming the key: an unknown `container`, a cylinder without `diameter` or
+/// `length` (or with values that are not positive numbers), an unknown `axis`. A `box` beside
+/// a cylinder's keys, and a cylinder's keys in a box, are [`DemParams::validate`]'s to refuse.
 pub(crate) fn box_from_cylinder(d: &mut toml::Table) -> Result<bool, SceneError> {
     if d.get("kind").and_then(toml::Value::as_str) != Some("dem") {
         return Ok(false);
@@ -47,15 +45,8 @@ pub(crate) fn box_from_cylinder(d: &mut toml::Table) -> Result<bool, SceneError>
             }
         },
     };
+    // a box (cylinder keys in it are refused by `validate_container`)
     if !cylinder {
-        if let Some(k) = CYLINDER_KEYS.iter().find(|k| d.contains_key(**k)) {
-            return Err(SceneError::invalid(
-                format!("damper.{k}"),
-                &d[*k],
-                "is a cylinder's key: set damper.container = \"cylinder\" (or leave it out and \
-                 give the box's size as damper.box = [Lx, Ly, Lz])",
-            ));
-        }
         return Ok(false);
     }
     let num = |key: &str| -> Result<f64, SceneError> {
@@ -89,28 +80,12 @@ pub(crate) fn box_from_cylinder(d: &mut toml::Table) -> Result<bool, SceneError>
             }
         },
     };
-    let b = Cylinder::new(axis.index(), diameter, length).bounding_box();
-    if let Some(given) = d.get("box") {
-        let same = given.as_array().is_some_and(|a| {
-            a.len() == 3
-                && a.iter().zip(b).all(|(v, l)| {
-                    v.as_float()
-                        .or_else(|| v.as_integer().map(|i| i as f64))
-                        .is_some_and(|x| (x - l).abs() <= 1e-12 * l)
-                })
-        });
-        if !same {
-            return Err(SceneError::invalid(
-                "damper.box",
-                given,
-                format!(
-                    "a cylinder's box is its bounding box {b:?} m (from damper.diameter and \
-                     damper.length): leave damper.box out"
-                ),
-            ));
-        }
+    // a box given (a saved scene's) is checked against the bounding box by
+    // `validate_container`
+    if d.contains_key("box") {
         return Ok(false);
     }
+    let b = Cylinder::new(axis.index(), diameter, length).bounding_box();
     d.insert(
         "box".into(),
         toml::Value::Array(b.iter().map(|&l| toml::Value::Float(l)).collect()),
@@ -147,7 +122,8 @@ impl DemParams {
                 return Err(SceneError::invalid(
                     *k,
                     "(given)",
-                    "is a cylinder's key: set damper.container = \"cylinder\"",
+                    "is a cylinder's key: set damper.container = \"cylinder\" (or leave it out and \
+                     give the box's size as damper.box = [Lx, Ly, Lz])",
                 ));
             }
             return Ok(());
@@ -187,7 +163,10 @@ impl DemParams {
             return Err(SceneError::invalid(
                 "damper.box",
                 format!("{:?}", self.r#box),
-                format!("a cylinder's box is its bounding box {b:?} m: leave damper.box out"),
+                format!(
+                    "a cylinder's box is its bounding box {b:?} m (from damper.diameter and \
+                     damper.length): leave damper.box out"
+                ),
             ));
         }
         Ok(())
