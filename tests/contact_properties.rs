@@ -233,13 +233,7 @@ fn world(
     omega: &[V3],
     box_v: f64,
 ) -> DemWorld {
-    let still = BoxDrive {
-        primary: None,
-        amplitude_m: 0.0,
-        frequency_hz: 0.0,
-        force_n: 0.0,
-        direction: [0.0, 0.0, 1.0],
-    };
+    let still = BoxDrive::STILL;
     let model = pdamp::setup::dem_model(&params(b, radius.len())).expect("valid bed");
     let mut w = DemWorld::new(&model, still, 1e-7, radius, pos).unwrap();
     w.gravity = [0.0; 3];

@@ -15,14 +15,6 @@ use pdamp::contact::{hertz_stiffness, LinearContactParams};
 use pdamp::dem::{BoxDrive, DemWorld};
 use pdamp::scene::dem::{ContactKind, DemParams};
 
-const STILL: BoxDrive = BoxDrive {
-    primary: None,
-    amplitude_m: 0.0,
-    frequency_hz: 0.0,
-    force_n: 0.0,
-    direction: [0.0, 0.0, 1.0],
-};
-
 fn params(gamma_n: f64) -> DemParams {
     let mut p = DemParams::thesis_b();
     p.r#box = [0.1, 0.1, 0.1];
@@ -39,7 +31,7 @@ fn two_sphere(p: &DemParams, v: f64, dt: f64) -> (f64, f64) {
     let pos = vec![[0.05 - r - 1e-6, 0.05, 0.05], [0.05 + r + 1e-6, 0.05, 0.05]];
     let mut w = DemWorld::new(
         &pdamp::setup::dem_model(p).unwrap(),
-        STILL,
+        BoxDrive::STILL,
         dt,
         vec![r, r],
         pos,
@@ -68,7 +60,7 @@ fn sphere_wall(p: &DemParams, v: f64, dt: f64) -> (f64, f64) {
     q.count = 1;
     let mut w = DemWorld::new(
         &pdamp::setup::dem_model(&q).unwrap(),
-        STILL,
+        BoxDrive::STILL,
         dt,
         vec![r],
         vec![[0.05, 0.05, r + 1e-6]],

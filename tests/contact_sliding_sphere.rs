@@ -16,13 +16,7 @@ fn sliding_sphere_decelerates_at_mu_g_and_rolls_at_five_sevenths() {
     p.r#box = [2.0, 0.1, 0.1];
     p.count = 1;
     let r = 0.003;
-    let still = BoxDrive {
-        primary: None,
-        amplitude_m: 0.0,
-        frequency_hz: 0.0,
-        force_n: 0.0,
-        direction: [0.0, 0.0, 1.0],
-    };
+    let still = BoxDrive::STILL;
     let dt = 2e-7;
     let mut w = DemWorld::new(
         &pdamp::setup::dem_model(&p).unwrap(),

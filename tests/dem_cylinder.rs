@@ -13,14 +13,6 @@ use pdamp::dem::{BoxDrive, DemWorld};
 use pdamp::model::{Container, Cylinder};
 use pdamp::scene::Scene;
 
-const STILL: BoxDrive = BoxDrive {
-    primary: None,
-    amplitude_m: 0.0,
-    frequency_hz: 0.0,
-    force_n: 0.0,
-    direction: [0.0, 0.0, 1.0],
-};
-
 /// One 4 mm steel ball (E ÷ 100) in a container of the scene's `damper` lines, no gravity.
 fn one_ball(damper: &str, pos: [f64; 3], vel: [f64; 3]) -> DemWorld {
     let text = format!(
@@ -33,7 +25,7 @@ fn one_ball(damper: &str, pos: [f64; 3], vel: [f64; 3]) -> DemWorld {
         panic!()
     };
     let model = pdamp::setup::dem_model(p).unwrap();
-    let mut w = DemWorld::new(&model, STILL, 2e-8, vec![0.002], vec![pos]).unwrap();
+    let mut w = DemWorld::new(&model, BoxDrive::STILL, 2e-8, vec![0.002], vec![pos]).unwrap();
     w.gravity = [0.0; 3];
     w.set_velocities(&[vel], &[[0.0; 3]]);
     w.refresh();
@@ -112,7 +104,7 @@ fn a_shaken_bed_stays_inside_the_cylinder_and_closes_its_ledger() {
         let drive = BoxDrive {
             amplitude_m: 0.002,
             frequency_hz: 30.0,
-            ..STILL
+            ..BoxDrive::STILL
         };
         // the box held at u(0) while the bed falls, as a run does
         let mut w = initial_world(&model, drive, 2e-6, drive.base(0.0).0).unwrap();

@@ -31,13 +31,7 @@ fn cluster(p: &DemParams) -> DemWorld {
         }
     }
     let n = pos.len();
-    let still = BoxDrive {
-        primary: None,
-        amplitude_m: 0.0,
-        frequency_hz: 0.0,
-        force_n: 0.0,
-        direction: [0.0, 0.0, 1.0],
-    };
+    let still = BoxDrive::STILL;
     let mut w = DemWorld::new(
         &pdamp::setup::dem_model(p).unwrap(),
         still,
@@ -177,13 +171,7 @@ fn too_large_time_step_is_reported_as_unstable() {
     p.count = 2;
     p.gamma_n = 0.0;
     let r = 0.003;
-    let still = BoxDrive {
-        primary: None,
-        amplitude_m: 0.0,
-        frequency_hz: 0.0,
-        force_n: 0.0,
-        direction: [0.0, 0.0, 1.0],
-    };
+    let still = BoxDrive::STILL;
     let pos = vec![[0.05 - r - 1e-5, 0.05, 0.05], [0.05 + r + 1e-5, 0.05, 0.05]];
     let mut w = DemWorld::new(
         &pdamp::setup::dem_model(&p).unwrap(),

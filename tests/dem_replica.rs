@@ -69,6 +69,18 @@ fn scene_key_run_replica() {
         let err = src.scene(&[parse_assignment(bad).unwrap()]).unwrap_err();
         assert!(err.to_string().contains("run.replica"), "{err}");
     }
+    // larger than the grains (3 mm spheres): refused naming the radius
+    let ov = [
+        parse_assignment("run.replica=5e-4").unwrap(),
+        parse_assignment("damper.radius=4e-4").unwrap(),
+    ];
+    let err = src.scene(&ov).unwrap_err().to_string();
+    assert!(
+        err.contains("run.replica")
+            && err.contains("smallest grain radius")
+            && err.contains("4e-4"),
+        "{err}"
+    );
     // DEM only
     let impact = "[primary]\nmass = 2.37\nstiffness = 21500.0\ndamping = 7.6\n[excitation]\n\
                   amplitude = 0.0045\nfrequency = 15.0\n[damper]\nkind = \"impact\"\nmass = 0.227\n\
@@ -86,13 +98,9 @@ fn scene_key_run_replica() {
 
 #[test]
 fn a_perturbation_beyond_the_grain_radius_is_refused_by_the_engine() {
-    // 2 mm passes the scene's coarse bound (< 1 mm is checked there only for absurd values)
-    // only if the grains are smaller: 0.5 mm grains with δ0 = 0.8 mm
-    let s = scene(&[
-        "damper.radius=0.0005",
-        "damper.count=20",
-        "run.replica=0.0008",
-    ]);
+    // a scene refuses δ0 ≥ the smallest radius (`scene_key_run_replica`); the engine, called
+    // directly with 0.5 mm grains and δ0 = 0.8 mm, refuses it too
+    let s = scene(&["damper.radius=0.0005", "damper.count=20"]);
     let setup = s.resolve_dem().unwrap();
     let (drive, cfg) = (setup.drive, setup.config(&RunOptions::summary_only()));
     let opts = ReplicaOptions {

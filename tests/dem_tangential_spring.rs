@@ -27,16 +27,6 @@ use pdamp::units::G;
 
 const R: f64 = 0.003;
 
-fn still() -> BoxDrive {
-    BoxDrive {
-        primary: None,
-        amplitude_m: 0.0,
-        frequency_hz: 0.0,
-        force_n: 0.0,
-        direction: [0.0, 0.0, 1.0],
-    }
-}
-
 fn mindlin() -> DemParams {
     let mut p = DemParams::thesis_b();
     p.r#box = [2.0, 0.1, 0.1];
@@ -61,7 +51,7 @@ fn sliding_to_rolling(p: &DemParams) {
     let dt = 2e-7;
     let mut w = DemWorld::new(
         &pdamp::setup::dem_model(p).unwrap(),
-        still(),
+        BoxDrive::STILL,
         dt,
         vec![R],
         vec![[0.05, 0.05, R]],
@@ -101,7 +91,7 @@ fn sliding_sphere_rolls_at_five_sevenths_with_either_spring() {
 fn oblique(p: &DemParams, v_n: f64, v_t: f64, dt: f64, steps: usize) -> (f64, f64) {
     let mut w = DemWorld::new(
         &pdamp::setup::dem_model(p).unwrap(),
-        still(),
+        BoxDrive::STILL,
         dt,
         vec![R],
         vec![[0.05, 0.05, R + 1e-7]],
@@ -174,7 +164,7 @@ fn springs_are_carried_across_neighbour_rebuilds() {
         p.neighbor_skin = Some(skin);
         let mut w = DemWorld::new(
             &pdamp::setup::dem_model(&p).unwrap(),
-            still(),
+            BoxDrive::STILL,
             5e-8,
             vec![R, R],
             vec![[0.05, 0.05, 0.05], [0.0505, 0.05, 0.05 + 2.0 * R + 1e-7]],
@@ -208,7 +198,7 @@ fn a_spring_starts_from_zero_when_the_grains_touch_again() {
     p.count = 2;
     let model = pdamp::setup::dem_model(&p).unwrap();
     let world = |pos: Vec<[f64; 3]>, vel: &[[f64; 3]], omega: &[[f64; 3]]| {
-        let mut w = DemWorld::new(&model, still(), 5e-8, vec![R, R], pos).unwrap();
+        let mut w = DemWorld::new(&model, BoxDrive::STILL, 5e-8, vec![R, R], pos).unwrap();
         w.gravity = [0.0; 3];
         w.set_velocities(vel, omega);
         w.refresh();

@@ -69,11 +69,8 @@ fn conservative_bed_holds_energy_over_a_long_run() {
     p.gamma_n = 0.0;
     p.gamma_s = 0.0;
     let still = BoxDrive {
-        primary: None,
-        amplitude_m: 0.0,
         frequency_hz: 1.0,
-        force_n: 0.0,
-        direction: [0.0, 0.0, 1.0],
+        ..BoxDrive::STILL
     };
     let (dt, _) = choose_dt(&pdamp::setup::dem_model(&p).unwrap(), &still, None, 0.02).unwrap();
     let mut w = initial_world(&pdamp::setup::dem_model(&p).unwrap(), still, dt, 0.0).unwrap();

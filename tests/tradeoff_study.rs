@@ -117,6 +117,31 @@ fn study_reuses_stored_points_computes_the_rest_and_measures_errors() {
         let e = row("rotations-off", f).amplitude_rel_error.unwrap();
         assert!((e - (z - zr).abs() / zr).abs() < 1e-12, "{f} Hz: {e}");
     }
+    // a point judged by other verdict rules is not compared with the reference's verdict
+    // (a point stored by an earlier binary: its analysis says rules 1)
+    assert!(row("rotations-off", 14.0).regime_match.is_some());
+    let older = std::fs::read_dir(rot_dir.path().join("points"))
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .find(|p| {
+            let j: serde_json::Value =
+                serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap();
+            j["summary"]["frequency_hz"].as_f64() == Some(14.0)
+        })
+        .unwrap();
+    let mut j: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&older).unwrap()).unwrap();
+    j["summary"]["analysis"]["verdict_rules"] = serde_json::json!(1);
+    std::fs::write(&older, serde_json::to_string(&j).unwrap()).unwrap();
+    let s_old = study(&plan, &Catalog::scan(&data).unwrap()).unwrap();
+    let r = s_old
+        .rows
+        .iter()
+        .find(|r| r.setting == "rotations-off" && r.frequency_hz == 14.0)
+        .unwrap();
+    assert_eq!(r.regime_match, None);
+    assert!(r.message.contains("not compared"), "{}", r.message);
     // t_s/10 is refused by the time-step guard: a row with its message, not a NaN
     let coarse = row("dt-10", 15.0);
     assert_eq!(coarse.status, "refused");

@@ -520,7 +520,9 @@ impl Exponent {
     }
 }
 
-pub use super::regime_forced::{classify_forced, ForcedEvidence, LOCKED_FRACTION_MIN};
+pub use super::regime_forced::{
+    classify_forced, ForcedEvidence, LOCKED_FRACTION_MIN, VERDICT_RULES,
+};
 
 /// Rounds to the nearest integer when within 0.1 % of it (periods of maps and strobed flows).
 fn round_if_close(p: f64) -> f64 {

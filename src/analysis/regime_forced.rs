@@ -34,6 +34,15 @@ pub struct ForcedEvidence<'a> {
     pub dimension: Option<ChaosDimension>,
 }
 
+/// Revision of the verdict rules, carried by every analysis report
+/// ([`crate::analysis::analyze::AnalysisReport::verdict_rules`]) so that verdicts judged by
+/// different rules are never compared silently (the trade-off table refuses to). 1: tight
+/// groups by their RMS scatter, replicas between the scales "inconclusive"; 2: tight groups
+/// by their spread ([`crate::analysis::section::grouping`]), a *partial* replica outcome, a
+/// tight section periodic whatever the replicas. Raise it with any change that can move a
+/// verdict.
+pub const VERDICT_RULES: u32 = 2;
+
 /// Locked fraction Λ_p at and above which the motion relative to the container is called
 /// phase-locked to the forcing: the mean waveform carries ≥ 90 % of the variance, i.e. the
 /// RMS about it is ≤ 32 % of the motion's RMS. A qualifier that travels with the verdict
@@ -46,23 +55,27 @@ pub const LOCKED_FRACTION_MIN: f64 = 0.9;
 ///
 /// # Formula
 /// A section is *tight* with period n when its points fall into n groups visited cyclically
-/// whose RMS scatter W_n is ≤ 5 % of the orbit's extent (the sum of squares over the axes,
-/// so every axis, position and velocity, is within 5 %), the groups ≥ 4 W_n apart
-/// ([`crate::analysis::section`]). 5 %: a group that small is one point of the orbit to the
-/// eye and to every figure of merit the damper is designed for (the amplitude and the energy
-/// per cycle move by about W²), while a chaotic band or a granular gas spreads over tens of
-/// per cent.
+/// and, on every axis (position and velocity), a typical point lies within 5 % of the orbit's
+/// extent of its group (1.4826 × the median distance; the RMS of all axes within 10 %), the groups
+/// separated and not outdone by a longer separated period
+/// ([`crate::analysis::section::grouping`]). 5 %: a group that small is one point of the
+/// orbit to the eye and to every figure of merit the damper is designed for (the amplitude
+/// and the energy per cycle move by about the square of the scatter), while a chaotic band or
+/// a granular gas spreads over tens of per cent (≥ 8 % on the chapter-4 bed).
 /// 1. Too short: fewer section points than the pattern test needs → `too-short`.
 /// 2. Model exponent (the impact model's tangent dynamics) decides chaos: positive (λ >
 ///    max(3σ, band)) → chaotic, unless the section is a finite set of points (an indicator
 ///    conflict → undetermined); not positive with a cloud → undetermined; otherwise the
 ///    section's pattern.
-/// 3. Two-replica test (the DEM): sensitive → periodic-n when the section is tight with
-///    period n (the sensitive part is confined to the groups: d_sat is quoted), quasi-periodic
-///    for a thin invariant circle, chaotic otherwise (the sensitive part is as large as the
-///    cloud); insensitive → the section's pattern (a cloud the replicas do not split is a
-///    long transient or a long period → undetermined); inconclusive → undetermined, unless
-///    the section is exactly periodic.
+/// 3. Two-replica test (the DEM): a tight section is periodic-n whatever the replicas did
+///    (the sensitive part is confined to the groups: d_sat, judged at the same phase, is
+///    quoted). Otherwise: a closed curve is quasi-periodic unless the test is inconclusive; a
+///    cloud is chaotic when the replicas are sensitive (d_sat ≈ D: the sensitive part is the
+///    cloud) or partial (d_sat grew ≥ 10³ δ0 but stays below D/2: aperiodic and sensitive,
+///    slowly mixing — said in the reason), undetermined when they are insensitive (a long
+///    transient or a long period) or the test is inconclusive (too short, or two beds in
+///    different macroscopic states); an exactly periodic section is periodic whatever the
+///    test.
 /// 4. Data only (a user's series): the section's pattern; a cloud is chaotic when the data
 ///    exponent is positive and the scatter deterministic (determinism ratio < 0.5),
 ///    undetermined when deterministic without resolved divergence, else irregular
@@ -204,15 +217,12 @@ fn by_model(e: &ForcedEvidence<'_>, m: Exponent) -> Verdict {
 /// Rule 3: the simulation's two-replica test with the section's tightness.
 fn by_replica(e: &ForcedEvidence<'_>, r: &ReplicaReport) -> Verdict {
     let sec = e.section;
-    let exact = matches!(sec.pattern, SectionPattern::Periodic { noisy: false, .. });
-    // n groups visited cyclically: the replicas are judged at the same phase of the cycle
-    let phased = sec.tight.as_ref().map(|g| (g, r.at_period(g.period)));
-    if let Some((g, r)) = &phased {
-        if exact || r.saturation_rel <= TIGHT_MAX || r.outcome == ReplicaOutcome::Insensitive {
-            return tight_groups(g, r);
-        }
+    // n tight groups: the run is periodic-n whatever the replicas did — they can only say how
+    // large its sensitive part is, judged at the same phase of the cycle
+    if let Some(g) = &sec.tight {
+        return tight_groups(g, &r.at_period(g.period));
     }
-    let r = phased.as_ref().map_or(r, |(_, r)| r);
+    let exact = matches!(sec.pattern, SectionPattern::Periodic { noisy: false, .. });
     match (&r.outcome, sec.pattern) {
         (_, SectionPattern::Periodic { period, noisy }) if exact => {
             periodic_from_section(sec, period, noisy)
@@ -240,13 +250,18 @@ fn by_replica(e: &ForcedEvidence<'_>, r: &ReplicaReport) -> Verdict {
         (
             ReplicaOutcome::Sensitive {
                 saturation_rel_orbit,
+            }
+            | ReplicaOutcome::Partial {
+                saturation_rel_orbit,
+                ..
             },
             SectionPattern::QuasiPeriodic { rotation_number },
         ) => quasi_periodic(
             rotation_number,
             &format!(
-                "; two replicas separate to {:.2} % of the orbit (sensitive within the curve's thickness)",
-                100.0 * saturation_rel_orbit
+                "; two replicas separate to {:.2} % of the orbit (sensitive within the curve's thickness, {:.2} %)",
+                100.0 * saturation_rel_orbit,
+                100.0 * sec.thickness.unwrap_or(f64::NAN)
             ),
         ),
         (
@@ -265,12 +280,26 @@ fn by_replica(e: &ForcedEvidence<'_>, r: &ReplicaReport) -> Verdict {
                 rate_words(r)
             ),
         ),
+        (
+            ReplicaOutcome::Partial {
+                saturation_rel_orbit,
+                over_independent,
+            },
+            _,
+        ) => Verdict::new(
+            Regime::Chaotic,
+            None,
+            format!(
+                "the exact section is a cloud (size {:.1} % of the orbit, worst axis scatter {:.1} %) with no period and no closed curve, and two replicas started 1e-9 apart separate by orders of magnitude, to {:.1} % of the orbit{} — aperiodic and sensitive; slowly mixing: over the window the replicas stay correlated on the section's larger motion ({:.2} × the separation of independent states)",
+                100.0 * sec.size,
+                worst_axis_pct(sec),
+                100.0 * saturation_rel_orbit,
+                rate_words(r),
+                over_independent
+            ),
+        ),
     }
 }
-
-/// The bound on a tight group's scatter and on a sensitive part called small: 5 % of the
-/// orbit ([`crate::analysis::section::SectionOptions::noise_tol`]'s default).
-const TIGHT_MAX: f64 = 0.05;
 
 /// Periodic-n from n tight groups, with what the replicas did (judged at the same phase).
 fn tight_groups(g: &Grouping, r: &ReplicaReport) -> Verdict {
@@ -283,6 +312,14 @@ fn tight_groups(g: &Grouping, r: &ReplicaReport) -> Verdict {
             100.0 * saturation_rel_orbit,
             rate_words(r)
         ),
+        ReplicaOutcome::Partial {
+            saturation_rel_orbit,
+            ..
+        } => format!(
+            "separate to {:.2} % of the orbit{} — sensitive, within the groups",
+            100.0 * saturation_rel_orbit,
+            rate_words(r)
+        ),
         ReplicaOutcome::Inconclusive { why } => format!(
             "stay within {:.2} % of the orbit ({why})",
             100.0 * r.saturation_rel
@@ -292,10 +329,10 @@ fn tight_groups(g: &Grouping, r: &ReplicaReport) -> Verdict {
         Regime::Periodic,
         Some(g.period as f64),
         format!(
-            "the exact section is {} tight group(s) visited cyclically (scatter {:.2} % of the orbit, worst axis {:.2} %); two replicas {what}",
+            "the exact section is {} tight group(s) visited cyclically (typical distance from the group {:.2} % of the orbit on the worst axis, RMS {:.2} %); two replicas {what}",
             g.period,
-            100.0 * g.scatter,
-            100.0 * g.axis_scatter.iter().copied().fold(0.0, f64::max),
+            100.0 * g.worst_spread(),
+            100.0 * g.worst_scatter(),
         ),
     )
 }
@@ -365,3 +402,5 @@ fn by_data(e: &ForcedEvidence<'_>) -> Verdict {
         },
     }
 }
+
+mod tests;

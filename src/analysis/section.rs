@@ -48,6 +48,10 @@ use crate::analysis::point_tree::{dist2, Metric, PointTree};
 use crate::error::AnalysisError;
 use serde::{Deserialize, Serialize};
 
+pub mod grouping;
+pub use grouping::Grouping;
+use grouping::{axis_scatter, centroids, groups_separated, residue_scatter, tight_grouping};
+
 /// Options of [`analyze_section`].
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct SectionOptions {
@@ -129,23 +133,16 @@ pub struct SectionAnalysis {
     /// (W_p² is their sum of squares).
     #[serde(default)]
     pub axis_scatter: Vec<f64>,
-    /// The smallest period p whose groups are tight — W_p ≤ `noise_tol` (so every axis's
-    /// scatter is ≤ `noise_tol`), within 1.5 × the best W_q (both corrected for the fitted
-    /// centroids, W_q / √(1 − q/n)) and the groups separated — whatever the determinism of the
-    /// scatter; `None`: no tight grouping (a cloud, a curve).
+    /// The smallest period p whose groups are tight ([`grouping`]: every axis's typical
+    /// distance from its group ≤ `noise_tol`, W_p ≤ twice that, the groups separated and
+    /// not outdone by a longer separated period) — whatever the determinism of the scatter;
+    /// `None`: no tight grouping (a cloud, a curve).
     #[serde(default)]
     pub tight: Option<Grouping>,
-}
-
-/// A grouping of the section points by k mod p.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Grouping {
-    /// Period p (forcing periods).
-    pub period: usize,
-    /// W_p: RMS distance to the group centroids (relative to the extents).
-    pub scatter: f64,
-    /// The same per axis (relative to each axis's extent).
-    pub axis_scatter: Vec<f64>,
+    /// The extents the points were divided by (SI units per coordinate), kept so that a
+    /// stored section can be judged again.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub scales: Vec<f64>,
 }
 
 /// Returns the pattern of an exact stroboscopic section (see the module docs).
@@ -190,37 +187,10 @@ pub fn analyze_section(
     let mut out = pattern(&u, &w, opts);
     if !matches!(out.pattern, SectionPattern::TooShort { .. }) {
         out.axis_scatter = axis_scatter(&u, out.best_period);
-        out.tight = tight_grouping(&u, &w, opts);
+        out.tight = tight_grouping(&u, &w, opts.exact_tol, opts.noise_tol);
     }
+    out.scales = scales.to_vec();
     Ok(out)
-}
-
-/// The smallest period whose groups are tight ([`SectionAnalysis::tight`]), from the
-/// residue scatters `w[p − 1]` = W_p.
-fn tight_grouping(u: &[Vec<f64>], w: &[f64], opts: &SectionOptions) -> Option<Grouping> {
-    // W_p² of n points in p groups of pure scatter is biased low by the factor (1 − p/n)
-    // (p fitted centroids): compare periods on the corrected W_p / √(1 − p/n), or a long
-    // period would always look "better" than the true one
-    let n = u.len() as f64;
-    let corrected = |p: usize| w[p - 1] / (1.0 - p as f64 / n).sqrt();
-    let best = (1..=w.len()).map(corrected).fold(f64::INFINITY, f64::min);
-    // an exact period (W_p ≤ exact_tol, e.g. 1e-9 of the orbit) is tight whatever a longer
-    // period's still smaller residue: below the exact tolerance the ratio of two residues
-    // measures rounding and the last drift of the transient, not the orbit (a period-1 orbit
-    // at W_1 = 2e-9 was called period 3 because W_3 = 3e-13)
-    (1..=w.len())
-        .find(|&p| {
-            let wp = w[p - 1];
-            wp <= opts.exact_tol
-                || (wp <= opts.noise_tol
-                    && corrected(p) <= 1.5 * best
-                    && groups_separated(u, p, wp))
-        })
-        .map(|p| Grouping {
-            period: p,
-            scatter: w[p - 1],
-            axis_scatter: axis_scatter(u, p),
-        })
 }
 
 /// The pattern of normalised section points (the rules of the module docs), given their
@@ -240,6 +210,7 @@ fn pattern(u: &[Vec<f64>], w: &[f64], opts: &SectionOptions) -> SectionAnalysis 
         convergence_rate: None,
         axis_scatter: Vec::new(),
         tight: None,
+        scales: Vec::new(),
     };
     if n < needed {
         out.scatter = 0.0;
@@ -387,62 +358,6 @@ pub(crate) fn normalise(
             Ok(p.iter().zip(scales).map(|(v, s)| v / s).collect())
         })
         .collect()
-}
-
-/// RMS distance of the points to the centroids of their residue classes k mod p.
-fn residue_scatter(u: &[Vec<f64>], p: usize) -> f64 {
-    let cents = centroids(u, p);
-    let ss: f64 = u
-        .iter()
-        .enumerate()
-        .map(|(k, x)| dist2(x, &cents[k % p]))
-        .sum();
-    (ss / u.len() as f64).sqrt()
-}
-
-/// RMS distance of the points to their residue-class centroids along each axis.
-fn axis_scatter(u: &[Vec<f64>], p: usize) -> Vec<f64> {
-    let cents = centroids(u, p);
-    let dim = u[0].len();
-    (0..dim)
-        .map(|d| {
-            let ss: f64 = u
-                .iter()
-                .enumerate()
-                .map(|(k, x)| (x[d] - cents[k % p][d]).powi(2))
-                .sum();
-            (ss / u.len() as f64).sqrt()
-        })
-        .collect()
-}
-
-/// Centroids of the residue classes k mod p.
-fn centroids(u: &[Vec<f64>], p: usize) -> Vec<Vec<f64>> {
-    let dim = u[0].len();
-    let mut c = vec![vec![0.0; dim]; p];
-    let mut count = vec![0usize; p];
-    for (k, x) in u.iter().enumerate() {
-        count[k % p] += 1;
-        for (a, b) in c[k % p].iter_mut().zip(x) {
-            *a += b;
-        }
-    }
-    for (ci, &m) in c.iter_mut().zip(&count) {
-        for a in ci.iter_mut() {
-            *a /= m.max(1) as f64;
-        }
-    }
-    c
-}
-
-/// Whether the p group centroids are pairwise at least 4 W apart (distinct points of a
-/// period-p orbit, not a smaller period split by noise).
-fn groups_separated(u: &[Vec<f64>], p: usize, w: f64) -> bool {
-    if p == 1 {
-        return true;
-    }
-    let c = centroids(u, p);
-    (0..p).all(|a| (a + 1..p).all(|b| dist2(&c[a], &c[b]).sqrt() >= 4.0 * w))
 }
 
 /// Determinism ratio RMS‖u_{k+1} − u_{j+1}‖ / (√2 w), j the nearest neighbour of k (ties to

@@ -108,6 +108,15 @@ pub struct BoxDrive {
 }
 
 impl BoxDrive {
+    /// A box at rest: no primary, no drive, the vertical axis (tests, and beds built at rest).
+    pub const STILL: BoxDrive = BoxDrive {
+        primary: None,
+        amplitude_m: 0.0,
+        frequency_hz: 0.0,
+        force_n: 0.0,
+        direction: [0.0, 0.0, 1.0],
+    };
+
     /// Base displacement u(t) (m) and velocity u'(t) (m/s).
     #[inline]
     pub fn base(&self, t: f64) -> (f64, f64) {

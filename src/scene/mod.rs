@@ -167,6 +167,20 @@ impl Scene {
                  reports its exponent from tangent dynamics instead",
             ));
         }
+        if let (run::ReplicaChoice::Delta(d), Damper::Dem(p)) = (self.run.replica, &self.damper) {
+            let r_min = p.radius_distribution()?.r_min();
+            if d >= r_min {
+                return Err(SceneError::invalid(
+                    "run.replica",
+                    d,
+                    format!(
+                        "the replica's perturbation must be below the smallest grain radius \
+                         ({r_min:e} m): it is a tiny push on every grain, not a rearrangement \
+                         (true: 1e-9 m)"
+                    ),
+                ));
+            }
+        }
         self.check_not_undamped_resonance()?;
         Ok(())
     }

@@ -194,6 +194,16 @@ pub fn core_verdict(s: &RunSummary) -> Option<String> {
     })
 }
 
+/// The two verdict-rule revisions ([`crate::analysis::regime::VERDICT_RULES`]) when a
+/// point and its reference were judged by different ones (their verdicts are not compared).
+fn other_rules(s: Option<&RunSummary>, reference: Option<&RunSummary>) -> Option<(u32, u32)> {
+    let rules = |s: Option<&RunSummary>| Some(s?.analysis.as_ref()?.verdict_rules());
+    match (rules(s), rules(reference)) {
+        (Some(a), Some(b)) if a != b => Some((a, b)),
+        _ => None,
+    }
+}
+
 /// λ (1/s) where the verdict is chaotic: the model's exponent where the simulator has one,
 /// else the data's.
 fn chaotic_mle(s: &RunSummary) -> Option<f64> {
@@ -238,13 +248,22 @@ fn row(rung: &Rung, o: &Observed, re: &Observed, youngs: Option<f64>) -> Row {
     };
     let regime = s.and_then(core_verdict);
     let regime_reference = rs.and_then(core_verdict);
+    let rules = other_rules(s, rs);
+    let mut message = o.status.message();
+    if let Some((a, b)) = rules {
+        let sep = if message.is_empty() { "" } else { "; " };
+        message.push_str(&format!(
+            "{sep}verdicts judged by rules {a} (this setting) and {b} (the reference): not \
+             compared — recompute the older points"
+        ));
+    }
     Row {
         setting: rung.id.clone(),
         axis: rung.axis,
         label: rung.label.clone(),
         frequency_hz: o.frequency_hz,
         status: o.status.as_str().to_string(),
-        message: o.status.message(),
+        message,
         youngs_modulus_pa: youngs,
         dt_s: s
             .and_then(|s| s.dem.as_ref())
@@ -258,6 +277,7 @@ fn row(rung: &Rung, o: &Observed, re: &Observed, youngs: Option<f64>) -> Row {
         regime_match: regime
             .as_ref()
             .zip(regime_reference.as_ref())
+            .filter(|_| rules.is_none())
             .map(|(a, b)| a == b),
         regime,
         regime_reference,

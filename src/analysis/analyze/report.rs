@@ -180,6 +180,11 @@ pub struct AnalysisReport {
     pub evidence: Evidence,
     /// Fallbacks taken and estimators that could not run.
     pub notes: Vec<String>,
+    /// The revision of the verdict rules that judged this report
+    /// ([`crate::analysis::regime::VERDICT_RULES`]); absent in reports stored before the
+    /// field: read it through [`AnalysisReport::verdict_rules`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub verdict_rules: Option<u32>,
 }
 
 impl AnalysisReport {
@@ -193,6 +198,17 @@ impl AnalysisReport {
             self.phase_lock.as_ref().filter(|_| self.phase_locked),
             self.chaos_dimension.as_ref(),
         )
+    }
+
+    /// The revision of the verdict rules that judged this report: the stored field, else —
+    /// a report stored before it — 2 when its section kept its scales (stored from
+    /// revision 2 on, before the field was) and 1 otherwise. Verdicts of different revisions
+    /// are not comparable.
+    pub fn verdict_rules(&self) -> u32 {
+        self.verdict_rules.unwrap_or(match &self.section {
+            Some(s) if !s.scales.is_empty() => 2,
+            _ => 1,
+        })
     }
 }
 
@@ -238,5 +254,6 @@ pub(super) fn empty_report(n: usize, dt_s: Option<f64>) -> AnalysisReport {
         return_map_exponent: None,
         evidence: Evidence::default(),
         notes: Vec::new(),
+        verdict_rules: Some(crate::analysis::regime::VERDICT_RULES),
     }
 }

@@ -49,6 +49,13 @@ impl PanelRun {
                 100.0 * saturation_rel_orbit
             ),
             Some(O::Insensitive) => "replicas: insensitive".into(),
+            Some(O::Partial {
+                saturation_rel_orbit,
+                ..
+            }) => format!(
+                "replicas: partial, separating to {:.1} % of the orbit",
+                100.0 * saturation_rel_orbit
+            ),
             Some(O::Inconclusive { .. }) => "replicas: inconclusive".into(),
             None => "no replica test".into(),
         }

@@ -1,0 +1,160 @@
+//! Tests of the forced-system classifier's replica rules ([`super::classify_forced`]) on
+//! sections and replica records whose answer is known by construction.
+
+#![cfg(test)]
+
+use super::*;
+use crate::analysis::replica_test::{report, ReplicaRow, AXES};
+use crate::analysis::section::{analyze_section, SectionOptions};
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+fn gauss(rng: &mut ChaCha8Rng) -> f64 {
+    let u: f64 = rng.random::<f64>().max(1e-300);
+    let v: f64 = rng.random();
+    (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
+}
+
+const F: f64 = 11.0;
+const EXTENT: [f64; AXES] = [1e-2, 0.0, 0.0, 0.0];
+
+/// A replica report from two strobed z series (m) perturbed by 1e-9 m.
+fn replicas(za: &[f64], zb: &[f64]) -> ReplicaReport {
+    let rows = za
+        .iter()
+        .zip(zb)
+        .enumerate()
+        .map(|(k, (&a, &b))| ReplicaRow {
+            cycle: k as u64 + 1,
+            time_s: (k + 1) as f64 / F,
+            a: [a, 0.0, 0.0, 0.0],
+            b: [b, 0.0, 0.0, 0.0],
+        })
+        .collect();
+    report(1e-9, 0.0, F, EXTENT, rows)
+}
+
+/// Replicas sharing a slow motion, differing by independent noise: partial.
+fn partial() -> ReplicaReport {
+    let mut rng = ChaCha8Rng::seed_from_u64(6);
+    let slow: Vec<f64> = (0..240)
+        .map(|k| 0.05 + 4e-3 * (k as f64 * 0.37).sin())
+        .collect();
+    let za: Vec<f64> = slow.iter().map(|s| s + 4e-4 * gauss(&mut rng)).collect();
+    let zb: Vec<f64> = slow.iter().map(|s| s + 4e-4 * gauss(&mut rng)).collect();
+    let r = replicas(&za, &zb);
+    assert!(matches!(r.outcome, ReplicaOutcome::Partial { .. }), "{r:?}");
+    r
+}
+
+/// Two independent clouds whose means differ by three spreads: different macroscopic states.
+fn different_states() -> ReplicaReport {
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let za: Vec<f64> = (0..240).map(|_| 0.05 + 1e-3 * gauss(&mut rng)).collect();
+    let zb: Vec<f64> = (0..240).map(|_| 0.053 + 1e-3 * gauss(&mut rng)).collect();
+    let r = replicas(&za, &zb);
+    let ReplicaOutcome::Inconclusive { why } = &r.outcome else {
+        panic!("{r:?}");
+    };
+    assert!(why.contains("different macroscopic states"), "{why}");
+    r
+}
+
+fn section(points: &[Vec<f64>]) -> SectionAnalysis {
+    analyze_section(points, &[1.0, 1.0], &SectionOptions::default()).unwrap()
+}
+
+fn cloud() -> SectionAnalysis {
+    let mut rng = ChaCha8Rng::seed_from_u64(8);
+    let pts: Vec<Vec<f64>> = (0..240)
+        .map(|_| vec![0.5 + 0.1 * gauss(&mut rng), 0.5 + 0.1 * gauss(&mut rng)])
+        .collect();
+    let s = section(&pts);
+    assert!(
+        s.tight.is_none() && s.pattern == SectionPattern::Irregular,
+        "{s:?}"
+    );
+    s
+}
+
+fn verdict(sec: &SectionAnalysis, r: &ReplicaReport) -> Verdict {
+    classify_forced(&ForcedEvidence {
+        section: sec,
+        data_exponent: None,
+        model_exponent: None,
+        zero_band: 0.01,
+        phase_lock: None,
+        replica: Some(r),
+        dimension: None,
+    })
+}
+
+#[test]
+fn a_cloud_with_partial_replicas_is_chaotic_and_slowly_mixing() {
+    let v = verdict(&cloud(), &partial());
+    assert_eq!(v.regime, Regime::Chaotic, "{}", v.reason);
+    assert!(v.reason.contains("slowly mixing"), "{}", v.reason);
+}
+
+#[test]
+fn a_thin_closed_curve_with_partial_replicas_is_quasi_periodic() {
+    // a circle of radius 0.2 rotated by ρ = 0.136 per strobe, 0.3 % radial noise
+    let mut rng = ChaCha8Rng::seed_from_u64(9);
+    let pts: Vec<Vec<f64>> = (0..240)
+        .map(|k| {
+            let th = std::f64::consts::TAU * 0.136 * k as f64;
+            let r = 0.2 * (1.0 + 0.003 * gauss(&mut rng));
+            vec![0.5 + r * th.cos(), 0.5 + r * th.sin()]
+        })
+        .collect();
+    let s = section(&pts);
+    assert!(
+        matches!(s.pattern, SectionPattern::QuasiPeriodic { .. }),
+        "{s:?}"
+    );
+    let v = verdict(&s, &partial());
+    assert_eq!(v.regime, Regime::QuasiPeriodic, "{}", v.reason);
+}
+
+#[test]
+fn tight_groups_are_periodic_whatever_the_replicas() {
+    // period 2 with 2 % scatter: periodic-2 with partial replicas and with replicas that
+    // ended in different states (the run itself repeats; the replicas size its sensitive part)
+    let mut rng = ChaCha8Rng::seed_from_u64(10);
+    let pts: Vec<Vec<f64>> = (0..240)
+        .map(|k| {
+            let c = [[0.3, 0.3], [0.7, 0.6]][k % 2];
+            vec![c[0] + 0.02 * gauss(&mut rng), c[1] + 0.02 * gauss(&mut rng)]
+        })
+        .collect();
+    let s = section(&pts);
+    for r in [partial(), different_states()] {
+        let v = verdict(&s, &r);
+        assert_eq!(
+            (v.regime, v.period),
+            (Regime::Periodic, Some(2.0)),
+            "{}",
+            v.reason
+        );
+    }
+}
+
+#[test]
+fn a_cloud_is_not_chaotic_without_sensitivity() {
+    // replicas in different macroscopic states: undetermined, never chaotic
+    let v = verdict(&cloud(), &different_states());
+    assert_eq!(v.regime, Regime::Undetermined, "{}", v.reason);
+    assert!(
+        v.reason.contains("different macroscopic states"),
+        "{}",
+        v.reason
+    );
+    // replicas that stay together: undetermined (a long transient or a long period)
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let za: Vec<f64> = (0..240).map(|_| 0.05 + 1e-3 * gauss(&mut rng)).collect();
+    let zb: Vec<f64> = za.iter().map(|z| z + 1e-12).collect();
+    let r = replicas(&za, &zb);
+    assert_eq!(r.outcome, ReplicaOutcome::Insensitive, "{r:?}");
+    let v = verdict(&cloud(), &r);
+    assert_eq!(v.regime, Regime::Undetermined, "{}", v.reason);
+}
