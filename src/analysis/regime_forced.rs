@@ -61,7 +61,8 @@ pub const LOCKED_FRACTION_MIN: f64 = 0.9;
 /// ([`crate::analysis::section::grouping`]). 5 %: a group that small is one point of the
 /// orbit to the eye and to every figure of merit the damper is designed for (the amplitude
 /// and the energy per cycle move by about the square of the scatter), while a chaotic band or
-/// a granular gas spreads over tens of per cent (≥ 8 % on the chapter-4 bed).
+/// a granular gas spreads over tens of per cent (≥ 6.5 % on the chapter-4 bed but for a
+/// five-band motion whose bands are not separated).
 /// 1. Too short: fewer section points than the pattern test needs → `too-short`.
 /// 2. Model exponent (the impact model's tangent dynamics) decides chaos: positive (λ >
 ///    max(3σ, band)) → chaotic, unless the section is a finite set of points (an indicator

@@ -552,4 +552,6 @@ fn outcome(n: usize, sat: f64, indep: f64, offset: f64, delta_rel: f64) -> Repli
     ))
 }
 
+#[cfg(test)]
+pub(crate) mod fixtures;
 mod tests;

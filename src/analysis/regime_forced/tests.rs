@@ -4,45 +4,22 @@
 #![cfg(test)]
 
 use super::*;
-use crate::analysis::replica_test::{report, ReplicaRow, AXES};
+use crate::analysis::replica_test::fixtures::{gauss, rows_of, slow_motion_pair, EXTENT};
+use crate::analysis::replica_test::report;
 use crate::analysis::section::{analyze_section, SectionOptions};
-use rand::{RngExt, SeedableRng};
+use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
-fn gauss(rng: &mut ChaCha8Rng) -> f64 {
-    let u: f64 = rng.random::<f64>().max(1e-300);
-    let v: f64 = rng.random();
-    (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
-}
-
 const F: f64 = 11.0;
-const EXTENT: [f64; AXES] = [1e-2, 0.0, 0.0, 0.0];
 
 /// A replica report from two strobed z series (m) perturbed by 1e-9 m.
 fn replicas(za: &[f64], zb: &[f64]) -> ReplicaReport {
-    let rows = za
-        .iter()
-        .zip(zb)
-        .enumerate()
-        .map(|(k, (&a, &b))| ReplicaRow {
-            cycle: k as u64 + 1,
-            time_s: (k + 1) as f64 / F,
-            a: [a, 0.0, 0.0, 0.0],
-            b: [b, 0.0, 0.0, 0.0],
-        })
-        .collect();
-    report(1e-9, 0.0, F, EXTENT, rows)
+    report(1e-9, 0.0, F, EXTENT, rows_of(za, zb, F))
 }
 
 /// Replicas sharing a slow motion, differing by independent noise: partial.
 fn partial() -> ReplicaReport {
-    let mut rng = ChaCha8Rng::seed_from_u64(6);
-    let slow: Vec<f64> = (0..240)
-        .map(|k| 0.05 + 4e-3 * (k as f64 * 0.37).sin())
-        .collect();
-    let za: Vec<f64> = slow.iter().map(|s| s + 4e-4 * gauss(&mut rng)).collect();
-    let zb: Vec<f64> = slow.iter().map(|s| s + 4e-4 * gauss(&mut rng)).collect();
-    let r = replicas(&za, &zb);
+    let r = slow_motion_pair(1e-9);
     assert!(matches!(r.outcome, ReplicaOutcome::Partial { .. }), "{r:?}");
     r
 }

@@ -89,9 +89,11 @@ pub(super) fn regime_frf(
         format!(
             "DEM scene B (N = 250, Lz = 0.1225 m), {} per frequency: primary amplitude Z(f) \
              coloured by the regime of the grains' centre of mass — periodic-n only where the \
-             exact section is n tight groups (≤ 5 % of the orbit on every axis), chaotic where \
-             it is a cloud and two replicas started 1e-9 m apart separate to the cloud's size \
-             (orange: chaos phase-locked to the forcing, Λ_p ≥ 0.9). Lower panel: the data \
+             exact section is n tight groups (a typical point within 5 % of the orbit of its \
+             group on every axis), quasi-periodic for a closed curve, chaotic where it is a \
+             cloud and two replicas started 1e-9 m apart separate by orders of magnitude — to \
+             the cloud's size, or partly (slowly mixing) (orange: chaos phase-locked to the \
+             forcing, Λ_p ≥ 0.9). Lower panel: the data \
              Lyapunov exponent of the section with its error bar and the replicas' growth rate \
              (1/s). Every column, with the section scatter and the replica outcome, is in \
              {name}.csv{}.",
