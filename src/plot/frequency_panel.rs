@@ -43,9 +43,7 @@ impl Figure for FrequencyPanelFigure<'_> {
         root: &DrawingArea<DB, Shift>,
         title: &str,
     ) -> Result<(), PlotError> {
-        let root = root
-            .titled(title, common::caption_font())
-            .map_err(draw_err)?;
+        let root = common::fitted_title(root, title)?;
         let h = root.dim_in_pixel().1;
         let (top, bottom) = root.split_vertically((h as f64 * 0.5) as u32);
         self.bed.draw(&top, "bed motion (last periods)")?;

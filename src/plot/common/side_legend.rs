@@ -67,6 +67,27 @@ impl LegendEntry {
 /// A drawing area in pixel coordinates.
 pub type Area<DB> = DrawingArea<DB, Shift>;
 
+/// `root` below the caption `title`, its font shrunk from 22 px (down to 12 px) until the
+/// title fits the width, so that a long caption is never clipped.
+pub fn fitted_title<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    title: &str,
+) -> Result<Area<DB>, PlotError> {
+    let (w, _) = root.dim_in_pixel();
+    let mut size = 22.0;
+    loop {
+        let font: TextStyle = (FONT_FAMILY, size).into_font().into();
+        let fits = root
+            .estimate_text_size(title, &font)
+            .map(|(tw, _)| tw + 20 <= w)
+            .unwrap_or(true);
+        if fits || size <= 12.0 {
+            return root.titled(title, font).map_err(draw_err);
+        }
+        size -= 1.0;
+    }
+}
+
 /// Splits `root` into a caption strip, a plot area on the left and a legend panel on the
 /// right (`legend_frac` of the width, at least `min_px`), so that a legend never covers data.
 /// Returns (plot area, legend panel).
@@ -76,20 +97,7 @@ pub fn with_side_panel<DB: DrawingBackend>(
     legend_frac: f64,
     min_px: u32,
 ) -> Result<(Area<DB>, Area<DB>), PlotError> {
-    let (w, _) = root.dim_in_pixel();
-    // shrink the caption font until the title fits the width
-    let mut size = 22.0;
-    let area = loop {
-        let font: TextStyle = (FONT_FAMILY, size).into_font().into();
-        let fits = root
-            .estimate_text_size(title, &font)
-            .map(|(tw, _)| tw + 20 <= w)
-            .unwrap_or(true);
-        if fits || size <= 12.0 {
-            break root.titled(title, font).map_err(draw_err)?;
-        }
-        size -= 1.0;
-    };
+    let area = fitted_title(root, title)?;
     let (aw, _) = area.dim_in_pixel();
     let panel = ((aw as f64 * legend_frac) as u32).max(min_px).min(aw / 2);
     let (plot, legend) = area.split_horizontally(aw - panel);
