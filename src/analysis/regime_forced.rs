@@ -127,7 +127,7 @@ fn too_short(sec: &SectionAnalysis) -> Verdict {
 
 /// The worst axis's scatter of the section's best grouping, in per cent of the orbit.
 fn worst_axis_pct(sec: &SectionAnalysis) -> f64 {
-    100.0 * sec.axis_scatter.iter().copied().fold(0.0, f64::max)
+    100.0 * crate::analysis::section::grouping::worst(&sec.axis_scatter)
 }
 
 /// Periodic-n from the section's own pattern (exact, converging or with noise).

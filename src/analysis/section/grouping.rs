@@ -56,23 +56,29 @@ pub struct Grouping {
 impl Grouping {
     /// The grouping of `u` by k mod `p` with its residue `w` = W_p.
     fn of(u: &[Vec<f64>], p: usize, w: f64) -> Grouping {
+        let residues = axis_residues(u, p);
         Grouping {
             period: p,
             scatter: w,
-            axis_scatter: axis_scatter(u, p),
-            axis_spread: axis_spread(u, p),
+            axis_scatter: rms_per_axis(&residues),
+            axis_spread: spread_per_axis(residues),
         }
     }
 
     /// The largest per-axis spread (relative to the orbit).
     pub fn worst_spread(&self) -> f64 {
-        self.axis_spread.iter().copied().fold(0.0, f64::max)
+        worst(&self.axis_spread)
     }
 
     /// The largest per-axis RMS scatter (relative to the orbit).
     pub fn worst_scatter(&self) -> f64 {
-        self.axis_scatter.iter().copied().fold(0.0, f64::max)
+        worst(&self.axis_scatter)
     }
+}
+
+/// The largest of per-axis figures (0 for none).
+pub fn worst(per_axis: &[f64]) -> f64 {
+    per_axis.iter().copied().fold(0.0, f64::max)
 }
 
 /// Multiplier of the median absolute deviation that equals the standard deviation of
@@ -126,16 +132,20 @@ pub(super) fn residue_scatter(u: &[Vec<f64>], p: usize) -> f64 {
 
 /// RMS distance of the points to their residue-class centroids along each axis.
 pub(super) fn axis_scatter(u: &[Vec<f64>], p: usize) -> Vec<f64> {
-    axis_residues(u, p)
-        .into_iter()
+    rms_per_axis(&axis_residues(u, p))
+}
+
+/// RMS of each axis's residues.
+fn rms_per_axis(residues: &[Vec<f64>]) -> Vec<f64> {
+    residues
+        .iter()
         .map(|r| (r.iter().map(|x| x * x).sum::<f64>() / r.len() as f64).sqrt())
         .collect()
 }
 
-/// 1.4826 × the median absolute distance of the points from their residue-class centroids
-/// along each axis.
-fn axis_spread(u: &[Vec<f64>], p: usize) -> Vec<f64> {
-    axis_residues(u, p)
+/// 1.4826 × the median absolute residue of each axis.
+fn spread_per_axis(residues: Vec<Vec<f64>>) -> Vec<f64> {
+    residues
         .into_iter()
         .map(|mut r| {
             for x in r.iter_mut() {
