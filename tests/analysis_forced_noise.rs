@@ -76,6 +76,7 @@ fn classify(series: &[f64], section: &[Vec<f64>], h: f64, omega: f64) -> Analysi
         model_exponent: None,
         in_box_series: &[],
         replica: None,
+        replica_deferred: false,
     };
     let r = analyze_forced(&run, &AnalyzeOptions::default()).unwrap();
     eprintln!(

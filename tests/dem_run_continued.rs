@@ -113,3 +113,57 @@ fn a_run_sampled_on_the_analysis_clock_is_the_sweep_points_run() {
     ));
     assert_eq!(sweep_point, fine);
 }
+
+#[test]
+fn a_kept_sweep_point_is_the_panels_run_and_a_finished_point_is_not_kept() {
+    // `pdamp::sweep::run_sweep_keeping` (the chapter-4 panels): the point's own run gives the
+    // samples a panel run on the analysis clock records, bit for bit, and its summary
+    let dir = scratch::tempdir().unwrap();
+    let spec = SweepSpec {
+        base: SceneSource::parse(TINY).unwrap(),
+        set: clock_set(),
+        varies: vec![Vary::parse("excitation.frequency=15,16").unwrap()],
+        analyze: true,
+    };
+    let out = dir.path().join("kept");
+    let (report, kept) = pdamp::sweep::run_sweep_keeping(&spec, &out, &|_| {}, &[1]).unwrap();
+    assert!(report.failed.is_empty(), "{:?}", report.failed);
+    assert_eq!(kept.len(), 1);
+    assert_eq!(kept[0].point, 1);
+    let scene = SceneSource::parse(TINY)
+        .unwrap()
+        .scene(
+            &[
+                clock_set(),
+                vec![("excitation.frequency".into(), toml::Value::Float(16.0))],
+            ]
+            .concat(),
+        )
+        .unwrap();
+    let mut rec = pdamp::observe::Recorded::default();
+    let opts = pdamp::setup::steady_series(&scene);
+    let panel = pdamp::sweep::run_with_analysis(&scene, &mut rec, &opts, true).unwrap();
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    let k = &kept[0];
+    assert!(rec.time_s.len() > 50, "{} samples", rec.time_s.len());
+    assert_eq!(bits(&k.samples.time_s), bits(&rec.time_s));
+    assert_eq!(bits(&k.samples.grain_z_m), bits(&rec.grain_z_m));
+    assert_eq!(bits(&k.samples.grain_zmax_m), bits(&rec.grain_zmax_m));
+    assert_eq!(bits(&k.samples.floor_z_m), bits(&rec.floor_z_m));
+    assert_eq!(k.summary.strobe, panel.strobe);
+    assert_eq!(k.summary.amplitude_m.to_bits(), panel.amplitude_m.to_bits());
+    let verdict = |s: &pdamp::model::RunSummary| s.analysis.as_ref().map(|a| a.verdict());
+    assert_eq!(verdict(&k.summary), verdict(&panel));
+    assert!(verdict(&panel).is_some());
+    // the stored point is the kept summary's
+    let text = std::fs::read_to_string(out.join("points/1.json")).unwrap();
+    let j: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(
+        j["summary"]["amplitude_m"].as_f64().unwrap().to_bits(),
+        panel.amplitude_m.to_bits()
+    );
+    // a rerun finds both points finished: nothing runs, nothing is kept
+    let (again, kept) = pdamp::sweep::run_sweep_keeping(&spec, &out, &|_| {}, &[1]).unwrap();
+    assert_eq!((again.skipped, again.computed), (2, 0));
+    assert!(kept.is_empty());
+}

@@ -58,6 +58,7 @@ fn verdict_at(coupling: f64) -> (AnalysisReport, ReplicaReport) {
         model_exponent: None,
         in_box_series: &[],
         replica: Some(&rep),
+        replica_deferred: false,
     };
     let a = analyze_forced(&run, &AnalyzeOptions::default()).expect("analysis");
     (a, rep)

@@ -29,6 +29,9 @@ pub struct ForcedEvidence<'a> {
     /// The simulation's own sensitivity test ([`crate::analysis::replica_test`]), when the
     /// simulator ran two replicas.
     pub replica: Option<&'a ReplicaReport>,
+    /// The simulator holds a two-replica test it runs only if the verdict needs it
+    /// (`replica` is then `None`): a section of n tight groups is periodic-n without it.
+    pub replica_deferred: bool,
     /// Low- or high-dimensional section ([`crate::analysis::section_dimension`]), when
     /// estimated.
     pub dimension: Option<ChaosDimension>,
@@ -92,7 +95,10 @@ pub fn classify_forced(e: &ForcedEvidence<'_>) -> Verdict {
         _ if matches!(e.section.pattern, SectionPattern::TooShort { .. }) => too_short(e.section),
         (Some(m), _) => by_model(e, m),
         (None, Some(r)) => by_replica(e, r),
-        (None, None) => by_data(e),
+        (None, None) => match &e.section.tight {
+            Some(g) if e.replica_deferred => tight_groups(g, None),
+            _ => by_data(e),
+        },
     };
     if v.regime != Regime::Periodic && v.regime != Regime::TooShort {
         v.phase_locked = e
@@ -221,7 +227,7 @@ fn by_replica(e: &ForcedEvidence<'_>, r: &ReplicaReport) -> Verdict {
     // n tight groups: the run is periodic-n whatever the replicas did — they can only say how
     // large its sensitive part is, judged at the same phase of the cycle
     if let Some(g) = &sec.tight {
-        return tight_groups(g, &r.at_period(g.period));
+        return tight_groups(g, Some(&r.at_period(g.period)));
     }
     let exact = matches!(sec.pattern, SectionPattern::Periodic { noisy: false, .. });
     match (&r.outcome, sec.pattern) {
@@ -302,26 +308,30 @@ fn by_replica(e: &ForcedEvidence<'_>, r: &ReplicaReport) -> Verdict {
     }
 }
 
-/// Periodic-n from n tight groups, with what the replicas did (judged at the same phase).
-fn tight_groups(g: &Grouping, r: &ReplicaReport) -> Verdict {
-    let what = match &r.outcome {
-        ReplicaOutcome::Insensitive => "stay together (insensitive)".to_string(),
-        ReplicaOutcome::Sensitive {
+/// Periodic-n from n tight groups, with what the replicas did (judged at the same phase), or
+/// that they were not needed (`r` = `None`: the simulator left its test unrun).
+fn tight_groups(g: &Grouping, r: Option<&ReplicaReport>) -> Verdict {
+    let what = match r.map(|r| (r, &r.outcome)) {
+        None => "were not needed (n tight groups are periodic-n whatever they do; \
+                 `run.replica = true` runs them)"
+            .to_string(),
+        Some((_, ReplicaOutcome::Insensitive)) => "stay together (insensitive)".to_string(),
+        Some((r, ReplicaOutcome::Sensitive {
             saturation_rel_orbit,
-        } => format!(
+        })) => format!(
             "separate to {:.2} % of the orbit{}, as two independent states of one group — sensitive, but only within the groups",
             100.0 * saturation_rel_orbit,
             rate_words(r)
         ),
-        ReplicaOutcome::Partial {
+        Some((r, ReplicaOutcome::Partial {
             saturation_rel_orbit,
             ..
-        } => format!(
+        })) => format!(
             "separate to {:.2} % of the orbit{} — sensitive, within the groups",
             100.0 * saturation_rel_orbit,
             rate_words(r)
         ),
-        ReplicaOutcome::Inconclusive { why } => format!(
+        Some((r, ReplicaOutcome::Inconclusive { why })) => format!(
             "stay within {:.2} % of the orbit ({why})",
             100.0 * r.saturation_rel
         ),

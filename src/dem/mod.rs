@@ -21,7 +21,8 @@ pub use bed_impacts::BedImpacts;
 pub use energy::{EnergyLedger, EnergyState};
 pub use model::{DemModel, Grains, Packing};
 pub use replica::{
-    run_replica, ReplicaOptions, ReplicaOutcome, ReplicaReport, ReplicaRow, ReplicaTracker,
+    run_replica, run_replica_deferred, DeferredReplica, ReplicaOptions, ReplicaOutcome,
+    ReplicaReport, ReplicaRow, ReplicaTracker,
 };
 pub use run::{initial_positions, run_dem, DemRunConfig, DemSample, DemSummary, DtChoice};
 pub use world::{BoxDrive, ContactCounts, ContactsPerGrain, DemWorld, PrimarySystem};

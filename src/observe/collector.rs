@@ -1,6 +1,7 @@
-//! In-memory collector of the steady-state grain series (input of the nonlinear analysis).
+//! In-memory collectors: the steady-state grain series (input of the nonlinear analysis), the
+//! stroboscopic points, and the samples figures draw ([`Recorded`]).
 
-use super::{Observer, Sample};
+use super::{ModelSample, Observer, Sample};
 use crate::error::SimError;
 use crate::model::StrobePoint;
 
@@ -56,6 +57,43 @@ impl Observer for StrobeCollector {
     }
     fn strobe(&mut self, p: &StrobePoint) -> Result<(), SimError> {
         self.points.push(*p);
+        Ok(())
+    }
+}
+
+/// The samples of one run kept in memory (the columns of `series.csv` that figures use).
+#[derive(Debug, Clone, Default)]
+pub struct Recorded {
+    /// `time_s`.
+    pub time_s: Vec<f64>,
+    /// `box_z_m`.
+    pub box_z_m: Vec<f64>,
+    /// `floor_z_m`.
+    pub floor_z_m: Vec<f64>,
+    /// `ceiling_z_m`.
+    pub ceiling_z_m: Vec<f64>,
+    /// `grain_z_m` (particle or z_cm).
+    pub grain_z_m: Vec<f64>,
+    /// `grain_zmin_m` (DEM only).
+    pub grain_zmin_m: Vec<f64>,
+    /// `grain_zmax_m` (DEM only).
+    pub grain_zmax_m: Vec<f64>,
+    /// `grain_force_n`.
+    pub grain_force_n: Vec<f64>,
+}
+
+impl Observer for Recorded {
+    fn sample(&mut self, s: &Sample) -> Result<(), SimError> {
+        self.time_s.push(s.time_s);
+        self.box_z_m.push(s.box_z_m);
+        self.floor_z_m.push(s.floor_z_m);
+        self.ceiling_z_m.push(s.ceiling_z_m);
+        self.grain_z_m.push(s.grain_z_m);
+        self.grain_force_n.push(s.grain_force_n);
+        if let ModelSample::Dem(d) = s.model {
+            self.grain_zmin_m.push(d.grain_zmin_m);
+            self.grain_zmax_m.push(d.grain_zmax_m);
+        }
         Ok(())
     }
 }

@@ -7,7 +7,7 @@ pub mod csv_recorder;
 pub mod snapshot;
 pub mod vtk_xml;
 
-pub use collector::{SteadyCollector, StrobeCollector};
+pub use collector::{Recorded, SteadyCollector, StrobeCollector};
 pub use csv_recorder::CsvRecorder;
 pub use snapshot::SnapshotWriter;
 

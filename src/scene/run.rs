@@ -79,7 +79,9 @@ pub struct Run {
 /// The scene key `run.replica`: when the DEM two-replica test runs.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum ReplicaChoice {
-    /// Wherever a regime verdict is asked for (the default; the key left out).
+    /// Wherever a regime verdict needs it (the default; the key left out): replica B is
+    /// cloned in every analysed run and stepped only when the section is not n tight groups
+    /// ([`crate::dem::replica::DeferredReplica`]).
     #[default]
     WithVerdict,
     /// Never (`false`).

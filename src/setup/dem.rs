@@ -6,7 +6,7 @@
 use std::path::PathBuf;
 
 use crate::dem::model::{DemModel, Grains, Packing};
-use crate::dem::replica::{run_replica, ReplicaOptions};
+use crate::dem::replica::{run_replica_deferred, DeferredReplica, ReplicaOptions, DEFAULT_DELTA_M};
 use crate::dem::run::{run_dem, run_dem_with_step, DemRunConfig, DtChoice};
 use crate::dem::stability::TimeStep;
 use crate::error::{SceneError, SimError};
@@ -58,7 +58,7 @@ pub struct DemSetup {
     pub time_step: TimeStep,
     /// Snapshot directory and format, when snapshots are written.
     pub snapshots: Option<(PathBuf, SnapshotFormat)>,
-    /// When the two-replica test runs (`run.replica`); see [`DemSetup::with_verdict`].
+    /// When the two-replica test runs (`run.replica`); see [`simulate_for_verdict`].
     pub replica: ReplicaChoice,
     /// Book the energy ledger (`run.energy_ledger`).
     pub energy_ledger: bool,
@@ -72,18 +72,6 @@ pub struct DemSetup {
 }
 
 impl DemSetup {
-    /// The setup of a run analysed for a regime verdict: the two-replica test runs unless
-    /// `run.replica = false` (the verdict uses it).
-    pub fn with_verdict(&self) -> DemSetup {
-        DemSetup {
-            replica: match self.replica.delta_m(true) {
-                Some(d) => ReplicaChoice::Delta(d),
-                None => ReplicaChoice::Off,
-            },
-            ..self.clone()
-        }
-    }
-
     /// The sample clock of a run with the sampling of `opts` (s): its interval, or
     /// `run.sample_interval` for a run without samples.
     pub fn sample_interval_for(&self, opts: &RunOptions) -> f64 {
@@ -256,6 +244,58 @@ pub fn simulate(
     obs: &mut dyn Observer,
     opts: &RunOptions,
 ) -> Result<RunSummary, SimError> {
+    let replica = match setup.replica.delta_m(false) {
+        Some(d) => ReplicaRun::Now(d),
+        None => ReplicaRun::Off,
+    };
+    let (mut s, deferred) = simulate_with(setup, obs, opts, replica)?;
+    s.replica = deferred.map(DeferredReplica::complete);
+    Ok(s)
+}
+
+/// [`simulate`] for a run analysed for a regime verdict: the two-replica test's replica B is
+/// cloned at the analysis start but left unstepped when `run.replica` is left out (the
+/// default: the caller completes it only if the verdict needs it, [`DeferredReplica`]), run
+/// in full when `run.replica` sets it, not at all when it is `false`.
+///
+/// # Errors
+/// As [`simulate`].
+pub fn simulate_for_verdict(
+    setup: &DemSetup,
+    obs: &mut dyn Observer,
+    opts: &RunOptions,
+) -> Result<(RunSummary, Option<DeferredReplica>), SimError> {
+    let replica = match setup.replica {
+        ReplicaChoice::WithVerdict => ReplicaRun::Deferred(DEFAULT_DELTA_M),
+        ReplicaChoice::Delta(d) => ReplicaRun::Now(d),
+        ReplicaChoice::Off => ReplicaRun::Off,
+    };
+    let (mut s, deferred) = simulate_with(setup, obs, opts, replica)?;
+    if let ReplicaRun::Now(_) = replica {
+        s.replica = deferred.map(DeferredReplica::complete);
+        return Ok((s, None));
+    }
+    Ok((s, deferred))
+}
+
+/// Whether and when a run's two-replica test runs.
+#[derive(Debug, Clone, Copy)]
+enum ReplicaRun {
+    Off,
+    /// With this δ0 (m), completed by the caller.
+    Now(f64),
+    /// With this δ0 (m), left for the caller to complete or not.
+    Deferred(f64),
+}
+
+/// The run, with replica B cloned when `replica` asks for the test (not stepped: the
+/// summary's `replica` is left empty for the caller).
+fn simulate_with(
+    setup: &DemSetup,
+    obs: &mut dyn Observer,
+    opts: &RunOptions,
+    replica: ReplicaRun,
+) -> Result<(RunSummary, Option<DeferredReplica>), SimError> {
     let (drive, cfg, step) = (setup.drive, setup.config(opts), setup.time_step);
     let mut snapshots = setup.snapshots.as_ref().map(|(dir, format)| {
         SnapshotWriter::new(
@@ -271,13 +311,13 @@ pub fn simulate(
     }
     let mut fwd = Tee { observers };
     // `run.replica`: replica B perturbed at the start of the analysis window
-    let (s, replica) = match setup.replica.delta_m(false) {
-        Some(delta_m) => {
+    let (s, deferred) = match replica {
+        ReplicaRun::Now(delta_m) | ReplicaRun::Deferred(delta_m) => {
             let opts = ReplicaOptions::at_analysis_start(&cfg, delta_m);
-            let (s, r) = run_replica(&setup.model, drive, &cfg, step, &opts, &mut fwd)?;
+            let (s, r) = run_replica_deferred(&setup.model, drive, &cfg, step, &opts, &mut fwd)?;
             (s, Some(r))
         }
-        None => (
+        ReplicaRun::Off => (
             run_dem_with_step(&setup.model, drive, &cfg, step, &mut fwd)?,
             None,
         ),
@@ -321,7 +361,7 @@ pub fn simulate(
         bed_height_m: s.bed_height_m,
         volume_fraction: s.volume_fraction,
     };
-    Ok(RunSummary {
+    let summary = RunSummary {
         model: "dem".into(),
         frequency_hz: drive.frequency_hz,
         duration_s: cfg.duration_s,
@@ -356,9 +396,10 @@ pub fn simulate(
         strobe: strobe.points,
         analysis: None,
         analysis_error: None,
-        replica,
+        replica: None,
         decay: None,
-    })
+    };
+    Ok((summary, deferred))
 }
 
 #[cfg(test)]

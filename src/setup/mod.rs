@@ -141,6 +141,27 @@ pub fn simulate(
     simulate_driven(resolved, obs, opts)
 }
 
+/// [`simulate`] of a DEM setup analysed for a regime verdict ([`dem::simulate_for_verdict`]):
+/// the two-replica test's replica B comes back unstepped when the scene leaves `run.replica`
+/// out, for the caller to complete if the verdict needs it.
+///
+/// # Errors
+/// As [`simulate`].
+pub fn simulate_dem_for_verdict(
+    resolved: &Resolved,
+    setup: &dem::DemSetup,
+    obs: &mut dyn Observer,
+    opts: &RunOptions,
+) -> Result<(RunSummary, Option<crate::dem::DeferredReplica>), SimError> {
+    let (mut s, deferred) = dem::simulate_for_verdict(setup, obs, opts)
+        .map_err(dem_instability_keys)
+        .map_err(keyed)?;
+    if resolved.auto.is_some() {
+        s.model = resolved.model_name(&s.model);
+    }
+    Ok((s, deferred))
+}
+
 /// [`simulate`] without the free decay's envelope.
 fn simulate_driven(
     resolved: &Resolved,

@@ -37,7 +37,7 @@ mod runs;
 use checks::{checks_figure, Checks};
 use ensemble::{ensemble_check, ensemble_figure};
 use frequency::{bifurcation, impacts, regime_frf};
-use panels::{panel, panel_run, reconstruction};
+use panels::{panel, panel_of_point, panel_points, panel_run, reconstruction};
 use points::{opt_cell, point, points, Point};
 use record::Info;
 use run_length::run_length;
@@ -49,6 +49,7 @@ use super::pipeline::{Ctx, FigureRecord, SweepResult, DEM_B_SOFT};
 use super::settings::{Chapter4Settings, DemSettings, Settings};
 use crate::error::StudyError;
 use crate::scene::keys::{DAMPER_SEED, EXCITATION_FREQUENCY};
+use crate::sweep::KeptRun;
 
 /// Names of the chapter-4 figures (for `--only`).
 pub const NAMES: [&str; 9] = [
@@ -96,7 +97,20 @@ pub fn all(
             true,
         )
     };
-    let base = sweep(1.0, &c.frequencies_hz)?;
+    // the panels draw their sweep points' runs: kept from the sweep when it runs them now
+    let panels = want("ch4_panels") || want("ch4_reconstruction");
+    let keep: Vec<usize> = match panels {
+        true => panel_points(&c.frequencies_hz, &c.panel_freqs_hz),
+        false => Vec::new(),
+    };
+    let (base, kept) = ctx.sweep_keeping(
+        &sweep_dir(c, 1.0),
+        DEM_CH4,
+        &ch4_set(d, c, 1.0),
+        &[(EXCITATION_FREQUENCY, frequency_list(&c.frequencies_hz))],
+        true,
+        &keep,
+    )?;
     let pts = points("ch4_regime_frf", &base.points)?;
     let info = Info {
         ctx,
@@ -175,12 +189,25 @@ pub fn all(
             figures.push(checks_figure(&info, &ch)?);
         }
     }
-    if want("ch4_panels") || want("ch4_reconstruction") {
-        // one DEM run per panel, in parallel (each run is single-threaded and deterministic)
-        let runs = c
-            .panel_freqs_hz
-            .par_iter()
-            .map(|&f| panel_run(d, c, f))
+    if panels {
+        // the sweep's own runs where it kept them, else one DEM run per panel, in parallel
+        // (each run is single-threaded and deterministic: the same run as the sweep point's)
+        let mut kept: Vec<Option<KeptRun>> = kept.into_iter().map(Some).collect();
+        let mut take = |f: f64| {
+            let i = c.frequencies_hz.iter().position(|&x| x == f)?;
+            let k = kept
+                .iter_mut()
+                .find(|k| k.as_ref().is_some_and(|k| k.point == i))?;
+            k.take()
+        };
+        let from_sweep: Vec<(f64, Option<KeptRun>)> =
+            c.panel_freqs_hz.iter().map(|&f| (f, take(f))).collect();
+        let runs = from_sweep
+            .into_par_iter()
+            .map(|(f, k)| match k {
+                Some(k) => panel_of_point(d, c, f, k),
+                None => panel_run(d, c, f),
+            })
             .collect::<Result<Vec<_>, _>>()?;
         if want("ch4_panels") {
             for r in &runs {

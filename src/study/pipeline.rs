@@ -4,12 +4,12 @@
 use std::path::{Path, PathBuf};
 
 use super::command::Command;
-use crate::error::{SimError, StudyError};
+use crate::error::StudyError;
 use crate::model::RunOptions;
-use crate::observe::{ModelSample, Observer, Sample};
+pub use crate::observe::Recorded;
 use crate::plot::{render, Figure, FigureOptions};
 use crate::scene::{Scene, SceneSource};
-use crate::sweep::{run_sweep, SweepPoints, SweepSpec, Vary};
+use crate::sweep::{run_sweep_keeping, KeptRun, SweepPoints, SweepSpec, Vary};
 
 /// A scene file bundled with the library (same text as under `data/scenes/`).
 #[derive(Debug, Clone, Copy)]
@@ -140,6 +140,25 @@ impl Ctx<'_> {
         vary: &[(&str, String)],
         analyze: bool,
     ) -> Result<SweepResult, StudyError> {
+        self.sweep_keeping(dir, scene, set, vary, analyze, &[])
+            .map(|(r, _)| r)
+    }
+
+    /// [`Ctx::sweep`], keeping the samples and summaries of the points `keep` that run now
+    /// ([`crate::sweep::run_sweep_keeping`]): a figure of one of those points needs no second
+    /// run. Points reused from an earlier run are not kept.
+    ///
+    /// # Errors
+    /// As [`Ctx::sweep`].
+    pub fn sweep_keeping(
+        &self,
+        dir: &str,
+        scene: BundledScene,
+        set: &[(&str, String)],
+        vary: &[(&str, String)],
+        analyze: bool,
+        keep: &[usize],
+    ) -> Result<(SweepResult, Vec<KeptRun>), StudyError> {
         let step = |e: &dyn std::fmt::Display| StudyError::step(format!("sweep {dir}"), e);
         let base = SceneSource::parse(scene.text).map_err(|e| step(&e))?;
         let set_parsed = set
@@ -165,12 +184,13 @@ impl Ctx<'_> {
         let started = std::time::Instant::now();
         let tick = (n / 10).max(1);
         let progress = self.progress;
-        let report = run_sweep(&spec, &out, &|done| {
-            if n >= 50 && done % tick == 0 && done < n {
+        let on_point = |done: usize| {
+            if n >= 50 && done.is_multiple_of(tick) && done < n {
                 progress(&format!("  {dir}: {done}/{n}"));
             }
-        })
-        .map_err(|e| step(&e))?;
+        };
+        let (report, kept) =
+            run_sweep_keeping(&spec, &out, &on_point, keep).map_err(|e| step(&e))?;
         if let Some((i, why)) = report.failed.first() {
             return Err(step(&format!(
                 "{} of {n} points failed (first: point {i}: {why}); rerun to retry them",
@@ -185,11 +205,12 @@ impl Ctx<'_> {
             started.elapsed().as_secs_f64()
         ));
         let points = SweepPoints::read(&out).map_err(|e| step(&e))?;
-        Ok(SweepResult {
+        let result = SweepResult {
             points,
             commands: vec![command],
             csv: vec![out.join("sweep.csv")],
-        })
+        };
+        Ok((result, kept))
     }
 
     /// Like [`Ctx::sweep`] with `outer` as the slowest key of the grid, but as one sweep per
@@ -339,43 +360,6 @@ pub fn scene_with(
 /// The `pdamp simulate` command reproducing [`record_run`]'s run, into `out`.
 pub fn simulate_command(scene: BundledScene, set: &[(&str, String)], out: &Path) -> Command {
     Command::simulate(scene.path, set, out)
-}
-
-/// The samples of one run kept in memory (the columns of `series.csv` that figures use).
-#[derive(Debug, Clone, Default)]
-pub struct Recorded {
-    /// `time_s`.
-    pub time_s: Vec<f64>,
-    /// `box_z_m`.
-    pub box_z_m: Vec<f64>,
-    /// `floor_z_m`.
-    pub floor_z_m: Vec<f64>,
-    /// `ceiling_z_m`.
-    pub ceiling_z_m: Vec<f64>,
-    /// `grain_z_m` (particle or z_cm).
-    pub grain_z_m: Vec<f64>,
-    /// `grain_zmin_m` (DEM only).
-    pub grain_zmin_m: Vec<f64>,
-    /// `grain_zmax_m` (DEM only).
-    pub grain_zmax_m: Vec<f64>,
-    /// `grain_force_n`.
-    pub grain_force_n: Vec<f64>,
-}
-
-impl Observer for Recorded {
-    fn sample(&mut self, s: &Sample) -> Result<(), SimError> {
-        self.time_s.push(s.time_s);
-        self.box_z_m.push(s.box_z_m);
-        self.floor_z_m.push(s.floor_z_m);
-        self.ceiling_z_m.push(s.ceiling_z_m);
-        self.grain_z_m.push(s.grain_z_m);
-        self.grain_force_n.push(s.grain_force_n);
-        if let ModelSample::Dem(d) = s.model {
-            self.grain_zmin_m.push(d.grain_zmin_m);
-            self.grain_zmax_m.push(d.grain_zmax_m);
-        }
-        Ok(())
-    }
 }
 
 /// Runs `scene` once, keeping samples every `dt_s` from `from_s` on.

@@ -26,6 +26,8 @@ pub use continuation::{Continuation, Direction};
 pub use points::{SweepPoint, SweepPoints};
 pub use run::{run_scene, run_with_analysis};
 pub use runner::{merge, MergeReport};
-pub use runner::{run_shard, run_shard_with, run_sweep, SweepReport, SweepSpec};
+pub use runner::{
+    run_shard, run_shard_with, run_sweep, run_sweep_keeping, KeptRun, SweepReport, SweepSpec,
+};
 pub use shard::Shard;
 pub use vary::{grid, Vary};

@@ -8,7 +8,7 @@ use super::vary::{grid_point, Vary};
 use crate::error::{SceneError, SimError};
 use crate::io::schema::{StrobeRow, SWEEP_HEAD, SWEEP_TAIL};
 use crate::model::{RunOptions, RunSummary};
-use crate::observe::fmt_num;
+use crate::observe::{fmt_num, Recorded, Tee};
 use crate::scene::{Scene, SceneSource};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -122,15 +122,20 @@ fn section_scatter(sec: &crate::analysis::section::SectionAnalysis) -> f64 {
     sec.tight.as_ref().map_or(sec.size, |g| g.scatter)
 }
 
+/// Runs point `i` and forms its record; with `keep`, the samples of the analysis window
+/// (the analysis clock, [`crate::setup::steady_series`]) also go to `keep` — the same run and
+/// trajectory, since the analysis samples on that clock anyway. Returns the typed summary
+/// beside the record.
 pub(super) fn run_point(
     scene: &Scene,
     values: &[(String, toml::Value)],
     i: usize,
     analyze: bool,
     points_dir: &Path,
-) -> Result<PointRecord, SimError> {
+    keep: Option<&mut Recorded>,
+) -> Result<(PointRecord, RunSummary), SimError> {
     let cpu0 = crate::dem::run::thread_cpu_time_s();
-    let s = run_in_point_dir(scene, &points_dir.join(i.to_string()), analyze)?;
+    let s = run_in_point_dir(scene, &points_dir.join(i.to_string()), analyze, keep)?;
     let cpu_s = match (cpu0, crate::dem::run::thread_cpu_time_s()) {
         (Some(a), Some(b)) => Some(b - a),
         _ => None,
@@ -138,7 +143,7 @@ pub(super) fn run_point(
     let cells = cells_of(&s);
     let strobe = s.strobe.iter().map(StrobeRow::of).collect();
     let summary = serde_json::to_value(&s).map_err(|e| SimError::Output(e.to_string()))?;
-    Ok(PointRecord {
+    let record = PointRecord {
         point: i,
         physics: crate::model::PHYSICS_REVISION,
         values: values
@@ -149,7 +154,8 @@ pub(super) fn run_point(
         strobe,
         summary,
         cpu_s,
-    })
+    };
+    Ok((record, s))
 }
 
 /// The formatted cells of a point (`sweep.csv` and `timings.csv` columns) from its typed
@@ -216,16 +222,33 @@ pub(super) fn cells_of(s: &RunSummary) -> BTreeMap<String, String> {
 
 /// Runs one point; its own files (DEM snapshots) go under `dir` = `OUT/points/<i>/`, marked
 /// incomplete ([`crate::io::run_dir::RUNNING`]) until the run ends and cleared of an earlier
-/// attempt's files when it starts.
-fn run_in_point_dir(scene: &Scene, dir: &Path, analyze: bool) -> Result<RunSummary, SimError> {
+/// attempt's files when it starts. `keep`: see [`run_point`].
+fn run_in_point_dir(
+    scene: &Scene,
+    dir: &Path,
+    analyze: bool,
+    keep: Option<&mut Recorded>,
+) -> Result<RunSummary, SimError> {
     let mut resolved = scene.resolve()?;
     resolved.place_point_outputs_in(dir);
     let run_dir = match resolved.snapshot_dir() {
         Some(_) => Some(crate::io::RunDir::create(dir).map_err(|e| out_err(dir, e))?),
         None => None,
     };
-    let opts = RunOptions::summary_only();
-    let s = super::run::run_resolved(&resolved, &mut super::stop::StopCheck, &opts, analyze)?;
+    let mut stop = super::stop::StopCheck;
+    let s = match keep {
+        Some(rec) => {
+            let opts = crate::setup::steady_series(scene);
+            let mut tee = Tee {
+                observers: vec![&mut stop, rec],
+            };
+            super::run::run_resolved(&resolved, &mut tee, &opts, analyze)?
+        }
+        None => {
+            let opts = RunOptions::summary_only();
+            super::run::run_resolved(&resolved, &mut stop, &opts, analyze)?
+        }
+    };
     super::run::emit_warnings(&s);
     if let Some(d) = run_dir {
         d.finish().map_err(|e| out_err(dir, e))?;

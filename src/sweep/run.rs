@@ -98,6 +98,7 @@ pub fn run_resolved(
     let mut tee = Tee {
         observers: vec![obs, &mut decimator],
     };
+    let mut deferred = None;
     let (mut summary, model) = match &resolved.setup {
         // the impact model's exponent rides on the run itself (one simulation, not two)
         Setup::Impact(setup) if setup.particle.is_some() => {
@@ -110,15 +111,13 @@ pub fn run_resolved(
             let model = model_exponent_of(estimate.map_err(crate::setup::keyed), &mut s);
             (s, model)
         }
-        // a DEM run analysed for a verdict runs the two-replica test unless turned off
+        // a DEM run analysed for a verdict: the two-replica test's replica B is cloned at the
+        // analysis start and stepped below only if the section is not n tight groups
         Setup::Dem(dem) => {
-            let verdict = Resolved {
-                setup: Setup::Dem(dem.with_verdict()),
-                ..resolved.clone()
-            };
-            let mut s = crate::setup::simulate(&verdict, &mut tee, &run_opts)?;
-            let model = model_exponent(resolved, &mut s);
-            (s, model)
+            let (s, d) =
+                crate::setup::simulate_dem_for_verdict(resolved, dem, &mut tee, &run_opts)?;
+            deferred = d;
+            (s, None)
         }
         _ => {
             let mut s = crate::setup::simulate(resolved, &mut tee, &run_opts)?;
@@ -126,8 +125,24 @@ pub fn run_resolved(
             (s, model)
         }
     };
-    analyze_into(&mut summary, &collector, scene.frequency_hz(), model);
+    let f = scene.frequency_hz();
+    analyze_into(&mut summary, &collector, f, model, deferred.is_some());
+    if let Some(d) = deferred.filter(|_| replica_needed(&summary)) {
+        summary.replica = Some(d.complete());
+        analyze_into(&mut summary, &collector, f, model, false);
+    }
     Ok(summary)
+}
+
+/// Whether a verdict judged without the two-replica test needs it: the section was analysed
+/// and is not n tight groups (a tight section is periodic whatever the replicas do,
+/// [`crate::analysis::regime_forced`]).
+fn replica_needed(summary: &RunSummary) -> bool {
+    summary
+        .analysis
+        .as_ref()
+        .and_then(|a| a.section.as_ref())
+        .is_some_and(|s| s.tight.is_none())
 }
 
 /// Runs the forced-system analysis ([`crate::analysis::analyze::analyze_forced`], SPEC §4) on
@@ -142,6 +157,7 @@ fn analyze_into(
     collector: &SteadyCollector,
     forcing_hz: f64,
     model_exponent: Option<Exponent>,
+    replica_deferred: bool,
 ) {
     let (section, scales) = exact_section(summary, collector, forcing_hz);
     let in_box: Vec<f64> = collector
@@ -159,6 +175,7 @@ fn analyze_into(
         model_exponent,
         in_box_series: &in_box,
         replica: summary.replica.as_ref(),
+        replica_deferred,
     };
     match analyze_forced(&run, &AnalyzeOptions::default()) {
         Ok(report) => {

@@ -9,6 +9,8 @@ use super::shard::Shard;
 use super::tables::{ranges, read_record, stream_name, write_tables, StreamLog};
 use super::vary::{grid_len, grid_point};
 use crate::error::SimError;
+use crate::model::RunSummary;
+use crate::observe::Recorded;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -198,6 +200,49 @@ pub fn run_shard_with(
         }
         return Ok(report);
     }
+    run_ordinary(spec, out, shard, n, on_point, &[]).map(|(report, _)| report)
+}
+
+/// Run (or resume) a whole ordinary sweep as [`run_sweep`] does, and keep in memory the
+/// samples of the points `keep` computed now (each point's analysis window on the analysis
+/// clock, [`crate::setup::steady_series`]) with their summaries — what a figure of one point
+/// draws, without running the point a second time. Points found finished are not rerun and
+/// not kept.
+///
+/// # Errors
+/// As [`run_shard`].
+pub fn run_sweep_keeping(
+    spec: &SweepSpec,
+    out: &Path,
+    on_point: &(dyn Fn(usize) + Sync),
+    keep: &[usize],
+) -> Result<(SweepReport, Vec<KeptRun>), SimError> {
+    super::stop::clear();
+    let n = check_budget(spec, out, 1)?;
+    run_ordinary(spec, out, Shard::WHOLE, n, on_point, keep)
+}
+
+/// A point's run kept by [`run_sweep_keeping`].
+#[derive(Debug, Clone)]
+pub struct KeptRun {
+    /// The point's index in the grid.
+    pub point: usize,
+    /// Its summary (as stored in `points/<i>.json`).
+    pub summary: RunSummary,
+    /// Its samples over the analysis window.
+    pub samples: Recorded,
+}
+
+/// The points of `shard` of an ordinary (not continued) sweep of `n` points, keeping the
+/// samples of the points in `keep` that run now.
+fn run_ordinary(
+    spec: &SweepSpec,
+    out: &Path,
+    shard: Shard,
+    n: usize,
+    on_point: &(dyn Fn(usize) + Sync),
+    keep: &[usize],
+) -> Result<(SweepReport, Vec<KeptRun>), SimError> {
     for i in shard.points(n) {
         point_scene(spec, i)?;
     }
@@ -225,6 +270,7 @@ pub fn run_shard_with(
     let log = StreamLog::open(&out.join(stream_name(label.as_deref())), &keys)?;
     let state = Mutex::new((log, skipped));
     let failed = Mutex::new(Vec::new());
+    let kept = Mutex::new(Vec::new());
     if skipped > 0 {
         on_point(skipped);
     }
@@ -236,6 +282,7 @@ pub fn run_shard_with(
             true => Err(super::stop::interrupted()),
             false => point_scene(spec, i).map_err(SimError::from),
         };
+        let mut samples = keep.contains(&i).then(Recorded::default);
         let result = scene
             .and_then(|scene| {
                 run_point(
@@ -244,9 +291,10 @@ pub fn run_shard_with(
                     i,
                     spec.analyze,
                     &points_dir,
+                    samples.as_mut(),
                 )
             })
-            .and_then(|rec| {
+            .and_then(|(rec, summary)| {
                 let json =
                     serde_json::to_vec_pretty(&rec).map_err(|e| SimError::Output(e.to_string()))?;
                 write_point(&point_path(out, i), &json)?;
@@ -254,6 +302,16 @@ pub fn run_shard_with(
                 guard.0.append(&rec, started.elapsed().as_secs_f64())?;
                 guard.1 += 1;
                 on_point(guard.1);
+                if let Some(samples) = samples.take() {
+                    let kept_run = KeptRun {
+                        point: i,
+                        summary,
+                        samples,
+                    };
+                    kept.lock()
+                        .unwrap_or_else(|p| p.into_inner())
+                        .push(kept_run);
+                }
                 Ok(())
             });
         if let Err(e) = result {
@@ -273,12 +331,15 @@ pub fn run_shard_with(
     }
     let mut failed = failed.into_inner().unwrap_or_else(|p| p.into_inner());
     failed.sort();
-    Ok(SweepReport {
+    let mut kept = kept.into_inner().unwrap_or_else(|p| p.into_inner());
+    kept.sort_by_key(|k| k.point);
+    let report = SweepReport {
         points: mine.len(),
         skipped,
         computed: pending.len() - failed.len(),
         failed,
-    })
+    };
+    Ok((report, kept))
 }
 
 /// Writes the tables of the finished points of the sweep `manifest` found in `dirs` into

@@ -242,6 +242,7 @@ pub fn analyze_series(x: &[f64], opts: &AnalyzeOptions) -> Result<AnalysisReport
                             forcing_hz,
                             model: None,
                             replica: None,
+                            replica_deferred: false,
                             source: "interpolated",
                         },
                     );

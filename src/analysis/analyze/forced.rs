@@ -39,6 +39,9 @@ pub struct ForcedRun<'a> {
     /// The simulator's two-replica test ([`crate::analysis::replica_test`]), when it ran: it
     /// decides whether the motion is sensitive.
     pub replica: Option<&'a ReplicaReport>,
+    /// The simulator holds a two-replica test it runs only if the verdict needs it
+    /// ([`ForcedEvidence::replica_deferred`]).
+    pub replica_deferred: bool,
 }
 
 /// Returns the regime of a forced run judged from its exact stroboscopic section first, with
@@ -107,6 +110,7 @@ pub fn analyze_forced(
             forcing_hz: run.forcing_hz,
             model: run.model_exponent,
             replica: run.replica,
+            replica_deferred: run.replica_deferred,
             source: "exact",
         },
     );
@@ -138,6 +142,7 @@ pub(super) struct SectionInput<'a> {
     pub(super) forcing_hz: f64,
     pub(super) model: Option<Exponent>,
     pub(super) replica: Option<&'a ReplicaReport>,
+    pub(super) replica_deferred: bool,
     pub(super) source: &'static str,
 }
 
@@ -154,6 +159,7 @@ pub(super) fn section_verdict(
         forcing_hz,
         model,
         replica,
+        replica_deferred,
         source,
     } = input;
     let data = match sec.pattern {
@@ -187,6 +193,7 @@ pub(super) fn section_verdict(
         zero_band: 0.01,
         phase_lock: report.phase_lock,
         replica,
+        replica_deferred,
         dimension,
     });
     report.phase_locked = verdict.phase_locked.is_some();

@@ -62,6 +62,7 @@ fn verdict(sec: &SectionAnalysis, r: &ReplicaReport) -> Verdict {
         zero_band: 0.01,
         phase_lock: None,
         replica: Some(r),
+        replica_deferred: false,
         dimension: None,
     })
 }
@@ -134,4 +135,47 @@ fn a_cloud_is_not_chaotic_without_sensitivity() {
     assert_eq!(r.outcome, ReplicaOutcome::Insensitive, "{r:?}");
     let v = verdict(&cloud(), &r);
     assert_eq!(v.regime, Regime::Undetermined, "{}", v.reason);
+}
+
+/// The verdict with the simulator's replica test held back (`replica_deferred`).
+fn verdict_deferred(sec: &SectionAnalysis) -> Verdict {
+    classify_forced(&ForcedEvidence {
+        section: sec,
+        data_exponent: None,
+        model_exponent: None,
+        zero_band: 0.01,
+        phase_lock: None,
+        replica: None,
+        replica_deferred: true,
+        dimension: None,
+    })
+}
+
+#[test]
+fn a_held_back_replica_test_is_not_needed_for_tight_groups_only() {
+    // period 2 with 2 % scatter: periodic-2 without the replicas, as with them
+    let mut rng = ChaCha8Rng::seed_from_u64(10);
+    let pts: Vec<Vec<f64>> = (0..240)
+        .map(|k| {
+            let c = [[0.3, 0.3], [0.7, 0.6]][k % 2];
+            vec![c[0] + 0.02 * gauss(&mut rng), c[1] + 0.02 * gauss(&mut rng)]
+        })
+        .collect();
+    let s = section(&pts);
+    let v = verdict_deferred(&s);
+    assert_eq!((v.regime, v.period), (Regime::Periodic, Some(2.0)));
+    assert!(v.reason.contains("not needed"), "{}", v.reason);
+    assert_eq!(
+        (v.regime, v.period),
+        {
+            let w = verdict(&s, &partial());
+            (w.regime, w.period)
+        },
+        "with the replicas"
+    );
+    // a cloud is not judged without them: the caller must run the test (here the data rule
+    // answers, never "chaotic" by replicas it has not seen)
+    let c = verdict_deferred(&cloud());
+    assert!(!c.reason.contains("not needed"), "{}", c.reason);
+    assert!(!c.reason.contains("two replicas"), "{}", c.reason);
 }

@@ -17,6 +17,7 @@ use crate::scene::keys::EXCITATION_FREQUENCY;
 use crate::study::command::Command;
 use crate::study::pipeline::{scene_with, simulate_command, FigureRecord, Recorded};
 use crate::study::settings::{Chapter4Settings, DemSettings};
+use crate::sweep::KeptRun;
 
 /// One recorded chapter-4 run at a panel frequency.
 pub(super) struct PanelRun {
@@ -35,6 +36,13 @@ impl PanelRun {
             .analysis
             .as_ref()
             .map_or_else(|| "not analysed".to_string(), |a| a.verdict())
+    }
+
+    /// Whether the section is n tight groups (periodic whatever the replicas do).
+    fn tight(&self) -> bool {
+        let a = self.summary.analysis.as_ref();
+        a.and_then(|a| a.section.as_ref())
+            .is_some_and(|s| s.tight.is_some())
     }
 
     /// The two-replica test's outcome in a few words ("replicas: sensitive, 9.7 % of the
@@ -57,32 +65,71 @@ impl PanelRun {
                 100.0 * saturation_rel_orbit
             ),
             Some(O::Inconclusive { .. }) => "replicas: inconclusive".into(),
+            None if self.tight() => "replicas not needed (tight groups)".into(),
             None => "no replica test".into(),
         }
     }
 }
 
+/// The indices among `frequencies_hz` of the panel frequencies (a panel frequency not swept
+/// has none: its panel runs on its own).
+pub(super) fn panel_points(frequencies_hz: &[f64], panel_freqs_hz: &[f64]) -> Vec<usize> {
+    panel_freqs_hz
+        .iter()
+        .filter_map(|&f| frequencies_hz.iter().position(|&x| x == f))
+        .collect()
+}
+
+/// A panel's scene, its `--set`, and the analysis clock (s) its samples are on.
+type PanelScene = (crate::scene::Scene, Vec<(&'static str, String)>, f64);
+
+/// The scene of the panel at `f`, its `--set` and the analysis clock (s) its samples are on.
+fn panel_scene(d: &DemSettings, c: &Chapter4Settings, f: f64) -> Result<PanelScene, StudyError> {
+    let mut set = ch4_set(d, c, 1.0);
+    set.push((EXCITATION_FREQUENCY, f.to_string()));
+    let scene = scene_with(&format!("dem panel f{f}"), DEM_CH4, &set)?;
+    // the sweep's own analysis series (every analysis window / run.analysis_max_samples s
+    // from the analysis start, ~170 samples a period here): the automatic time step is
+    // snapped to that clock, so the panel is the sweep point's run, trajectory and verdict
+    let dt = crate::setup::steady_series(&scene)
+        .sample_interval_s
+        .unwrap_or(scene.run.sample_interval);
+    Ok((scene, set, dt))
+}
+
+/// The panel at `f` run on its own (its sweep point was found finished, so its samples were
+/// not kept).
 pub(super) fn panel_run(
     d: &DemSettings,
     c: &Chapter4Settings,
     f: f64,
 ) -> Result<PanelRun, StudyError> {
-    let step = format!("dem panel f{f}");
-    let mut set = ch4_set(d, c, 1.0);
-    set.push((EXCITATION_FREQUENCY, f.to_string()));
-    let scene = scene_with(&step, DEM_CH4, &set)?;
-    // the sweep's own analysis series (every analysis window / run.analysis_max_samples s
-    // from the analysis start, ~170 samples a period here): the automatic time step is
-    // snapped to that clock, so the panel is the sweep point's run, trajectory and verdict
+    let (scene, set, dt) = panel_scene(d, c, f)?;
     let opts = crate::setup::steady_series(&scene);
-    let dt = opts.sample_interval_s.unwrap_or(scene.run.sample_interval);
     let mut rec = Recorded::default();
     let summary = crate::sweep::run_with_analysis(&scene, &mut rec, &opts, true)
-        .map_err(|e| StudyError::step(&step, e))?;
+        .map_err(|e| StudyError::step(format!("dem panel f{f}"), e))?;
     Ok(PanelRun {
         f_hz: f,
         summary,
         rec,
+        dt_s: dt,
+        set,
+    })
+}
+
+/// The panel at `f` from its sweep point's run, kept by the sweep (no second run).
+pub(super) fn panel_of_point(
+    d: &DemSettings,
+    c: &Chapter4Settings,
+    f: f64,
+    kept: KeptRun,
+) -> Result<PanelRun, StudyError> {
+    let (_, set, dt) = panel_scene(d, c, f)?;
+    Ok(PanelRun {
+        f_hz: f,
+        summary: kept.summary,
+        rec: kept.samples,
         dt_s: dt,
         set,
     })

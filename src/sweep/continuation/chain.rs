@@ -206,7 +206,7 @@ fn continue_point(
             toml::Value::String(branch.as_str().into()),
         ),
     ];
-    run_point(&scene, &values, i, spec.analyze, &out.join("points"))
+    run_point(&scene, &values, i, spec.analyze, &out.join("points"), None).map(|(r, _)| r)
 }
 
 // ---------------------------------------------------------------- tables
