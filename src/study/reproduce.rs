@@ -94,75 +94,24 @@ pub fn reproduce(
         figures.push(impact_regimes::regime_map(&ctx, s)?);
     }
 
-    // ---- DEM (SPEC §2) ----
-    let mut dem_frf: Option<SweepResult> = None;
-    let mut effective_dem = Vec::new();
-    let dem_wanted = dem_figures::NAMES.iter().any(|n| want(n)) || want("frf");
-    match (&s.dem, opts.skip_dem, dem_wanted) {
-        (_, _, false) => {}
-        (None, _, _) => skipped.push(format!(
-            "DEM figures: not part of {} mode (use --quick or --full)",
-            s.mode.as_str()
-        )),
-        (Some(_), true, _) => skipped.push("DEM figures: --no-dem".into()),
-        (Some(d), false, _) => match dem_figures::available() {
-            Err(why) => skipped.push(format!("DEM figures: {why}")),
-            Ok(()) => {
-                let out = dem_figures::all(&ctx, s, d)?;
-                figures.extend(out.figures);
-                effective_dem = out.effective;
-                dem_frf = Some(out.frf);
-            }
-        },
-    }
-    // ---- the source's chapter 4 (DEM regimes along f) ----
-    let ch4_wanted = super::chapter4::NAMES.iter().any(|n| want(n));
-    match (
-        s.dem
-            .as_ref()
-            .and_then(|d| d.chapter4.as_ref().map(|c| (d, c))),
-        ch4_wanted,
-    ) {
-        (_, false) => {}
-        (None, true) => skipped.push(format!(
-            "chapter-4 figures: not part of {} mode (use --quick or --full)",
-            s.mode.as_str()
-        )),
-        (Some(_), true) if opts.skip_dem => skipped.push("chapter-4 figures: --no-dem".into()),
-        (Some((d, c)), true) => match dem_figures::available() {
-            Err(why) => skipped.push(format!("chapter-4 figures: {why}")),
-            Ok(()) => {
-                let out = super::chapter4::all(&ctx, s, d, c, &want)?;
-                figures.extend(out.figures);
-                // the chapter-4 runs (a fixed number of periods per point) are the converged
-                // DEM frequency response; the short drives of the DEM figure set are not
-                dem_frf = Some(out.sweep);
-            }
-        },
-    }
-    // ---- the linear-DEM paper's dampers ----
-    let paper_wanted = super::saeki::NAMES
-        .iter()
-        .chain(&super::els::NAMES)
-        .any(|n| want(n));
-    if paper_wanted {
-        match (&s.dem, opts.skip_dem, dem_figures::available()) {
-            (None, _, _) => skipped.push(format!(
-                "linear-DEM paper figures: not part of {} mode (use --quick or --full)",
-                s.mode.as_str()
-            )),
-            (Some(_), true, _) => skipped.push("linear-DEM paper figures: --no-dem".into()),
-            (Some(_), false, Err(why)) => skipped.push(format!("linear-DEM paper figures: {why}")),
-            (Some(_), false, Ok(())) => {
-                if super::saeki::NAMES.iter().any(|n| want(n)) {
-                    figures.push(super::saeki::saeki_materials(&ctx)?);
-                }
-                if super::els::NAMES.iter().any(|n| want(n)) {
-                    figures.push(super::els::els_decay(&ctx)?);
-                }
-            }
-        }
-    }
+    // ---- DEM (SPEC §2), the linear-DEM paper's dampers, and the source's chapter 4 ----
+    // the chapter-4 study (the largest) runs beside the others, so that the two cores stay
+    // busy through every sweep's last points (results do not depend on the order)
+    let ((dem, papers), ch4) = rayon::join(
+        || (dem_part(&ctx, opts, &want), papers_part(&ctx, opts, &want)),
+        || chapter4_part(&ctx, opts, &want),
+    );
+    let (dem, papers, ch4) = (dem?, papers?, ch4?);
+    figures.extend(dem.figures);
+    let effective_dem = dem.effective_dem;
+    skipped.extend(dem.skipped);
+    figures.extend(ch4.figures);
+    skipped.extend(ch4.skipped);
+    figures.extend(papers.figures);
+    skipped.extend(papers.skipped);
+    // the chapter-4 runs (a fixed number of periods per point) are the converged DEM
+    // frequency response; the short drives of the DEM figure set are not
+    let dem_frf = ch4.sweep.or(dem.frf);
     if let (Some(e0), Some(e8)) = (&frf_e0, &frf_e8) {
         figures.insert(
             0,
@@ -196,4 +145,114 @@ pub fn reproduce(
     };
     ctx.write_text(&opts.readme_name(), &super::readme::readme(opts, &report))?;
     Ok(report)
+}
+
+/// What one part of the DEM figure set made: its figures, the DEM frequency response it ran
+/// (if any), the effective-mass rows and the parts it skipped, with why.
+#[derive(Default)]
+struct DemPart {
+    figures: Vec<super::pipeline::FigureRecord>,
+    effective_dem: Vec<super::check::EffectiveRow>,
+    frf: Option<SweepResult>,
+    sweep: Option<SweepResult>,
+    skipped: Vec<String>,
+}
+
+/// The DEM figure set of SPEC §2 (not the chapter-4 study).
+fn dem_part(
+    ctx: &Ctx,
+    opts: &ReproduceOptions,
+    want: &(dyn Fn(&str) -> bool + Sync),
+) -> Result<DemPart, StudyError> {
+    let s = &opts.settings;
+    let mut part = DemPart::default();
+    let dem_wanted = dem_figures::NAMES.iter().any(|n| want(n)) || want("frf");
+    match (&s.dem, opts.skip_dem, dem_wanted) {
+        (_, _, false) => {}
+        (None, _, _) => part.skipped.push(format!(
+            "DEM figures: not part of {} mode (use --quick or --full)",
+            s.mode.as_str()
+        )),
+        (Some(_), true, _) => part.skipped.push("DEM figures: --no-dem".into()),
+        (Some(d), false, _) => match dem_figures::available() {
+            Err(why) => part.skipped.push(format!("DEM figures: {why}")),
+            Ok(()) => {
+                let out = dem_figures::all(ctx, s, d)?;
+                part.figures = out.figures;
+                part.effective_dem = out.effective;
+                part.frf = Some(out.frf);
+            }
+        },
+    }
+    Ok(part)
+}
+
+/// The source's chapter 4 (DEM regimes along f); its sweep in `sweep`.
+fn chapter4_part(
+    ctx: &Ctx,
+    opts: &ReproduceOptions,
+    want: &(dyn Fn(&str) -> bool + Sync),
+) -> Result<DemPart, StudyError> {
+    let s = &opts.settings;
+    let mut part = DemPart::default();
+    let ch4_wanted = super::chapter4::NAMES.iter().any(|n| want(n));
+    let settings = s
+        .dem
+        .as_ref()
+        .and_then(|d| d.chapter4.as_ref().map(|c| (d, c)));
+    match (settings, ch4_wanted) {
+        (_, false) => {}
+        (None, true) => part.skipped.push(format!(
+            "chapter-4 figures: not part of {} mode (use --quick or --full)",
+            s.mode.as_str()
+        )),
+        (Some(_), true) if opts.skip_dem => part.skipped.push("chapter-4 figures: --no-dem".into()),
+        (Some((d, c)), true) => match dem_figures::available() {
+            Err(why) => part.skipped.push(format!("chapter-4 figures: {why}")),
+            Ok(()) => {
+                let out = super::chapter4::all(ctx, s, d, c, want)?;
+                part.figures = out.figures;
+                part.sweep = Some(out.sweep);
+            }
+        },
+    }
+    Ok(part)
+}
+
+/// The linear-DEM paper's dampers (Saeki 2002's materials, Els 2009's decay).
+fn papers_part(
+    ctx: &Ctx,
+    opts: &ReproduceOptions,
+    want: &(dyn Fn(&str) -> bool + Sync),
+) -> Result<DemPart, StudyError> {
+    let s = &opts.settings;
+    let mut part = DemPart::default();
+    let paper_wanted = super::saeki::NAMES
+        .iter()
+        .chain(&super::els::NAMES)
+        .any(|n| want(n));
+    if !paper_wanted {
+        return Ok(part);
+    }
+    match (&s.dem, opts.skip_dem, dem_figures::available()) {
+        (None, _, _) => part.skipped.push(format!(
+            "linear-DEM paper figures: not part of {} mode (use --quick or --full)",
+            s.mode.as_str()
+        )),
+        (Some(_), true, _) => part
+            .skipped
+            .push("linear-DEM paper figures: --no-dem".into()),
+        (Some(_), false, Err(why)) => part
+            .skipped
+            .push(format!("linear-DEM paper figures: {why}")),
+        (Some(_), false, Ok(())) => {
+            if super::saeki::NAMES.iter().any(|n| want(n)) {
+                part.figures.push(super::saeki::saeki_materials(ctx)?);
+            }
+            if super::els::NAMES.iter().any(|n| want(n)) {
+                part.figures.push(super::els::els_decay(ctx)?);
+            }
+        }
+    }
+    Ok(part)
 }
