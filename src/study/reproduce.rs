@@ -158,6 +158,30 @@ struct DemPart {
     skipped: Vec<String>,
 }
 
+/// Whether the DEM may run in this mode, run and build; otherwise `why` says why not,
+/// naming `what` was skipped.
+fn dem_allowed(
+    what: &str,
+    has_settings: bool,
+    opts: &ReproduceOptions,
+    why: &mut Vec<String>,
+) -> bool {
+    let reason = if !has_settings {
+        format!(
+            "not part of {} mode (use --quick or --full)",
+            opts.settings.mode.as_str()
+        )
+    } else if opts.skip_dem {
+        "--no-dem".into()
+    } else if let Err(e) = dem_figures::available() {
+        e.to_string()
+    } else {
+        return true;
+    };
+    why.push(format!("{what}: {reason}"));
+    false
+}
+
 /// The DEM figure set of SPEC §2 (not the chapter-4 study).
 fn dem_part(
     ctx: &Ctx,
@@ -166,23 +190,15 @@ fn dem_part(
 ) -> Result<DemPart, StudyError> {
     let s = &opts.settings;
     let mut part = DemPart::default();
-    let dem_wanted = dem_figures::NAMES.iter().any(|n| want(n)) || want("frf");
-    match (&s.dem, opts.skip_dem, dem_wanted) {
-        (_, _, false) => {}
-        (None, _, _) => part.skipped.push(format!(
-            "DEM figures: not part of {} mode (use --quick or --full)",
-            s.mode.as_str()
-        )),
-        (Some(_), true, _) => part.skipped.push("DEM figures: --no-dem".into()),
-        (Some(d), false, _) => match dem_figures::available() {
-            Err(why) => part.skipped.push(format!("DEM figures: {why}")),
-            Ok(()) => {
-                let out = dem_figures::all(ctx, s, d)?;
-                part.figures = out.figures;
-                part.effective_dem = out.effective;
-                part.frf = Some(out.frf);
-            }
-        },
+    let wanted = dem_figures::NAMES.iter().any(|n| want(n)) || want("frf");
+    if !wanted || !dem_allowed("DEM figures", s.dem.is_some(), opts, &mut part.skipped) {
+        return Ok(part);
+    }
+    if let Some(d) = &s.dem {
+        let out = dem_figures::all(ctx, s, d)?;
+        part.figures = out.figures;
+        part.effective_dem = out.effective;
+        part.frf = Some(out.frf);
     }
     Ok(part)
 }
@@ -195,26 +211,19 @@ fn chapter4_part(
 ) -> Result<DemPart, StudyError> {
     let s = &opts.settings;
     let mut part = DemPart::default();
-    let ch4_wanted = super::chapter4::NAMES.iter().any(|n| want(n));
+    let wanted = super::chapter4::NAMES.iter().any(|n| want(n));
     let settings = s
         .dem
         .as_ref()
         .and_then(|d| d.chapter4.as_ref().map(|c| (d, c)));
-    match (settings, ch4_wanted) {
-        (_, false) => {}
-        (None, true) => part.skipped.push(format!(
-            "chapter-4 figures: not part of {} mode (use --quick or --full)",
-            s.mode.as_str()
-        )),
-        (Some(_), true) if opts.skip_dem => part.skipped.push("chapter-4 figures: --no-dem".into()),
-        (Some((d, c)), true) => match dem_figures::available() {
-            Err(why) => part.skipped.push(format!("chapter-4 figures: {why}")),
-            Ok(()) => {
-                let out = super::chapter4::all(ctx, s, d, c, want)?;
-                part.figures = out.figures;
-                part.sweep = Some(out.sweep);
-            }
-        },
+    let what = "chapter-4 figures";
+    if !wanted || !dem_allowed(what, settings.is_some(), opts, &mut part.skipped) {
+        return Ok(part);
+    }
+    if let Some((d, c)) = settings {
+        let out = super::chapter4::all(ctx, s, d, c, want)?;
+        part.figures = out.figures;
+        part.sweep = Some(out.sweep);
     }
     Ok(part)
 }
@@ -225,34 +234,18 @@ fn papers_part(
     opts: &ReproduceOptions,
     want: &(dyn Fn(&str) -> bool + Sync),
 ) -> Result<DemPart, StudyError> {
-    let s = &opts.settings;
     let mut part = DemPart::default();
-    let paper_wanted = super::saeki::NAMES
-        .iter()
-        .chain(&super::els::NAMES)
-        .any(|n| want(n));
-    if !paper_wanted {
+    let saeki = super::saeki::NAMES.iter().any(|n| want(n));
+    let els = super::els::NAMES.iter().any(|n| want(n));
+    let what = "linear-DEM paper figures";
+    if !(saeki || els) || !dem_allowed(what, opts.settings.dem.is_some(), opts, &mut part.skipped) {
         return Ok(part);
     }
-    match (&s.dem, opts.skip_dem, dem_figures::available()) {
-        (None, _, _) => part.skipped.push(format!(
-            "linear-DEM paper figures: not part of {} mode (use --quick or --full)",
-            s.mode.as_str()
-        )),
-        (Some(_), true, _) => part
-            .skipped
-            .push("linear-DEM paper figures: --no-dem".into()),
-        (Some(_), false, Err(why)) => part
-            .skipped
-            .push(format!("linear-DEM paper figures: {why}")),
-        (Some(_), false, Ok(())) => {
-            if super::saeki::NAMES.iter().any(|n| want(n)) {
-                part.figures.push(super::saeki::saeki_materials(ctx)?);
-            }
-            if super::els::NAMES.iter().any(|n| want(n)) {
-                part.figures.push(super::els::els_decay(ctx)?);
-            }
-        }
+    if saeki {
+        part.figures.push(super::saeki::saeki_materials(ctx)?);
+    }
+    if els {
+        part.figures.push(super::els::els_decay(ctx)?);
     }
     Ok(part)
 }
