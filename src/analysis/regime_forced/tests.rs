@@ -41,6 +41,18 @@ fn section(points: &[Vec<f64>]) -> SectionAnalysis {
     analyze_section(points, &[1.0, 1.0], &SectionOptions::default()).unwrap()
 }
 
+/// Period 2 with 2 % scatter: two tight groups.
+fn period_two() -> SectionAnalysis {
+    let mut rng = ChaCha8Rng::seed_from_u64(10);
+    let pts: Vec<Vec<f64>> = (0..240)
+        .map(|k| {
+            let c = [[0.3, 0.3], [0.7, 0.6]][k % 2];
+            vec![c[0] + 0.02 * gauss(&mut rng), c[1] + 0.02 * gauss(&mut rng)]
+        })
+        .collect();
+    section(&pts)
+}
+
 fn cloud() -> SectionAnalysis {
     let mut rng = ChaCha8Rng::seed_from_u64(8);
     let pts: Vec<Vec<f64>> = (0..240)
@@ -98,14 +110,7 @@ fn a_thin_closed_curve_with_partial_replicas_is_quasi_periodic() {
 fn tight_groups_are_periodic_whatever_the_replicas() {
     // period 2 with 2 % scatter: periodic-2 with partial replicas and with replicas that
     // ended in different states (the run itself repeats; the replicas size its sensitive part)
-    let mut rng = ChaCha8Rng::seed_from_u64(10);
-    let pts: Vec<Vec<f64>> = (0..240)
-        .map(|k| {
-            let c = [[0.3, 0.3], [0.7, 0.6]][k % 2];
-            vec![c[0] + 0.02 * gauss(&mut rng), c[1] + 0.02 * gauss(&mut rng)]
-        })
-        .collect();
-    let s = section(&pts);
+    let s = period_two();
     for r in [partial(), different_states()] {
         let v = verdict(&s, &r);
         assert_eq!(
@@ -154,14 +159,7 @@ fn verdict_deferred(sec: &SectionAnalysis) -> Verdict {
 #[test]
 fn a_held_back_replica_test_is_not_needed_for_tight_groups_only() {
     // period 2 with 2 % scatter: periodic-2 without the replicas, as with them
-    let mut rng = ChaCha8Rng::seed_from_u64(10);
-    let pts: Vec<Vec<f64>> = (0..240)
-        .map(|k| {
-            let c = [[0.3, 0.3], [0.7, 0.6]][k % 2];
-            vec![c[0] + 0.02 * gauss(&mut rng), c[1] + 0.02 * gauss(&mut rng)]
-        })
-        .collect();
-    let s = section(&pts);
+    let s = period_two();
     let v = verdict_deferred(&s);
     assert_eq!((v.regime, v.period), (Regime::Periodic, Some(2.0)));
     assert!(v.reason.contains("not needed"), "{}", v.reason);
