@@ -2,8 +2,8 @@
 //! the state grow until the two copies are as far apart as two independent states of the
 //! stroboscopic section, and how large is that sensitive part against the orbit?
 //!
-//! The simulator runs two copies in lockstep: replica A (the run itself) and replica B, a copy
-//! of A perturbed by δ0 when the analysis window starts. At every forcing period t_k = kT both
+//! The simulator runs two copies over the same steps: replica A (the run itself) and replica B,
+//! a copy of A perturbed by δ0 when the analysis window starts. At every forcing period t_k = kT both
 //! section states are recorded: s = (z_cm, ż_cm, z_box, ż_box) for a granular bed, (x, ẋ) for a
 //! one-degree-of-freedom oscillator. This module turns those strobes into the outcome; it knows
 //! no simulator.

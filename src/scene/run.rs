@@ -50,13 +50,14 @@ pub struct Run {
     #[serde(default = "default_analysis_max_samples")]
     pub analysis_max_samples: usize,
     /// DEM two-replica test ([`crate::dem::replica`]): by default it runs wherever a regime
-    /// verdict is asked for (a DEM run with the nonlinear analysis: `pdamp simulate`, analysed
-    /// sweeps, the chapter-4 study), because the verdict uses it; `false` turns it off (the
-    /// verdict then rests on the section and the data exponent alone), `true` or a
-    /// perturbation δ0 in metres (> 0, below the smallest grain radius; `true` = 1e-9 m) runs
-    /// it always. Replica B, every grain raised by δ0 when the analysis window starts, runs in
-    /// lockstep with the run; `replica.csv` and a `replica` block in `summary.json` report it.
-    /// It doubles the cost of the analysis window. DEM only (`damper.kind = "dem"`, or
+    /// verdict needs it (a DEM run with the nonlinear analysis: `pdamp simulate`, analysed
+    /// sweeps, the chapter-4 study, whose section is not n tight groups — those are periodic
+    /// whatever the replicas do); `false` turns it off (the verdict then rests on the section
+    /// and the data exponent alone), `true` or a perturbation δ0 in metres (> 0, below the
+    /// smallest grain radius; `true` = 1e-9 m) runs it always. Replica B, every grain raised by
+    /// δ0 when the analysis window starts, takes the run's steps over the window (stepped after
+    /// the run); `replica.csv` and a `replica` block in `summary.json` report it. It doubles
+    /// the cost of the analysis window. DEM only (`damper.kind = "dem"`, or
     /// `"auto"` when it picks the DEM).
     #[serde(
         default,
