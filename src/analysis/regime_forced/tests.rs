@@ -66,17 +66,23 @@ fn cloud() -> SectionAnalysis {
     s
 }
 
-fn verdict(sec: &SectionAnalysis, r: &ReplicaReport) -> Verdict {
+/// The verdict from the section and the simulator's replica test alone (no exponents, no
+/// phase lock): `replica` as it ran, or held back (`deferred`).
+fn classify(sec: &SectionAnalysis, replica: Option<&ReplicaReport>, deferred: bool) -> Verdict {
     classify_forced(&ForcedEvidence {
         section: sec,
         data_exponent: None,
         model_exponent: None,
         zero_band: 0.01,
         phase_lock: None,
-        replica: Some(r),
-        replica_deferred: false,
+        replica,
+        replica_deferred: deferred,
         dimension: None,
     })
+}
+
+fn verdict(sec: &SectionAnalysis, r: &ReplicaReport) -> Verdict {
+    classify(sec, Some(r), false)
 }
 
 #[test]
@@ -144,16 +150,7 @@ fn a_cloud_is_not_chaotic_without_sensitivity() {
 
 /// The verdict with the simulator's replica test held back (`replica_deferred`).
 fn verdict_deferred(sec: &SectionAnalysis) -> Verdict {
-    classify_forced(&ForcedEvidence {
-        section: sec,
-        data_exponent: None,
-        model_exponent: None,
-        zero_band: 0.01,
-        phase_lock: None,
-        replica: None,
-        replica_deferred: true,
-        dimension: None,
-    })
+    classify(sec, None, true)
 }
 
 #[test]
