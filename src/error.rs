@@ -96,6 +96,8 @@ pub enum Quantity {
     GrainCount,
     /// Perturbation δ0 of the two-replica test (m).
     ReplicaPerturbation,
+    /// The bean bag's size against its nodes and grains.
+    BagSize,
 }
 
 impl std::fmt::Display for Quantity {
@@ -111,6 +113,7 @@ impl std::fmt::Display for Quantity {
             Quantity::YieldStrength => "yield strength Y",
             Quantity::GrainCount => "number of grains",
             Quantity::ReplicaPerturbation => "replica perturbation δ0",
+            Quantity::BagSize => "bag size",
         })
     }
 }

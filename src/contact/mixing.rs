@@ -34,21 +34,40 @@ impl ContactModel {
         (r_j, m_j): (f64, f64),
         wall: bool,
     ) -> ContactCoefficients {
+        self.coefficients_between((grain, r_i, m_i), (grain, r_j, m_j), None, wall)
+    }
+
+    /// [`ContactModel::coefficients`] between bodies of two materials: `(material, radius,
+    /// mass)` of each (the second's material is ignored for a wall, whose own is the
+    /// model's), with the linear law's yield strength replaced by `yield_strength` when given
+    /// (a contact of the bean bag's film yields at the film's strength) and its yield
+    /// coefficient c_e taken from the first body's Poisson ratio.
+    ///
+    /// # Panics
+    /// As [`ContactModel::coefficients`].
+    pub fn coefficients_between(
+        &self,
+        (mat_i, r_i, m_i): (&Material, f64, f64),
+        (mat_j, r_j, m_j): (&Material, f64, f64),
+        yield_strength: Option<f64>,
+        wall: bool,
+    ) -> ContactCoefficients {
         let (mat_j, normal, tangential) = if wall {
             (&self.wall.material, self.wall.normal, self.wall.tangential)
         } else {
-            (grain, self.normal, self.tangential)
+            (mat_j, self.normal, self.tangential)
         };
-        let p = PairProperties::new(r_i, m_i, grain, r_j, m_j, mat_j);
+        let p = PairProperties::new(r_i, m_i, mat_i, r_j, m_j, mat_j);
         let (k, c, c_lin_s, k_lin_s) = match normal {
             NormalLaw::HertzKuwabaraKono { gamma_n } => {
                 (hertz_stiffness(p.e_star, p.r_star), gamma_n, 0.0, 0.0)
             }
             NormalLaw::LinearSpringDashpot {
                 restitution,
-                yield_strength,
+                yield_strength: y,
             } => {
-                let l = LinearContactParams::select(&p, grain, yield_strength, restitution)
+                let y = yield_strength.unwrap_or(y);
+                let l = LinearContactParams::select(&p, mat_i, y, restitution)
                     .expect("validated linear parameters");
                 (l.k_n, l.c_n, l.c_s, l.k_s)
             }

@@ -11,11 +11,15 @@ use super::world::{BoxDrive, DemWorld};
 use crate::model::{Container, FrameRotation};
 
 /// The grains' initial centres (m) by the model's packing: a jittered FCC lattice (stacked
-/// rings in a cylinder) or the advancing front. Also the resolve step's check that the grains fit the box.
+/// rings in a cylinder) or the advancing front; with a bag, the grains inside it and then the
+/// bag's nodes. Also the resolve step's check that the grains fit the box.
 ///
 /// # Errors
 /// [`ModelError`] ([`crate::error::Quantity::GrainCount`]) if the grains do not fit.
 pub fn initial_positions(model: &DemModel) -> Result<Vec<[f64; 3]>, ModelError> {
+    if let Some(bag) = &model.bag {
+        return in_bag(model, bag);
+    }
     match model.packing {
         Packing::Lattice { seed } => match &model.container {
             Container::Box => fcc_lattice(
@@ -46,6 +50,41 @@ pub fn initial_positions(model: &DemModel) -> Result<Vec<[f64; 3]>, ModelError> 
     }
 }
 
+/// The grains stacked in rings inside the bag (its interior as a cylinder of its own), then
+/// the bag's nodes.
+fn in_bag(model: &DemModel, bag: &crate::dem::bag::Bag) -> Result<Vec<[f64; 3]>, ModelError> {
+    let seed = match model.packing {
+        Packing::Lattice { seed } => seed,
+        Packing::AdvancingFront => 1,
+    };
+    let (inside, corner) = bag.geometry.interior();
+    let n = model.grains.radius_m.len();
+    let mut pos =
+        cylinder_rings(&inside, n, model.grains.r_max_m, 0.05, seed ^ 0x5eed).map_err(|e| {
+            ModelError::new(
+                crate::error::Quantity::BagSize,
+                n,
+                format!("{n} grains do not fit inside the bag ({})", e.hint),
+            )
+        })?;
+    for p in &mut pos {
+        for (x, c) in p.iter_mut().zip(corner) {
+            *x += c;
+        }
+    }
+    pos.extend_from_slice(&bag.nodes);
+    Ok(pos)
+}
+
+/// The radii of every particle of `model`: its grains', then its bag's nodes'.
+pub fn particle_radii(model: &DemModel) -> Vec<f64> {
+    let mut radii = model.grains.radius_m.clone();
+    if let Some(bag) = &model.bag {
+        radii.extend(std::iter::repeat_n(bag.node_radius_m, bag.nodes.len()));
+    }
+    radii
+}
+
 /// Builds the initial bed of `model` (its grains placed on a lattice or by the advancing
 /// front) at rest, with the box held still at `box_z` (m).
 ///
@@ -57,7 +96,7 @@ pub fn initial_world(
     dt: f64,
     box_z: f64,
 ) -> Result<DemWorld, SimError> {
-    let radii = model.grains.radius_m.clone();
+    let radii = particle_radii(model);
     let pos = initial_positions(model)?;
     let mut w = DemWorld::new(model, drive, dt, radii, pos)?;
     w.shift_box_to(box_z);

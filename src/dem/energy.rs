@@ -1,8 +1,9 @@
 //! Energy ledger of the DEM (2.6.1–2.6.6) plus the viscous loss in the primary's damper C and
 //! the work done by the base.
 //!
-//! Balance: E(t) − E(0) = W_base − D_collision − D_friction − D_viscous, with
-//! E = T_trans + T_rot + V_grav + U_elastic + T_box + V_spring. The relative error reported
+//! Balance: E(t) − E(0) = W_base − D_collision − D_friction − D_viscous − D_bag, with
+//! E = T_trans + T_rot + V_grav + U_elastic + T_box + V_spring (U_elastic includes a bean
+//! bag's stretched bonds). The relative error reported
 //! is |residual| / max(W_base, D_total, |ΔE|).
 
 /// Cumulative flows (J) since the ledger was reset (start of the drive).
@@ -16,12 +17,14 @@ pub struct EnergyLedger {
     pub viscous_j: f64,
     /// Work done by the base on the system (J).
     pub base_work_j: f64,
+    /// Dissipated in the bean bag's bonds, ∫ (T − k(d − L₀)) ḋ dt (J) (0 without a bag).
+    pub bag_j: f64,
 }
 
 impl EnergyLedger {
     /// Total dissipated energy (J).
     pub fn dissipated_j(&self) -> f64 {
-        self.collision_j + self.friction_j + self.viscous_j
+        self.collision_j + self.friction_j + self.viscous_j + self.bag_j
     }
 }
 

@@ -5,6 +5,7 @@
 //! drives the box, emitting samples to an observer. [`run_replica`] runs the two-replica
 //! test of the collective motion's stability (issue 9).
 
+pub mod bag;
 mod bed;
 pub mod bed_impacts;
 pub mod blocks;

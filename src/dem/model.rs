@@ -104,6 +104,9 @@ pub struct DemModel {
     pub settle_time_s: f64,
     /// Interval between particle snapshots (s); `None`: no snapshots.
     pub snapshot_interval_s: Option<f64>,
+    /// A bag of bonded film nodes holding the grains (the bean-bag damper); its nodes follow
+    /// the grains in the world's arrays.
+    pub bag: Option<crate::dem::bag::Bag>,
 }
 
 impl DemModel {

@@ -147,6 +147,9 @@ pub struct DemSummary {
     pub energy_collision_j_per_cycle: Option<f64>,
     /// Friction dissipation per cycle (J).
     pub energy_friction_j_per_cycle: Option<f64>,
+    /// Dissipation in a bean bag's bonds per cycle (J); `None` without a bag.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub energy_bag_j_per_cycle: Option<f64>,
     /// Viscous dissipation in C per cycle (J).
     pub energy_viscous_j_per_cycle: Option<f64>,
     /// Base work per cycle (J).
@@ -338,6 +341,9 @@ pub(crate) fn run_dem_stepped(
         energy_balance_relative_error: rel,
         energy_collision_j_per_cycle: per_cycle(|l| l.collision_j),
         energy_friction_j_per_cycle: per_cycle(|l| l.friction_j),
+        energy_bag_j_per_cycle: world
+            .bag()
+            .and_then(|_| per_cycle(|l: &crate::dem::EnergyLedger| l.bag_j)),
         energy_viscous_j_per_cycle: per_cycle(|l| l.viscous_j),
         energy_base_work_j_per_cycle: per_cycle(|l| l.base_work_j),
         steps: n_steps,

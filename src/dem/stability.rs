@@ -91,6 +91,9 @@ pub struct TimeStepScales {
     pub normal_viscous_time_s: f64,
     /// Tangential viscous time m_t/(γ_s √ζ_max) (s) (∞ without).
     pub tangential_viscous_time_s: f64,
+    /// Half period π/ω_max of a bean bag's fastest bond vibration (s) (∞ without a bag,
+    /// [`crate::dem::bag::Bag::bond_time_s`]).
+    pub bond_time_s: f64,
 }
 
 impl TimeStepScales {
@@ -105,7 +108,18 @@ impl TimeStepScales {
             contact_time_s: contact_time(model, v)?,
             normal_viscous_time_s: tn,
             tangential_viscous_time_s: tt,
+            bond_time_s: model
+                .bag
+                .as_ref()
+                .map_or(f64::INFINITY, |b| b.bond_time_s()),
         })
+    }
+
+    /// Longest step for a bag's bonds (s): [`BOND_DT_FRACTION`] × their half period, so that
+    /// ω_max dt ≤ π/16 ≈ 0.2 (velocity Verlet's phase error (ω dt)²/24 ≤ 0.2 % per period of
+    /// the fastest bond mode; a linear spring needs no finer step, unlike a contact's onset).
+    pub fn bond_limit_s(&self) -> f64 {
+        BOND_DT_FRACTION * self.bond_time_s
     }
 
     /// Shorter of the two viscous times (s).
@@ -149,7 +163,7 @@ pub fn impact_speed(drive: &BoxDrive, lz: f64) -> f64 {
 
 /// Shortest contact duration t_s (s) among grain–grain and grain–wall contacts of the
 /// smallest grains at impact speed `v` (Hertz: 2.868 (m*²/(R* E*² v))^{1/5}, SPEC §9;
-/// linear: π/√(k/m* − (c/2m*)²)).
+/// linear: π/√(k/m* − (c/2m*)²)), and a bean bag's film contacts and bonds.
 ///
 /// # Errors
 /// [`ModelError`] when a linear law's restitution or yield strength is out of range.
@@ -181,8 +195,61 @@ pub fn contact_time(model: &DemModel, v: f64) -> Result<f64, ModelError> {
             }
         })
     };
-    Ok(time(model.contact.normal, &pp, false)?.min(time(model.contact.wall.normal, &pw, true)?))
+    let grains =
+        time(model.contact.normal, &pp, false)?.min(time(model.contact.wall.normal, &pw, true)?);
+    match &model.bag {
+        Some(bag) => Ok(grains.min(bag_time(model, bag, (r, m), v)?)),
+        None => Ok(grains),
+    }
 }
+
+/// Shortest time scale of a bean bag's film (s): its nodes' contacts with a grain of radius
+/// and mass `(r, m)`, with each other and with the walls at speed `v` (the film's material
+/// and yield strength). (The bonds have their own limit, [`TimeStepScales::bond_limit_s`].)
+fn bag_time(
+    model: &DemModel,
+    bag: &crate::dem::bag::Bag,
+    (r, m): (f64, f64),
+    v: f64,
+) -> Result<f64, ModelError> {
+    let (f, g, w) = (
+        bag.film.material,
+        model.grains.material,
+        model.contact.wall.material,
+    );
+    let (rn, mn) = (bag.node_radius_m, bag.node_mass_kg);
+    let pairs = [
+        (
+            PairProperties::new(rn, mn, &f, r, m, &g),
+            model.contact.normal,
+        ),
+        (
+            PairProperties::new(rn, mn, &f, rn, mn, &f),
+            model.contact.normal,
+        ),
+        (
+            PairProperties::new(rn, mn, &f, f64::INFINITY, f64::INFINITY, &w),
+            model.contact.wall.normal,
+        ),
+    ];
+    let mut t = f64::INFINITY;
+    for (p, law) in pairs {
+        t = t.min(match law {
+            NormalLaw::HertzKuwabaraKono { .. } => {
+                hertz_contact_time(p.m_star, p.r_star, p.e_star, v)
+            }
+            NormalLaw::LinearSpringDashpot { restitution, .. } => {
+                let l =
+                    LinearContactParams::select(&p, &f, bag.film.yield_strength_pa, restitution)?;
+                linear_contact_time(l.k_n, l.c_n, p.m_star)
+            }
+        });
+    }
+    Ok(t)
+}
+
+/// Fraction of a bag's fastest bond half period a step may take ([`TimeStepScales::bond_limit_s`]).
+pub const BOND_DT_FRACTION: f64 = 1.0 / 16.0;
 
 /// Time step choice: automatic (a fraction of the Hertz contact time) or explicit.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -274,8 +341,14 @@ pub fn choose_dt(
                     "must be in (0, 0.05]: dt = fraction × t_s (default 0.01, as the thesis used)",
                 ));
             }
-            // the viscous rule: never longer than a quarter of the viscous time
-            Ok(((fraction * ts).min(scales.viscous_limit_s()), ts))
+            // the viscous rule: never longer than a quarter of the viscous time; a bag's bonds
+            // their own limit
+            Ok((
+                (fraction * ts)
+                    .min(scales.viscous_limit_s())
+                    .min(scales.bond_limit_s()),
+                ts,
+            ))
         }
         Some(dt) => {
             if !(dt > 0.0 && dt.is_finite()) {
@@ -296,6 +369,19 @@ pub fn choose_dt(
                          (lower Young's modulus)",
                         MAX_DT_FRACTION * ts,
                         ts / 50.0
+                    ),
+                ));
+            }
+            if dt > 2.0 * scales.bond_limit_s() {
+                return Err(ModelError::new(
+                    Quantity::TimeStep,
+                    format!("{dt:e} s"),
+                    format!(
+                        "is longer than twice the bag's bond limit {:.3e} s (1/16 of the half period \
+                         {:.3e} s of its fastest bond vibration): lower the time step, choose it \
+                         automatically (dt = auto), or use larger film nodes (damper.bag.node_radius)",
+                        scales.bond_limit_s(),
+                        scales.bond_time_s
                     ),
                 ));
             }

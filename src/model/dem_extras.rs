@@ -41,6 +41,10 @@ pub struct DemExtras {
     /// NaN without the energy ledger.
     #[serde(default = "nan", deserialize_with = "nan_if_null")]
     pub energy_collision_j_per_cycle: f64,
+    /// Dissipation in a bean bag's film (its bonds) per forcing cycle in the steady window
+    /// (J); absent without a bag.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub energy_bag_j_per_cycle: Option<f64>,
     /// Friction dissipation (tangential) per forcing cycle in the steady window (J); NaN
     /// without the energy ledger.
     #[serde(default = "nan", deserialize_with = "nan_if_null")]

@@ -24,6 +24,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::contact::material::Material;
 
+pub mod bag;
 pub(crate) mod container;
 mod validate;
 
@@ -285,6 +286,10 @@ pub struct DemParams {
     /// once the grains' mean speed is below 1 mm/s.
     #[serde(default)]
     pub settle_time: Option<f64>,
+    /// A bag of film holding the grains (the bean-bag damper, `[damper.bag]`,
+    /// [`bag::BagParams`]); none by default.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bag: Option<bag::BagParams>,
 }
 
 /// Factor of the damping coefficients γ_n, γ_s when Young's modulus is divided by `factor`:
@@ -346,6 +351,7 @@ impl DemParams {
             snapshot_format: SnapshotFormat::Both,
             neighbor_skin: None,
             settle_time: None,
+            bag: None,
         }
     }
 

@@ -206,6 +206,13 @@ pub fn dem_model(params: &DemParams) -> Result<DemModel, SceneError> {
         },
         settle_time_s: params.settle_time.unwrap_or(1.0),
         snapshot_interval_s: params.snapshot_interval,
+        bag: match &params.bag {
+            Some(b) => Some(
+                crate::dem::bag::bag_mesh(b.geometry(params.r#box, dist.r_min()), b.film_model())
+                    .map_err(scene_error)?,
+            ),
+            None => None,
+        },
     };
     // the linear law's parameters (e, Y) and the contact time are checked once, here
     crate::dem::stability::contact_time(&model, 1.0).map_err(scene_error)?;
@@ -335,6 +342,7 @@ fn simulate_with(
     let dem = DemExtras {
         energy_collision_j_per_cycle: opt(s.energy_collision_j_per_cycle),
         energy_friction_j_per_cycle: opt(s.energy_friction_j_per_cycle),
+        energy_bag_j_per_cycle: s.energy_bag_j_per_cycle,
         bed_floor_impacts_per_cycle: s.bed_impacts.floor as f64 / s.cycles_steady,
         bed_ceiling_impacts_per_cycle: s.bed_impacts.ceiling as f64 / s.cycles_steady,
         steps: s.steps as f64,

@@ -17,6 +17,7 @@ pub fn scene_key(q: Quantity) -> &'static str {
         Quantity::YieldStrength => "damper.yield_strength",
         Quantity::GrainCount => "damper.count",
         Quantity::ReplicaPerturbation => "run.replica",
+        Quantity::BagSize => "damper.bag",
     }
 }
 
@@ -29,6 +30,10 @@ fn scene_fix(q: Quantity) -> Option<&'static str> {
         Quantity::SteadyFraction => {
             Some("in the scene: raise run.duration (or run.periods) or run.steady_fraction")
         }
+        Quantity::BagSize => Some(
+            "in the scene: lower damper.count, enlarge damper.bag (diameter, length) or use \
+             smaller film nodes (damper.bag.node_radius)",
+        ),
         Quantity::GrainCount => Some(
             "in the scene: lower damper.count, enlarge damper.box or use \
              damper.packing = \"advancing-front\"",

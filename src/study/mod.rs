@@ -8,6 +8,7 @@
 //! [`command::Command`]s built from the sweeps and runs that were made. Imports go one way: orchestrator → families →
 //! kit → pipeline.
 
+mod bean_bag;
 pub mod chapter4;
 pub mod check;
 pub mod command;

@@ -228,7 +228,7 @@ fn chapter4_part(
     Ok(part)
 }
 
-/// The linear-DEM paper's dampers (Saeki 2002's materials, Els 2009's decay).
+/// The linear-DEM paper's dampers (Saeki 2002's materials, the bean bag, Els 2009's decay).
 fn papers_part(
     ctx: &Ctx,
     opts: &ReproduceOptions,
@@ -237,8 +237,11 @@ fn papers_part(
     let mut part = DemPart::default();
     let saeki = super::saeki::NAMES.iter().any(|n| want(n));
     let els = super::els::NAMES.iter().any(|n| want(n));
+    let bag = super::bean_bag::NAMES.iter().any(|n| want(n));
     let what = "linear-DEM paper figures";
-    if !(saeki || els) || !dem_allowed(what, opts.settings.dem.is_some(), opts, &mut part.skipped) {
+    if !(saeki || els || bag)
+        || !dem_allowed(what, opts.settings.dem.is_some(), opts, &mut part.skipped)
+    {
         return Ok(part);
     }
     if saeki {
@@ -246,6 +249,9 @@ fn papers_part(
     }
     if els {
         part.figures.push(super::els::els_decay(ctx)?);
+    }
+    if bag {
+        part.figures.push(super::bean_bag::bean_bag_response(ctx)?);
     }
     Ok(part)
 }

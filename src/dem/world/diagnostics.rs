@@ -86,6 +86,11 @@ impl DemWorld {
         (self.blocks.blocks, self.blocks.cross_len())
     }
 
+    /// The bean bag's bonds, if the damper has a bag.
+    pub fn bag(&self) -> Option<&crate::dem::bag::BondPass> {
+        self.bag.as_deref()
+    }
+
     /// Stored energies now (J).
     pub fn energy_state(&self) -> EnergyState {
         let mut s = EnergyState::default();
@@ -128,6 +133,9 @@ impl DemWorld {
                     s.elastic_j += elastic(c[0], z) + tangential(c, z, self.wall_history[i][w]);
                 }
             }
+        }
+        if let Some(b) = &self.bag {
+            s.elastic_j += b.elastic_energy_j(&self.pos);
         }
         if let Some(p) = self.drive.primary {
             let (u, _) = self.base_now();

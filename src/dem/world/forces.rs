@@ -43,6 +43,11 @@ impl DemWorld {
         kick: bool,
         drift: Option<[f64; 3]>,
     ) -> Option<(f64, f64)> {
+        if drift.is_none() {
+            if let Some(b) = self.bag.as_mut() {
+                b.evaluate(&self.pos, &self.vel_pred);
+            }
+        }
         // the laws are matched once per step (the normal law here, the tangential one in
         // `contacts_with`); each arm runs loops monomorphised on the normal and tangential
         // kernels (rotations and the attraction policy are loop-invariant flags)
@@ -176,6 +181,7 @@ impl DemWorld {
                 gravity: self.gravity,
                 drag: self.settle_drag,
                 rotations: rot,
+                bonds: self.bag.as_ref().map(|b| &b.force[..]),
             };
             let own = |blk: usize| {
                 let g = bp.grains(blk);

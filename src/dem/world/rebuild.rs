@@ -41,6 +41,9 @@ impl DemWorld {
         let sort = self.len() >= self.sort_min_grains;
         if sort {
             self.sort_along_curve();
+            if let Some(b) = self.bag.as_mut() {
+                b.reslot(&self.id);
+            }
         }
         if carry {
             // the springs of the old list, keyed by the (new) slots of their grains
@@ -71,11 +74,10 @@ impl DemWorld {
         self.pair_coef.clear();
         for &Pair { i, j } in &self.blocks.pairs {
             let (i, j) = (i as usize, j as usize);
+            let node = |s: usize| self.bag.as_ref().is_some_and(|b| b.is_node(self.id[s]));
             let c = self.laws.coefficients(
-                self.radius[i],
-                self.mass[i],
-                self.radius[j],
-                self.mass[j],
+                (self.radius[i], self.mass[i], node(i)),
+                (self.radius[j], self.mass[j], node(j)),
                 false,
             );
             self.pair_coef.push(c);

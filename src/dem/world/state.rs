@@ -5,6 +5,7 @@
 use nalgebra::UnitQuaternion;
 
 use crate::contact::response::ContactCoefficients;
+use crate::dem::bag::BondPass;
 use crate::dem::blocks::BlockPairs;
 use crate::dem::energy::EnergyLedger;
 use crate::dem::model::DemModel;
@@ -173,6 +174,8 @@ pub struct DemWorld {
     pub team_threads: Option<usize>,
     pub(super) team: TeamSlot,
     pub(super) mode: Mode,
+    /// The bean bag's bonds, when the damper has a bag (its nodes are the last particles).
+    pub(super) bag: Option<Box<BondPass>>,
 }
 
 /// Who runs the phases of the current step.
@@ -236,10 +239,22 @@ impl DemWorld {
             ));
         }
         let n = pos.len();
+        let nodes = model.bag.as_ref().map_or(0, |b| b.nodes.len());
+        if nodes >= n {
+            return Err(ModelError::new(
+                Quantity::GrainCount,
+                n,
+                format!("{n} particles for a bag of {nodes} nodes: the grains come first, then the bag's nodes"),
+            ));
+        }
         let density = model.grains.density_kg_m3;
         let mass: Vec<f64> = radius
             .iter()
-            .map(|&r| crate::dem::model::Grains::sphere_mass(density, r))
+            .enumerate()
+            .map(|(i, &r)| match &model.bag {
+                Some(b) if i >= n - nodes => b.node_mass_kg,
+                _ => crate::dem::model::Grains::sphere_mass(density, r),
+            })
             .collect();
         let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
         let inv_inertia = mass
@@ -251,6 +266,7 @@ impl DemWorld {
             contact: model.contact,
             rotations: model.rotations,
             grain: model.grains.material,
+            film: model.bag.as_ref().map(|b| b.film),
         };
         let r_max = radius.iter().cloned().fold(0.0, f64::max);
         // a bed of several grain blocks is stored along vertical columns, so that the blocks'
@@ -265,7 +281,13 @@ impl DemWorld {
         let neighbors =
             NeighborList::new(model.box_size_m, r_max, model.skin(r_max)).with_curve(curve);
         let wall_coef = (0..n)
-            .map(|i| laws.coefficients(radius[i], mass[i], f64::INFINITY, f64::INFINITY, true))
+            .map(|i| {
+                laws.coefficients(
+                    (radius[i], mass[i], i >= n - nodes),
+                    (f64::INFINITY, f64::INFINITY, false),
+                    true,
+                )
+            })
             .collect();
         let uniform = Uniform::of(&laws, &radius, &mass);
         let mass_total = mass.iter().sum();
@@ -334,6 +356,10 @@ impl DemWorld {
             team_threads: None,
             team: TeamSlot(None),
             mode: Mode::Serial,
+            bag: model
+                .bag
+                .clone()
+                .map(|b| Box::new(BondPass::new(b, n - nodes, n))),
         })
     }
 

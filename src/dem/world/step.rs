@@ -138,6 +138,9 @@ impl DemWorld {
         }
         self.ledger.collision_j += p_coll * dt;
         self.ledger.friction_j += p_fric * dt;
+        if let Some(b) = &self.bag {
+            self.ledger.bag_j += b.power_w * dt;
+        }
         if self.drive_on {
             let (bp, vp) = self.box_powers();
             self.ledger.base_work_j += 0.5 * (bp + self.base_power_prev) * dt;
@@ -267,7 +270,9 @@ impl DemWorld {
     /// rebuild, so the result is the same bits as drifting first. Laws with springs drift
     /// first: their pass writes the springs, which a rebuild carries over.
     pub(super) fn drift_and_forces(&mut self, shift: [f64; 3]) -> (f64, f64) {
+        // a bag's bonds are evaluated on the drifted grains before the pass: no fusion
         let fuse = self.fuse_drift
+            && self.bag.is_none()
             && !self.laws.tangential_kind().has_history()
             && self.neighbors.reference().0.len() == self.len();
         if fuse {

@@ -5,7 +5,7 @@
 use crate::error::SceneError;
 use crate::packing::RadiusDistribution;
 
-use super::{ContactKind, DemParams, RadiusDistributionKind, TangentialKind};
+use super::{ContactKind, DemParams, PackingKind, RadiusDistributionKind, TangentialKind};
 
 fn positive(field: &str, v: f64, unit: &str) -> Result<(), SceneError> {
     if v > 0.0 && v.is_finite() {
@@ -331,6 +331,22 @@ impl DemParams {
                 ),
             ));
         }
+        if let Some(bag) = &self.bag {
+            self.validate_bag(bag, dist.r_min())?;
+        }
         Ok(())
+    }
+
+    /// A bag holds grains of one size in a box, packed on the lattice.
+    fn validate_bag(&self, bag: &super::bag::BagParams, r_min: f64) -> Result<(), SceneError> {
+        if !self.container.is_box() || self.packing != PackingKind::Lattice {
+            return Err(SceneError::invalid(
+                "damper.bag",
+                "(given)",
+                "a bag stands in a box (damper.container = \"box\") and its grains are placed on \
+                 the lattice (damper.packing = \"lattice\")",
+            ));
+        }
+        bag.validate(self.r#box, r_min)
     }
 }

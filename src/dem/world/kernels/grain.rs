@@ -37,10 +37,13 @@ pub(crate) struct Weight<'a> {
     pub(crate) drag: f64,
     /// Whether torques are computed (then zeroed here).
     pub(crate) rotations: bool,
+    /// Forces already known per grain before the contacts (N): the bean bag's bonds.
+    pub(crate) bonds: Option<&'a [[f64; 3]]>,
 }
 
 /// Gravity and settling drag on grains `first..first + force.len()` (a block, before its own
-/// pairs): F = m g − m β v (+ m (|Ω|² R⊥ − 2 Ω × v) in a rotating frame), and a zero torque
+/// pairs): F = m g − m β v (+ m (|Ω|² R⊥ − 2 Ω × v) in a rotating frame, + the bonds' pull
+/// on a bag's nodes), and a zero torque
 /// (N, N m).
 pub(crate) fn init_forces(
     w: &Weight,
@@ -64,6 +67,12 @@ pub(crate) fn init_forces(
             f[0] += s * v[0];
             f[1] += s * v[1];
             f[2] += s * v[2];
+        }
+        if let Some(b) = w.bonds {
+            let b = b[i];
+            f[0] += b[0];
+            f[1] += b[1];
+            f[2] += b[2];
         }
         if w.rotations {
             *t = [0.0; 3];
