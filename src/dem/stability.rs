@@ -379,7 +379,7 @@ pub fn choose_dt(
                     format!(
                         "is longer than twice the bag's bond limit {:.3e} s (1/16 of the half period \
                          {:.3e} s of its fastest bond vibration): lower the time step, choose it \
-                         automatically (dt = auto), or use larger film nodes (damper.bag.node_radius)",
+                         automatically (dt = auto), or use larger film nodes",
                         scales.bond_limit_s(),
                         scales.bond_time_s
                     ),

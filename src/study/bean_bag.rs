@@ -8,7 +8,6 @@
 use crate::error::StudyError;
 use crate::plot::lines::LinesFigure;
 use crate::plot::Series;
-use crate::scene::Scene;
 
 use super::pipeline::{BundledScene, Ctx, FigureRecord};
 
@@ -33,11 +32,7 @@ fn forced_amplitude(f0_n: f64, m: f64, k: f64, c: f64, f: f64) -> f64 {
 /// mass rigidly.
 pub(super) fn bean_bag_response(ctx: &Ctx) -> Result<FigureRecord, StudyError> {
     let name = "bean_bag_response";
-    let scene = Scene::from_toml(BEAN_BAG.text).map_err(|e| StudyError::step(name, e))?;
-    let p = scene
-        .primary
-        .as_ref()
-        .ok_or_else(|| StudyError::step(name, "the scene has no [primary]"))?;
+    let (scene, p) = BEAN_BAG.with_primary(name)?;
     let (m, k, c) = (p.mass, p.stiffness, p.damping_n_s_m());
     let balls = match &scene.damper {
         crate::scene::Damper::Dem(d) => d.count,

@@ -7,7 +7,6 @@
 use crate::analysis::decay_zones::{decay_zones, LIQUID_FRACTION, SOLID_FRACTION};
 use crate::error::StudyError;
 use crate::plot::decay::DecayFigure;
-use crate::scene::Scene;
 
 use super::pipeline::{BundledScene, Ctx, FigureRecord};
 
@@ -24,11 +23,7 @@ pub const ELS: BundledScene = BundledScene {
 /// own damping ratio.
 pub(super) fn els_decay(ctx: &Ctx) -> Result<FigureRecord, StudyError> {
     let name = "els_decay";
-    let scene = Scene::from_toml(ELS.text).map_err(|e| StudyError::step(name, e))?;
-    let p = scene
-        .primary
-        .as_ref()
-        .ok_or_else(|| StudyError::step(name, "the scene has no [primary]"))?;
+    let (_, p) = ELS.with_primary(name)?;
     let zeta0 = p.damping_ratio();
     let sweep = ctx.sweep(
         "els_2009",

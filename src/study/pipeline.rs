@@ -20,6 +20,25 @@ pub struct BundledScene {
     pub text: &'static str,
 }
 
+impl BundledScene {
+    /// The scene and its primary, for figure `figure` (its name in the errors).
+    ///
+    /// # Errors
+    /// [`StudyError`] when the text does not parse or the scene has no `[primary]`.
+    pub(super) fn with_primary(
+        &self,
+        figure: &str,
+    ) -> Result<(crate::scene::Scene, crate::scene::Primary), StudyError> {
+        let scene =
+            crate::scene::Scene::from_toml(self.text).map_err(|e| StudyError::step(figure, e))?;
+        let p = scene
+            .primary
+            .clone()
+            .ok_or_else(|| StudyError::step(figure, "the scene has no [primary]"))?;
+        Ok((scene, p))
+    }
+}
+
 /// Scene B's one-particle stand-in (`data/scenes/thesis_b_impact.toml`).
 pub const IMPACT_B: BundledScene = BundledScene {
     path: "data/scenes/thesis_b_impact.toml",

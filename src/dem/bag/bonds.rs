@@ -1,7 +1,7 @@
 //! The bonds' force pass: the tension of every stretched bond on its two nodes, the
 //! dissipated power and the stored energy (formulas in [`super`]).
 
-use super::Bag;
+use super::{dist, Bag};
 
 /// A bag inside a world: its bonds, where its nodes are stored, and the bonds' forces of the
 /// last evaluation.
@@ -82,39 +82,31 @@ impl BondPass {
         &self.force
     }
 
-    /// Elastic energy stored in the stretched bonds at positions `pos` (J).
+    /// Stretch (d − L₀)⁺ of every bond at positions `pos` (m), in bond order.
+    fn stretches<'a>(&'a self, pos: &'a [[f64; 3]]) -> impl Iterator<Item = f64> + 'a {
+        self.bag.bonds.iter().map(move |b| {
+            let (i, j) = (
+                self.slot[b.i as usize] as usize,
+                self.slot[b.j as usize] as usize,
+            );
+            (dist(pos[i], pos[j]) - b.rest_m).max(0.0)
+        })
+    }
+
+    /// Elastic energy stored in the stretched bonds at positions `pos` (J): Σ ½ k (d − L₀)⁺².
     pub fn elastic_energy_j(&self, pos: &[[f64; 3]]) -> f64 {
-        self.bag
-            .bonds
-            .iter()
-            .map(|b| {
-                let (i, j) = (
-                    self.slot[b.i as usize] as usize,
-                    self.slot[b.j as usize] as usize,
-                );
-                let x = dist(pos[i], pos[j]) - b.rest_m;
-                if x > 0.0 {
-                    0.5 * b.stiffness_n_m * x * x
-                } else {
-                    0.0
-                }
-            })
+        self.stretches(pos)
+            .zip(&self.bag.bonds)
+            .map(|(x, b)| 0.5 * b.stiffness_n_m * x * x)
             .sum()
     }
 
     /// Tension of every bond at positions `pos` (N), elastic part k (d − L₀)⁺, in bond
     /// order.
     pub fn tensions(&self, pos: &[[f64; 3]]) -> Vec<f64> {
-        self.bag
-            .bonds
-            .iter()
-            .map(|b| {
-                let (i, j) = (
-                    self.slot[b.i as usize] as usize,
-                    self.slot[b.j as usize] as usize,
-                );
-                b.stiffness_n_m * (dist(pos[i], pos[j]) - b.rest_m).max(0.0)
-            })
+        self.stretches(pos)
+            .zip(&self.bag.bonds)
+            .map(|(x, b)| b.stiffness_n_m * x)
             .collect()
     }
 }
@@ -140,10 +132,6 @@ pub(super) fn tension_of(
     let elastic = b.stiffness_n_m * x;
     let t = (elastic + b.damping_kg_s * rate).max(0.0);
     (Some((t, n)), (t - elastic) * rate)
-}
-
-fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
 #[cfg(test)]

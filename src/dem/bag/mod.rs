@@ -37,6 +37,11 @@ pub use mesh::{bag_mesh, BagGeometry};
 
 use crate::contact::material::Material;
 
+/// Distance between two points (m).
+fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
 /// One tension-only spring between two nodes of the bag.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Bond {
