@@ -47,11 +47,7 @@ pub(super) fn bean_bag_response(ctx: &Ctx) -> Result<FigureRecord, StudyError> {
         &[("excitation.frequency", format!("{f_drive}"))],
         false,
     )?;
-    let point = sweep
-        .points
-        .points
-        .first()
-        .ok_or_else(|| StudyError::step(name, "no point"))?;
+    let point = sweep.first_point(name)?;
     let s = &point.summary;
     let dem = s
         .dem

@@ -32,11 +32,7 @@ pub(super) fn els_decay(ctx: &Ctx) -> Result<FigureRecord, StudyError> {
         &[("environment.rotation.rpm", "138".into())],
         false,
     )?;
-    let point = sweep
-        .points
-        .points
-        .first()
-        .ok_or_else(|| StudyError::step(name, "no point"))?;
+    let point = sweep.first_point(name)?;
     let envelope = point.summary.decay.as_ref().ok_or_else(|| {
         StudyError::step(
             name,

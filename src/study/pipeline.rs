@@ -133,6 +133,17 @@ pub struct SweepResult {
 }
 
 impl SweepResult {
+    /// Its first point, for figure `figure` (its name in the error).
+    ///
+    /// # Errors
+    /// [`StudyError`] when the sweep has no point.
+    pub fn first_point(&self, figure: &str) -> Result<&crate::sweep::SweepPoint, StudyError> {
+        self.points
+            .points
+            .first()
+            .ok_or_else(|| StudyError::step(figure, "no point"))
+    }
+
     /// The sweep's commands followed by `pdamp plot KIND <its sweep.csv> -o OUT`.
     pub fn commands_then_plot(&self, kind: &str, out: &Path) -> Vec<Command> {
         let mut c = self.commands.clone();
