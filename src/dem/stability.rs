@@ -1,7 +1,7 @@
 //! Time step versus contact stiffness, and detection of unstable runs.
 
 use crate::contact::linear_spring_dashpot::LinearContactParams;
-use crate::contact::material::PairProperties;
+use crate::contact::material::{Material, PairProperties};
 use crate::contact::restitution::{hertz_contact_time, linear_contact_time};
 use crate::contact::{NormalLaw, TangentialLaw};
 use crate::error::{ModelError, Quantity, SimError};
@@ -163,7 +163,8 @@ pub fn impact_speed(drive: &BoxDrive, lz: f64) -> f64 {
 
 /// Shortest contact duration t_s (s) among grain–grain and grain–wall contacts of the
 /// smallest grains at impact speed `v` (Hertz: 2.868 (m*²/(R* E*² v))^{1/5}, SPEC §9;
-/// linear: π/√(k/m* − (c/2m*)²)), and a bean bag's film contacts and bonds.
+/// linear: π/√(k/m* − (c/2m*)²)), and a bean bag's film contacts (its bonds have their own
+/// limit, [`TimeStepScales::bond_limit_s`]).
 ///
 /// # Errors
 /// [`ModelError`] when a linear law's restitution or yield strength is out of range.
@@ -175,24 +176,11 @@ pub fn contact_time(model: &DemModel, v: f64) -> Result<f64, ModelError> {
     let pp = PairProperties::new(r, m, &g, r, m, &g);
     let pw = PairProperties::new(r, m, &g, f64::INFINITY, f64::INFINITY, &w);
     let time = |law: NormalLaw, p: &PairProperties, wall: bool| -> Result<f64, ModelError> {
-        Ok(match law {
-            NormalLaw::HertzKuwabaraKono { .. } => {
-                hertz_contact_time(p.m_star, p.r_star, p.e_star, v)
+        law_contact_time(law, p, (&g, None), v).map_err(|mut e| {
+            if wall && e.quantity == Quantity::Restitution {
+                e.quantity = Quantity::WallRestitution;
             }
-            NormalLaw::LinearSpringDashpot {
-                restitution,
-                yield_strength,
-            } => {
-                let l = LinearContactParams::select(p, &g, yield_strength, restitution).map_err(
-                    |mut e| {
-                        if wall && e.quantity == Quantity::Restitution {
-                            e.quantity = Quantity::WallRestitution;
-                        }
-                        e
-                    },
-                )?;
-                linear_contact_time(l.k_n, l.c_n, p.m_star)
-            }
+            e
         })
     };
     let grains =
@@ -234,18 +222,37 @@ fn bag_time(
     ];
     let mut t = f64::INFINITY;
     for (p, law) in pairs {
-        t = t.min(match law {
-            NormalLaw::HertzKuwabaraKono { .. } => {
-                hertz_contact_time(p.m_star, p.r_star, p.e_star, v)
-            }
-            NormalLaw::LinearSpringDashpot { restitution, .. } => {
-                let l =
-                    LinearContactParams::select(&p, &f, bag.film.yield_strength_pa, restitution)?;
-                linear_contact_time(l.k_n, l.c_n, p.m_star)
-            }
-        });
+        t = t.min(law_contact_time(
+            law,
+            &p,
+            (&f, Some(bag.film.yield_strength_pa)),
+            v,
+        )?);
     }
     Ok(t)
+}
+
+/// Contact duration (s) of pair `p` under normal law `law` at speed `v` (Hertz: 2.868
+/// (m*²/(R* E*² v))^{1/5}; linear: π/√(k/m* − (c/2m*)²) with the parameters of
+/// [`LinearContactParams::select`] from the material that gives the yield coefficient and the
+/// law's yield strength, or `yield_strength` when given).
+fn law_contact_time(
+    law: NormalLaw,
+    p: &PairProperties,
+    (material, yield_strength): (&Material, Option<f64>),
+    v: f64,
+) -> Result<f64, ModelError> {
+    Ok(match law {
+        NormalLaw::HertzKuwabaraKono { .. } => hertz_contact_time(p.m_star, p.r_star, p.e_star, v),
+        NormalLaw::LinearSpringDashpot {
+            restitution,
+            yield_strength: y,
+        } => {
+            let l =
+                LinearContactParams::select(p, material, yield_strength.unwrap_or(y), restitution)?;
+            linear_contact_time(l.k_n, l.c_n, p.m_star)
+        }
+    })
 }
 
 /// Fraction of a bag's fastest bond half period a step may take ([`TimeStepScales::bond_limit_s`]).

@@ -22,6 +22,7 @@ use serde::{Deserialize, Serialize};
 use crate::contact::material::Material;
 use crate::dem::bag::{BagGeometry, Film};
 use crate::error::SceneError;
+use crate::scene::checks::positive;
 
 /// Film presets (`damper.bag.film`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -110,13 +111,8 @@ impl BagParams {
     /// [`SceneError`] naming `damper.bag.<key>` and the fix.
     pub fn validate(&self, box_m: [f64; 3], grain_radius: f64) -> Result<(), SceneError> {
         let f = self.film_model();
-        check(
-            "diameter",
-            self.diameter,
-            self.diameter > 0.0,
-            "must be > 0 (m)",
-        )?;
-        check("length", self.length, self.length > 0.0, "must be > 0 (m)")?;
+        positive("damper.bag.diameter", self.diameter, "m")?;
+        positive("damper.bag.length", self.length, "m")?;
         check(
             "film_thickness",
             self.film_thickness,
@@ -124,30 +120,15 @@ impl BagParams {
             "must be > 0 and thin next to the bag (m; e.g. 1e-4 for a 0.1 mm film)",
         )?;
         let m = f.material;
-        check(
-            "film_density",
-            f.density_kg_m3,
-            f.density_kg_m3 > 0.0,
-            "must be > 0 (kg/m³)",
-        )?;
-        check(
-            "film_youngs_modulus",
-            m.youngs_modulus,
-            m.youngs_modulus > 0.0,
-            "must be > 0 (Pa)",
-        )?;
+        positive("damper.bag.film_density", f.density_kg_m3, "kg/m³")?;
+        positive("damper.bag.film_youngs_modulus", m.youngs_modulus, "Pa")?;
         check(
             "film_poisson",
             m.poisson,
             (0.0..0.5).contains(&m.poisson),
             "must be in [0, 0.5)",
         )?;
-        check(
-            "film_yield_strength",
-            f.yield_strength_pa,
-            f.yield_strength_pa > 0.0,
-            "must be > 0 (Pa)",
-        )?;
+        positive("damper.bag.film_yield_strength", f.yield_strength_pa, "Pa")?;
         check(
             "film_loss_factor",
             f.loss_factor,
