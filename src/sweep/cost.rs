@@ -31,8 +31,8 @@ pub const IMPACT_S_PER_PERIOD: f64 = 20e-6;
 pub const ANALYSIS_S: f64 = 0.1;
 /// DEM particle-steps per CPU second of the driven run, one thread: the slowest measured on
 /// scene B's 250 grains (2.5e7 at 12 Hz, softened 1000×, `figures/data/dem_ch4_p200`; 4.1–4.6e7
-/// with real steel at 14–16 Hz, `figures/data/reference_steel_p200`, 2026-12-06); `pdamp
-/// slurm` adds its safety factor.
+/// with real steel at 14–16 Hz, `figures/data/tradeoff_thesis_b_reference/reference`,
+/// 2026-12-06); `pdamp slurm` adds its safety factor.
 pub const DEM_PARTICLE_STEPS_PER_S: f64 = 2.5e7;
 /// Memory of a process besides the DEM's particles (bytes).
 const BASE_MEMORY: f64 = 200e6;
