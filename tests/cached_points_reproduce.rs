@@ -115,3 +115,10 @@ fn a_cached_dem_point_is_recomputed_bit_for_bit() {
     // cheapest point of that sweep: ~20 s)
     recompute("dem_ch4_p200", 25);
 }
+
+#[test]
+fn a_cached_point_of_the_main_jobs_chapter4_study_is_recomputed_bit_for_bit() {
+    // the same bed and frequency at the main job's t_s/20 (`figures/data/dem_ch4_p200_dt20`,
+    // what `pdamp reproduce --quick` computes)
+    recompute("dem_ch4_p200_dt20", 25);
+}

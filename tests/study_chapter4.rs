@@ -10,7 +10,7 @@ use pdamp::plot::table::Table;
 use pdamp::plot::FigureOptions;
 use pdamp::study::chapter4;
 use pdamp::study::pipeline::Ctx;
-use pdamp::study::settings::Chapter4Settings;
+use pdamp::study::settings::{Chapter4Settings, CH4_QUICK_DT_FRACTION, CH4_SLOWER_DT_FRACTION};
 use pdamp::study::{Mode, Settings};
 
 #[test]
@@ -37,6 +37,8 @@ fn reduced_chapter4_study_writes_every_figure_and_counts_two_impacts_at_14_5_hz(
         check_freqs_hz: vec![5.5, 14.5],
         ensemble_seeds: vec![2],
         recipe_freqs_hz: vec![5.5, 14.5],
+        dt_fraction: CH4_QUICK_DT_FRACTION,
+        slower_dt_fraction: Some(CH4_SLOWER_DT_FRACTION),
     };
     let figures = chapter4::all(&ctx, &s, &d, &c, &|_| true).unwrap().figures;
     let names: Vec<&str> = figures.iter().map(|f| f.name.as_str()).collect();
@@ -49,6 +51,7 @@ fn reduced_chapter4_study_writes_every_figure_and_counts_two_impacts_at_14_5_hz(
             "ch4_impacts",
             "ch4_run_length",
             "ch4_checks",
+            "ch4_time_step",
             "ch4_panel_f14.5",
             "ch4_reconstruction"
         ]
@@ -110,7 +113,57 @@ fn reduced_chapter4_study_writes_every_figure_and_counts_two_impacts_at_14_5_hz(
         same.iter().all(|w| *w == "true" || *w == "false"),
         "{same:?}"
     );
-    assert!(dir.path().join("data/dem_soft_p12/sweep.json").is_file());
+    assert!(dir
+        .path()
+        .join("data/dem_soft_p12_dt20/sweep.json")
+        .is_file());
+    // the time-step check: the same frequencies at t_s/50 (the scene file's step, its own
+    // folder) against the study's t_s/20, with the starts' spread beside the change; each
+    // step is snapped down to a divisor of the analysis sample clock, so the ratio is 2.5
+    // within one step of that division
+    let steps = Table::read(&dir.path().join("ch4_time_step.csv")).unwrap();
+    assert_eq!(steps.f64_column("frequency_hz").unwrap(), [5.5, 14.5]);
+    let spread = steps.f64_column("amplitude_spread_starts_pct").unwrap();
+    assert!(
+        spread.iter().all(|s| s.is_finite() && *s >= 0.0),
+        "{spread:?}"
+    );
+    // the mean over the study's starts is the mean of the ensemble table's amplitudes, and the
+    // slower step ran its own starts (its mean and change filled)
+    let mean = steps.f64_column("amplitude_mean_starts_m").unwrap();
+    let ens_f = ens.f64_column("frequency_hz").unwrap();
+    let ens_z = ens.f64_column("amplitude_m").unwrap();
+    for (f, m) in [5.5, 14.5].iter().zip(&mean) {
+        let z: Vec<f64> = ens_f
+            .iter()
+            .zip(&ens_z)
+            .filter(|(g, _)| *g == f)
+            .map(|(_, z)| *z)
+            .collect();
+        let expect = z.iter().sum::<f64>() / z.len() as f64;
+        assert_eq!(z.len(), 2);
+        assert!(
+            (m / expect - 1.0).abs() < 1e-12,
+            "{f} Hz: mean {m} against {expect}"
+        );
+    }
+    let change = steps.f64_column("amplitude_mean_change_pct").unwrap();
+    assert!(change.iter().all(|c| c.is_finite()), "{change:?}");
+    assert!(dir
+        .path()
+        .join("data/dem_ch4_p12_seeds/sweep.json")
+        .is_file());
+    let dt = |dir_name: &str| {
+        let t = Table::read(&dir.path().join(format!("data/{dir_name}/sweep.csv"))).unwrap();
+        t.f64_column("dt_s").unwrap()
+    };
+    let (fast, slow) = (dt("dem_ch4_p12_dt20"), dt("dem_ch4_p12"));
+    for (a, b) in fast.iter().zip(&slow) {
+        assert!(
+            (2.2..=2.6).contains(&(a / b)),
+            "dt {a} against {b}: not 2.5×"
+        );
+    }
     // the regime table carries the qualifiers and the replica outcome (12 periods: too short
     // for a verdict, but the columns are there)
     let frf = Table::read(&dir.path().join("ch4_regime_frf.csv")).unwrap();

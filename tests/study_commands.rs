@@ -199,6 +199,8 @@ fn chapter4_commands_parse() {
         check_freqs_hz: vec![],
         ensemble_seeds: vec![],
         recipe_freqs_hz: vec![],
+        dt_fraction: pdamp::study::settings::CH4_QUICK_DT_FRACTION,
+        slower_dt_fraction: Some(pdamp::study::settings::CH4_SLOWER_DT_FRACTION),
     };
     let figures = pdamp::study::chapter4::all(&ctx, &s, &d, &c, &|_| true)
         .unwrap()

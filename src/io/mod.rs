@@ -6,6 +6,7 @@
 
 pub mod clock;
 pub mod decay;
+pub mod provenance;
 pub mod run_dir;
 pub mod schema;
 pub mod series;

@@ -13,37 +13,42 @@
 //!   length (the same trajectory, see `ch4_set`), verdict by verdict and amplitude by
 //!   amplitude (the quick mode's run length is only trusted where doubling it changes
 //!   nothing);
+//! - `ch4_time_step` (with `--ch4-checks`): every frequency again at t_s/50, the step the
+//!   quick study's t_s/20 stands in for, verdict by verdict and amplitude by amplitude beside
+//!   the spread of the three starts;
 //! - `ch4_panel_f<f>` (Figs. 4.2–4.6): bed band between floor and ceiling, the section and the
 //!   spectrum at each of the source's frequencies;
 //! - `ch4_reconstruction` (Fig. 4.7): delay reconstructions of z_cm at the same frequencies.
 //!
 //! This file holds the study's steps (`all`); the parts are in `chapter4/`: the runs'
 //! settings (`runs.rs`), the sweep points (`points.rs`), what every figure shares
-//! (`record.rs`), the figures along f (`frequency.rs`), the run-length check
-//! (`run_length.rs`), the panel runs and their figures (`panels.rs`), the checks
+//! (`record.rs`), the figures along f (`frequency.rs`), the run-length and time-step checks
+//! (`compare.rs`), the panel runs and their figures (`panels.rs`), the checks
 //! (`checks.rs`) and the ensemble of starts (`ensemble.rs`).
 
 use rayon::prelude::*;
 
 mod checks;
+mod compare;
 mod ensemble;
 mod frequency;
 mod panels;
 mod points;
 mod record;
-mod run_length;
 mod runs;
 
 use checks::{checks_figure, Checks};
+use compare::{run_length, time_step};
 use ensemble::{ensemble_check, ensemble_figure};
 use frequency::{bifurcation, impacts, regime_frf};
 use panels::{panel, panel_of_point, panel_points, panel_run, reconstruction};
 use points::{opt_cell, point, points, Point};
 use record::Info;
-use run_length::run_length;
 use runs::DEFAULT_SEED;
 pub use runs::DEM_CH4;
-use runs::{ch4_set, frequency_list, length_dir, length_text, other_scene_set, sweep_dir};
+use runs::{
+    ch4_set, frequency_list, length_dir, length_text, other_scene_set, slower_step, sweep_dir,
+};
 
 use super::pipeline::{Ctx, FigureRecord, SweepResult, DEM_B_SOFT};
 use super::settings::{Chapter4Settings, DemSettings, Settings};
@@ -52,7 +57,7 @@ use crate::scene::keys::{DAMPER_SEED, EXCITATION_FREQUENCY};
 use crate::sweep::KeptRun;
 
 /// Names of the chapter-4 figures (for `--only`).
-pub const NAMES: [&str; 9] = [
+pub const NAMES: [&str; 10] = [
     "ch4",
     "ch4_regime_frf",
     "ch4_ensemble",
@@ -60,6 +65,7 @@ pub const NAMES: [&str; 9] = [
     "ch4_bifurcation",
     "ch4_impacts",
     "ch4_run_length",
+    "ch4_time_step",
     "ch4_panels",
     "ch4_reconstruction",
 ];
@@ -124,23 +130,7 @@ pub fn all(
         && !c.check_freqs_hz.is_empty()
         && (want("ch4_ensemble") || want("ch4_regime_frf") || checks)
     {
-        let seeds = c
-            .ensemble_seeds
-            .iter()
-            .map(|s| s.to_string())
-            .collect::<Vec<_>>()
-            .join(",");
-        let more = ctx.sweep(
-            &format!("{}_seeds", sweep_dir(c, 1.0)),
-            DEM_CH4,
-            &ch4_set(d, c, 1.0),
-            &[
-                (DAMPER_SEED, seeds),
-                (EXCITATION_FREQUENCY, frequency_list(&c.check_freqs_hz)),
-            ],
-            true,
-        )?;
-        Some(ensemble_check(&pts, &more)?)
+        Some(ensemble_check(&pts, &seeds_sweep(ctx, d, c)?)?)
     } else {
         None
     };
@@ -189,6 +179,27 @@ pub fn all(
             figures.push(checks_figure(&info, &ch)?);
         }
     }
+    if let (true, Some(sc)) = (want("ch4_time_step"), slower_step(c)) {
+        let slow = ctx.sweep(
+            &sweep_dir(&sc, 1.0),
+            DEM_CH4,
+            &ch4_set(d, &sc, 1.0),
+            &[(EXCITATION_FREQUENCY, frequency_list(&c.frequencies_hz))],
+            true,
+        )?;
+        let slow_pts = points("ch4_time_step", &slow.points)?;
+        // the slower step's own starts, where the study ran its ensemble
+        let slow_ensemble = match &ensemble {
+            Some(_) => Some(ensemble_check(&slow_pts, &seeds_sweep(ctx, d, &sc)?)?),
+            None => None,
+        };
+        figures.push(time_step(
+            &info,
+            &pts,
+            (&slow, &slow_pts, sc.dt_fraction),
+            ensemble.as_ref().map(|e| (e, slow_ensemble.as_ref())),
+        )?);
+    }
     if panels {
         // the sweep's own runs where it kept them, else one DEM run per panel, in parallel
         // (each run is single-threaded and deterministic: the same run as the sweep point's)
@@ -222,4 +233,29 @@ pub fn all(
         figures,
         sweep: base,
     })
+}
+
+/// The ensemble check's further starts (`ensemble_seeds`) at the check frequencies, with `c`'s
+/// time step and run length.
+fn seeds_sweep(
+    ctx: &Ctx,
+    d: &DemSettings,
+    c: &Chapter4Settings,
+) -> Result<SweepResult, StudyError> {
+    let seeds = c
+        .ensemble_seeds
+        .iter()
+        .map(|s| s.to_string())
+        .collect::<Vec<_>>()
+        .join(",");
+    ctx.sweep(
+        &format!("{}_seeds", sweep_dir(c, 1.0)),
+        DEM_CH4,
+        &ch4_set(d, c, 1.0),
+        &[
+            (DAMPER_SEED, seeds),
+            (EXCITATION_FREQUENCY, frequency_list(&c.check_freqs_hz)),
+        ],
+        true,
+    )
 }

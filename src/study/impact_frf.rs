@@ -10,7 +10,10 @@ use crate::plot::Series;
 use crate::scene::keys::{DAMPER_RESTITUTION, EXCITATION_FREQUENCY, RUN_DURATION};
 
 use super::kit::SCENE_B;
-use super::pipeline::{Ctx, FigureRecord, SweepResult, COMMITTED_DATA, DEM_B_REFERENCE, IMPACT_B};
+use super::pipeline::{
+    BundledScene, Ctx, FigureRecord, SweepResult, COMMITTED_DATA, DEM_B_REFERENCE,
+    DEM_B_REFERENCE_E100, IMPACT_B,
+};
 use super::settings::Settings;
 use super::settings::SCENE_B_GAP_M;
 
@@ -73,11 +76,12 @@ pub(super) fn energy_vs_frequency(
     })
 }
 
-/// The real-steel bed's FRF (the speed–accuracy reference, `model = dem_steel` in frf.csv):
-/// every stored point of [`DEM_B_REFERENCE`]'s scene under the output's sweeps or the committed
-/// ones, by increasing frequency (none where nothing is stored).
-fn steel_reference(ctx: &Ctx) -> (Vec<f64>, Vec<f64>) {
-    let Ok(scene) = crate::scene::SceneSource::parse(DEM_B_REFERENCE.text) else {
+/// The FRF of a converged scene whose points only the speed–accuracy study computes (the
+/// real-steel reference, `model = dem_steel` in frf.csv; its E ÷ 100 copy, `dem_e100`): every
+/// stored point of `bundled`'s scene under the output's sweeps or the committed ones, by
+/// increasing frequency (none where nothing is stored).
+fn stored_frf(ctx: &Ctx, bundled: BundledScene) -> (Vec<f64>, Vec<f64>) {
+    let Ok(scene) = crate::scene::SceneSource::parse(bundled.text) else {
         return (vec![], vec![]);
     };
     let mut pts: Vec<(f64, f64)> = Vec::new();
@@ -121,13 +125,15 @@ pub(super) fn frf_figure(
         ),
         None => (vec![], vec![]),
     };
-    let (fs, zs) = steel_reference(ctx);
+    let (fs, zs) = stored_frf(ctx, DEM_B_REFERENCE);
+    let (fh, zh) = stored_frf(ctx, DEM_B_REFERENCE_E100);
     let mut rows = Vec::new();
     for (label, f, z) in [
         ("impact_e0", &f0, &z0),
         ("impact_e0.8", &f8, &z8),
         ("dem", &fd, &zd),
         ("dem_steel", &fs, &zs),
+        ("dem_e100", &fh, &zh),
     ] {
         for i in 0..f.len() {
             rows.push(vec![label.to_string(), f[i].to_string(), z[i].to_string()]);
@@ -158,6 +164,13 @@ pub(super) fn frf_figure(
             label: "DEM, N = 250, real steel",
             x: &fs,
             y: &zs,
+        });
+    }
+    if !fh.is_empty() {
+        series.push(Series {
+            label: "DEM, N = 250, steel ÷ 100, t_s/100",
+            x: &fh,
+            y: &zh,
         });
     }
     let labels: Vec<&str> = series.iter().map(|sr| sr.label).collect();
@@ -193,7 +206,7 @@ pub(super) fn frf_figure(
         name: name.into(),
         caption: format!(
             "Scene B, Lz = 0.1225 m: frequency response of the primary with the one-particle \
-             model (gap {SCENE_B_GAP_M} m, e = 0 and 0.8){}{}, and the reference curves (2.1.21) \
+             model (gap {SCENE_B_GAP_M} m, e = 0 and 0.8){}{}{}, and the reference curves (2.1.21) \
              for M and M + m_p.",
             if dem.is_some() {
                 " and the granular DEM bed (steel softened 1000×)"
@@ -208,6 +221,16 @@ pub(super) fn frf_figure(
                      {}, committed points under {COMMITTED_DATA})",
                     fs.len(),
                     DEM_B_REFERENCE.path
+                )
+            },
+            if fh.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    ", the same bed softened 100× at {} frequencies ({}, 200 periods at \
+                     t_s/100)",
+                    fh.len(),
+                    DEM_B_REFERENCE_E100.path
                 )
             }
         ),

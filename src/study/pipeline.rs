@@ -64,6 +64,13 @@ pub const DEM_B_REFERENCE: BundledScene = BundledScene {
     text: include_str!("../../data/scenes/thesis_b_reference.toml"),
 };
 
+/// Scene B's bed with the steel softened 100× and everything else as [`DEM_B_REFERENCE`]
+/// (`data/scenes/thesis_b_reference_e100.toml`): the speed–accuracy study's whole 5–26 Hz range.
+pub const DEM_B_REFERENCE_E100: BundledScene = BundledScene {
+    path: "data/scenes/thesis_b_reference_e100.toml",
+    text: include_str!("../../data/scenes/thesis_b_reference_e100.toml"),
+};
+
 /// Where the committed sweep points live (relative to the repository root, the working
 /// directory of `pdamp reproduce`).
 pub const COMMITTED_DATA: &str = "figures/data";

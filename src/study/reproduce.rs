@@ -95,11 +95,18 @@ pub fn reproduce(
     }
 
     // ---- DEM (SPEC §2), the linear-DEM paper's dampers, and the source's chapter 4 ----
-    // the chapter-4 study (the largest) runs beside the others, so that the two cores stay
-    // busy through every sweep's last points (results do not depend on the order)
-    let ((dem, papers), ch4) = rayon::join(
-        || (dem_part(&ctx, opts, &want), papers_part(&ctx, opts, &want)),
-        || chapter4_part(&ctx, opts, &want),
+    // the three parts run side by side, so that the two cores stay busy through every
+    // sweep's last points: the papers' long single runs (the bean bag, Saeki's acrylic bed)
+    // start first and the many short points of the other two fill the other core (results do
+    // not depend on the order)
+    let (papers, (dem, ch4)) = rayon::join(
+        || papers_part(&ctx, opts, &want),
+        || {
+            rayon::join(
+                || chapter4_part(&ctx, opts, &want),
+                || dem_part(&ctx, opts, &want),
+            )
+        },
     );
     let (dem, papers, ch4) = (dem?, papers?, ch4?);
     figures.extend(dem.figures);
@@ -244,14 +251,18 @@ fn papers_part(
     {
         return Ok(part);
     }
-    if saeki {
-        part.figures.push(super::saeki::saeki_materials(ctx)?);
-    }
-    if els {
-        part.figures.push(super::els::els_decay(ctx)?);
-    }
-    if bag {
-        part.figures.push(super::bean_bag::bean_bag_response(ctx)?);
+    // the longest run (the bean bag, one point) first, the others beside it
+    let (bag, (saeki, els)) = rayon::join(
+        || bag.then(|| super::bean_bag::bean_bag_response(ctx)),
+        || {
+            rayon::join(
+                || saeki.then(|| super::saeki::saeki_materials(ctx)),
+                || els.then(|| super::els::els_decay(ctx)),
+            )
+        },
+    );
+    for f in [saeki, els, bag].into_iter().flatten() {
+        part.figures.push(f?);
     }
     Ok(part)
 }

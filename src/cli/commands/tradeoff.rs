@@ -154,7 +154,7 @@ fn header(plan: &StudyPlan, args: &Args) -> Vec<String> {
             "date: {}",
             pdamp::io::clock::utc_date(pdamp::io::clock::unix_now_s())
         ),
-        format!("commit: {}", git_commit()),
+        format!("commit: {}", pdamp::io::provenance::git_commit()),
         format!("reference: {}", plan.reference_path.display()),
         format!(
             "points: every stored sweep under {} whose scene is the setting's",
@@ -181,17 +181,6 @@ fn header(plan: &StudyPlan, args: &Args) -> Vec<String> {
 }
 
 /// The checkout's commit (`git describe --always --dirty`), or why it is unknown.
-fn git_commit() -> String {
-    std::process::Command::new("git")
-        .args(["describe", "--always", "--dirty", "--abbrev=12"])
-        .output()
-        .ok()
-        .filter(|o| o.status.success())
-        .and_then(|o| String::from_utf8(o.stdout).ok())
-        .map(|s| s.trim().to_string())
-        .unwrap_or_else(|| "unknown (not run in a git checkout)".into())
-}
-
 fn pct(e: Option<f64>) -> String {
     e.map_or("n/a".into(), |e| format!("{:.2} %", 100.0 * e))
 }

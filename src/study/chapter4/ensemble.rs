@@ -16,7 +16,7 @@ pub(super) struct Ensemble {
     /// (f, "3 of 3 starts" / "split: chaotic in 2 of 3 starts, periodic-1 in 1").
     pub(super) words: Vec<(f64, String)>,
     /// Seeds in order (the scene's first).
-    seeds: Vec<u64>,
+    pub(super) seeds: Vec<u64>,
     /// The sweep of the further starts.
     sweep: SweepResult,
 }

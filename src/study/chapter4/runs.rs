@@ -6,7 +6,7 @@ use crate::model::summary::DEFAULT_ANALYSIS_MAX_SAMPLES;
 use crate::scene::keys::{RUN_ANALYSIS_MAX_SAMPLES, RUN_DT_FRACTION, RUN_DURATION, RUN_PERIODS};
 use crate::study::dem_figures::softened_steel_set;
 use crate::study::pipeline::BundledScene;
-use crate::study::settings::{Chapter4Settings, DemSettings};
+use crate::study::settings::{Chapter4Settings, DemSettings, CH4_SLOWER_DT_FRACTION};
 
 /// Scene B at Lz = 0.1225 m with softened grains and runs counted in periods
 /// (`data/scenes/thesis_b_ch4.toml`).
@@ -18,9 +18,10 @@ pub const DEM_CH4: BundledScene = BundledScene {
 /// The packing seed of [`DEM_CH4`] (the scene's default `damper.seed`).
 pub(super) const DEFAULT_SEED: u64 = 1;
 
-/// Softening, time-step fraction and run length written in [`DEM_CH4`].
+/// Softening, time-step fraction and run length written in [`DEM_CH4`] (its step, t_s/50, is
+/// the one the quick study's t_s/20 is checked against).
 pub(super) const SCENE_SOFTEN: f64 = 1000.0;
-pub(super) const SCENE_DT_FRACTION: f64 = 0.02;
+pub(super) const SCENE_DT_FRACTION: f64 = CH4_SLOWER_DT_FRACTION;
 pub(super) const SCENE_PERIODS: f64 = 100.0;
 
 /// `--set` of a chapter-4 run: material and time step when they differ from the scene file,
@@ -42,8 +43,8 @@ pub(super) fn ch4_set(
     if d.soften != SCENE_SOFTEN {
         set.extend(softened_steel_set(d.soften));
     }
-    if d.dt_fraction != SCENE_DT_FRACTION {
-        set.push((RUN_DT_FRACTION, d.dt_fraction.to_string()));
+    if c.dt_fraction != SCENE_DT_FRACTION {
+        set.push((RUN_DT_FRACTION, c.dt_fraction.to_string()));
     }
     match c.duration_s {
         Some(s) => set.push((RUN_DURATION, (factor * s).to_string())),
@@ -67,12 +68,27 @@ pub(super) fn length_text(c: &Chapter4Settings, factor: f64) -> String {
     }
 }
 
-/// The run length in a directory name ("p200" or "d196.83").
+/// The run length in a directory name ("p200" or "d196.83"), and the time step when it is
+/// not the scene file's ("p200_dt20" at t_s/20).
 pub(super) fn length_dir(c: &Chapter4Settings, factor: f64) -> String {
-    match c.duration_s {
+    let length = match c.duration_s {
         Some(s) => format!("d{}", factor * s),
         None => format!("p{}", factor * c.periods),
+    };
+    match c.dt_fraction == SCENE_DT_FRACTION {
+        true => length,
+        false => format!("{length}_dt{}", 1.0 / c.dt_fraction),
     }
+}
+
+/// The settings of the time-step check's runs: the study's at `slower_dt_fraction`, `None`
+/// without the check.
+pub(super) fn slower_step(c: &Chapter4Settings) -> Option<Chapter4Settings> {
+    c.slower_dt_fraction.map(|dt| Chapter4Settings {
+        dt_fraction: dt,
+        slower_dt_fraction: None,
+        ..c.clone()
+    })
 }
 
 pub(super) fn sweep_dir(c: &Chapter4Settings, factor: f64) -> String {
