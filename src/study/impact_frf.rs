@@ -111,9 +111,10 @@ pub(super) fn frf_figure(
     s: &Settings,
     e0: &SweepResult,
     e8: &SweepResult,
-    dem: Option<&SweepResult>,
+    dem_run: Option<(&SweepResult, &[&str])>,
 ) -> Result<FigureRecord, StudyError> {
     let name = "frf";
+    let dem = dem_run.map(|(d, _)| d);
     let f0 = e0.points.map(|s| s.frequency_hz);
     let z0 = e0.points.map(|s| s.amplitude_m);
     let f8 = e8.points.map(|s| s.frequency_hz);
@@ -188,7 +189,7 @@ pub(super) fn frf_figure(
     if let Some(d) = dem {
         commands.extend(d.commands.iter().cloned());
         csv.extend(d.csv.iter().cloned());
-        reductions.extend(s.reductions(&["dem"]));
+        reductions.extend(s.reductions(dem_run.map_or(&[][..], |(_, keys)| keys)));
     }
     let mut plot = Command::plot("frf", &csv, &ctx.path(&format!("{name}.png")));
     for l in labels {

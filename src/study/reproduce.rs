@@ -99,7 +99,7 @@ pub fn reproduce(
     // sweep's last points: the papers' long single runs (the bean bag, Saeki's acrylic bed)
     // start first and the many short points of the other two fill the other core (results do
     // not depend on the order)
-    let (papers, (dem, ch4)) = rayon::join(
+    let (papers, (ch4, dem)) = rayon::join(
         || papers_part(&ctx, opts, &want),
         || {
             rayon::join(
@@ -108,7 +108,7 @@ pub fn reproduce(
             )
         },
     );
-    let (dem, papers, ch4) = (dem?, papers?, ch4?);
+    let (dem, papers, Chapter4Part(ch4)) = (dem?, papers?, ch4?);
     figures.extend(dem.figures);
     let effective_dem = dem.effective_dem;
     skipped.extend(dem.skipped);
@@ -118,11 +118,15 @@ pub fn reproduce(
     skipped.extend(papers.skipped);
     // the chapter-4 runs (a fixed number of periods per point) are the converged DEM
     // frequency response; the short drives of the DEM figure set are not
-    let dem_frf = ch4.sweep.or(dem.frf);
+    // (with the reductions of the run it comes from)
+    let dem_frf = match (ch4.sweep, dem.frf) {
+        (Some(c), _) => Some((c, &["dem_material", "dem_ch4"][..])),
+        (None, d) => d.map(|d| (d, &["dem"][..])),
+    };
     if let (Some(e0), Some(e8)) = (&frf_e0, &frf_e8) {
         figures.insert(
             0,
-            impact_frf::frf_figure(&ctx, s, e0, e8, dem_frf.as_ref())?,
+            impact_frf::frf_figure(&ctx, s, e0, e8, dem_frf.as_ref().map(|(d, k)| (d, *k)))?,
         );
     }
     // each figure again, alone, as it was made here
@@ -210,12 +214,16 @@ fn dem_part(
     Ok(part)
 }
 
+/// What the chapter-4 study made (its own type, so that it cannot be mistaken for the DEM
+/// figure set's part where the two are joined).
+struct Chapter4Part(DemPart);
+
 /// The source's chapter 4 (DEM regimes along f); its sweep in `sweep`.
 fn chapter4_part(
     ctx: &Ctx,
     opts: &ReproduceOptions,
     want: &(dyn Fn(&str) -> bool + Sync),
-) -> Result<DemPart, StudyError> {
+) -> Result<Chapter4Part, StudyError> {
     let s = &opts.settings;
     let mut part = DemPart::default();
     let wanted = super::chapter4::NAMES.iter().any(|n| want(n));
@@ -225,14 +233,14 @@ fn chapter4_part(
         .and_then(|d| d.chapter4.as_ref().map(|c| (d, c)));
     let what = "chapter-4 figures";
     if !wanted || !dem_allowed(what, settings.is_some(), opts, &mut part.skipped) {
-        return Ok(part);
+        return Ok(Chapter4Part(part));
     }
     if let Some((d, c)) = settings {
         let out = super::chapter4::all(ctx, s, d, c, want)?;
         part.figures = out.figures;
         part.sweep = Some(out.sweep);
     }
-    Ok(part)
+    Ok(Chapter4Part(part))
 }
 
 /// The linear-DEM paper's dampers (Saeki 2002's materials, the bean bag, Els 2009's decay).

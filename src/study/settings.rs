@@ -405,14 +405,15 @@ impl Settings {
                                 },
                                 format!("E/{}", fd.soften),
                             );
+                            // the chapter-4 study has its own step (`dem_ch4`)
+                            if *key == "dem_material" {
+                                continue;
+                            }
                             diff(
                                 "DEM time step",
                                 format!("t_s × {}", d.dt_fraction),
                                 format!("t_s × {}", fd.dt_fraction),
                             );
-                            if *key == "dem_material" {
-                                continue;
-                            }
                             diff(
                                 "DEM drive per point",
                                 format!("{} s", d.duration_s),
