@@ -266,5 +266,10 @@ pub(super) fn time_step(
         points: slower.1,
         starts,
     };
-    compared(info, pts, &other)
+    let mut rec = compared(info, pts, &other)?;
+    // the slower step's own starts
+    if let Some((_, Some(e))) = starts {
+        rec.commands.extend(e.sweep.commands.iter().cloned());
+    }
+    Ok(rec)
 }

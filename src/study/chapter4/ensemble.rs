@@ -18,7 +18,7 @@ pub(super) struct Ensemble {
     /// Seeds in order (the scene's first).
     pub(super) seeds: Vec<u64>,
     /// The sweep of the further starts.
-    sweep: SweepResult,
+    pub(super) sweep: SweepResult,
 }
 
 /// "all 3 starts" or "split: chaotic in 2 of 3 starts, periodic-1 in 1" for the verdicts
