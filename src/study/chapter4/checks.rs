@@ -7,6 +7,7 @@
 //! differs, its windows are the one parameter that differs (they also move its sample clock,
 //! hence its time step in the last bits: another trajectory).
 
+use super::ensemble::words_at;
 use super::{length_text, opt_cell, Info, Point, DEFAULT_SEED};
 use crate::analysis::regime::Regime;
 use crate::error::StudyError;
@@ -64,10 +65,7 @@ fn row(c: &Checks, p: &Point) -> Vec<String> {
     vec![
         p.f_hz.to_string(),
         p.label.clone(),
-        c.ensemble_words
-            .iter()
-            .find(|(g, _)| *g == p.f_hz)
-            .map_or(String::new(), |(_, w)| w.clone()),
+        words_at(c.ensemble_words, p.f_hz),
         verdict(d),
         same(d),
         d.map_or(String::new(), |d| {

@@ -5,7 +5,7 @@
 //! amplitude averaged over the starts: at a chaotic frequency one start's Z is one sample of
 //! the attractor, and the mean over starts is what a step changes or not).
 
-use super::ensemble::Ensemble;
+use super::ensemble::{words_at, Ensemble};
 use super::points::{opt_cell, Point};
 use super::record::Info;
 use super::runs::length_text;
@@ -55,14 +55,6 @@ fn over_starts(e: &Ensemble, f: f64) -> Option<(f64, f64)> {
     Some((mean, (hi - lo) / mean))
 }
 
-/// The ensemble's words at `f` ("chaotic in all 3 starts", "split: …").
-fn words(e: &Ensemble, f: f64) -> String {
-    e.words
-        .iter()
-        .find(|(g, _)| *g == f)
-        .map_or(String::new(), |(_, w)| w.clone())
-}
-
 /// The columns of the starts: the study's spread and words, and with the other step's
 /// ensemble both means, their change and the other's words.
 fn start_cells(starts: (&Ensemble, Option<&Ensemble>), f: f64, worst: &mut f64) -> Vec<String> {
@@ -70,7 +62,7 @@ fn start_cells(starts: (&Ensemble, Option<&Ensemble>), f: f64, worst: &mut f64) 
     let m = over_starts(mine, f);
     let mut row = vec![
         m.map_or(String::new(), |m| format!("{:.3}", 100.0 * m.1)),
-        words(mine, f),
+        words_at(&mine.words, f),
     ];
     if let Some(o) = other {
         let q = over_starts(o, f);
@@ -84,7 +76,7 @@ fn start_cells(starts: (&Ensemble, Option<&Ensemble>), f: f64, worst: &mut f64) 
             }
             _ => String::new(),
         });
-        row.push(words(o, f));
+        row.push(words_at(&o.words, f));
     }
     row
 }

@@ -21,6 +21,15 @@ pub(super) struct Ensemble {
     pub(super) sweep: SweepResult,
 }
 
+/// The words of the ensemble check at `f` (`words` as in [`Ensemble::words`]), empty where
+/// the check did not run.
+pub(super) fn words_at(words: &[(f64, String)], f: f64) -> String {
+    words
+        .iter()
+        .find(|(g, _)| *g == f)
+        .map_or(String::new(), |(_, w)| w.clone())
+}
+
 /// "all 3 starts" or "split: chaotic in 2 of 3 starts, periodic-1 in 1" for the verdicts
 /// (regime and period) of the starts.
 fn ensemble_words(verdicts: &[String]) -> String {
