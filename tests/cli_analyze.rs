@@ -211,3 +211,59 @@ fn every_estimator_verb_refuses_a_time_column() {
         );
     }
 }
+
+#[test]
+fn tisean_verbs_write_the_o_file_and_d2_takes_n0_only() {
+    // every TISEAN-like verb: `-o FILE` holds exactly what stdout would (written atomically);
+    // d2's TISEAN -N: 0 (all pairs) accepted, any other count refused naming -N0.
+    let dir = scratch::tempdir().unwrap();
+    let x: Vec<f64> = (0..3000)
+        .map(|i| (i as f64 * 0.37).sin() + 0.3 * (i as f64 * 0.113).cos())
+        .collect();
+    let file = write_series(&dir, "x.txt", &x);
+    for verb in [
+        vec!["mutual", "-D30"],
+        vec!["fnn", "--tisean", "-M1,4", "-d5"],
+        vec!["lyap-k", "--tisean", "-m2", "-M3", "-d5", "-s30"],
+        vec!["lyap-r", "-m3", "-d5", "-s20"],
+        vec!["d2", "-M1,3", "-d5", "-#10"],
+        vec!["nrlazy", "-m3", "-r0.2"],
+        vec!["surrogates", "-n2", "-I3"],
+    ] {
+        let mut args = verb.clone();
+        args.insert(1, &file);
+        let (stdout, err, ok) = pdamp(&args);
+        assert!(ok && !stdout.is_empty(), "{verb:?}: {err}");
+        let out = dir.path().join(format!("{}.out", verb[0]));
+        let out_s = out.to_str().unwrap().to_string();
+        args.extend_from_slice(&["-o", &out_s]);
+        let (printed, err, ok) = pdamp(&args);
+        assert!(ok, "{verb:?} -o: {err}");
+        assert!(printed.is_empty(), "{verb:?} -o printed {printed}");
+        assert_eq!(std::fs::read_to_string(&out).unwrap(), stdout, "{verb:?}");
+    }
+    let (_, err, ok) = pdamp(&["d2", &file, "-M1,3", "-#10", "-N1000"]);
+    assert!(
+        !ok && err.contains("-N0") && err.contains("every pair"),
+        "{err}"
+    );
+    let (with_n0, err, ok) = pdamp(&["d2", &file, "-M1,3", "-#10", "-N0"]);
+    assert!(ok, "{err}");
+    assert_eq!(with_n0, pdamp(&["d2", &file, "-M1,3", "-#10"]).0);
+    // -E: the same pairs at ε / interval, so C at the rescaled radii is C at the data radii
+    let (rescaled, err, ok) = pdamp(&["d2", &file, "-M1,2", "-r0.01", "-R0.5", "-#5", "-E"]);
+    assert!(ok, "{err}");
+    let (lo, hi) = x
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), &v| (a.min(v), b.max(v)));
+    let r = |e: f64| format!("{}", e * (hi - lo));
+    let (plain, _, ok) = pdamp(&["d2", &file, "-M1,2", "-r", &r(0.01), "-R", &r(0.5), "-#5"]);
+    assert!(ok);
+    let pairs = |t: &str| -> Vec<String> {
+        t.lines()
+            .skip(1)
+            .map(|l| l.split(',').nth(3).unwrap().to_string())
+            .collect()
+    };
+    assert_eq!(pairs(&rescaled), pairs(&plain));
+}

@@ -421,6 +421,19 @@ fn d2_henon_and_sine_equal_tisean() {
     );
 }
 
+#[test]
+fn d2_rescaled_equals_tisean_e() {
+    // TISEAN: d2 lorenz_x_n10000.dat -M1,6 -d10 -t100 -r0.002 -R0.3 -#40 -N0 -E (radii and
+    // printed ε in units of the data interval)
+    d2_file(
+        "lorenz_x_n10000.dat",
+        &[
+            "-M1,6", "-d10", "-t100", "-r0.002", "-R0.3", "-#40", "-N0", "-E",
+        ],
+        "lorenz_x_n10000.E_M6_d10_t100.c2",
+    );
+}
+
 fn lyap_r_file(series: &str, opts: &[&str], ros_file: &str) -> f64 {
     let path = golden(series);
     let mut args = vec!["lyap-r", path.to_str().unwrap()];

@@ -1,12 +1,12 @@
 //! `pdamp d2`: correlation sum and correlation dimension (Grassberger & Procaccia 1983;
 //! TISEAN `d2`).
 
-use std::io::Write;
+use std::fmt::Write;
 
 use anyhow::Context;
 
 use crate::cli::commands::mutual::SeriesInput;
-use crate::cli::commands::tisean_args::{edit_arg, Delay, DimRange, Radii, Theiler};
+use crate::cli::commands::tisean_args::{edit_arg, Delay, DimRange, Output, Radii, Theiler};
 use pdamp::analysis::correlation_dimension::{
     correlation_sum, estimate_d2, D2Options, PlateauOptions,
 };
@@ -22,7 +22,9 @@ use pdamp::analysis::correlation_dimension::{
 ///
 /// Same definitions and defaults as TISEAN 3.0.1 `d2` (maximum norm, data not rescaled,
 /// -M1,10 -d1 -t0, ε from interval/1000 to interval in 100 steps), except that every pair
-/// is counted (TISEAN's -N0).
+/// is counted (TISEAN's -N0; its default -N1000 stops counting an ε once 1000 pairs of a
+/// random order are within it, which `-N` refuses, naming -N0). `-E` rescales the series to
+/// [0, 1] first, as TISEAN's `-E`: ε (given and printed) in units of the data interval.
 #[derive(Debug, clap::Args)]
 #[command(
     mut_args(edit_arg("m_min", |a| a
@@ -68,11 +70,43 @@ pub struct Args {
     /// Plateau search: D2 pools the plateaus of this many highest dimensions.
     #[arg(long, default_value_t = 3, help_heading = "Plateau")]
     pub dims: usize,
+    /// Rescale the series to [0, 1] first (TISEAN -E): -r, -R and the printed ε are then in
+    /// units of the data interval.
+    #[arg(short = 'E', long = "rescale", help_heading = "Estimator")]
+    pub rescale: bool,
+    /// Largest number of pairs per ε (TISEAN -N): only 0, "all pairs", which pdamp always
+    /// counts; TISEAN's default 1000 stops early on a random sample of pairs.
+    #[arg(short = 'N', long = "max-pairs", value_name = "N", value_parser = parse_max_pairs,
+          help_heading = "Estimator")]
+    pub max_pairs: Option<u64>,
+    /// Output file -o (TISEAN), stdout by default.
+    #[command(flatten)]
+    pub output: Output,
+}
+
+/// `-N`: TISEAN's largest number of pairs per ε; pdamp counts every pair, TISEAN's `-N0`.
+fn parse_max_pairs(s: &str) -> Result<u64, String> {
+    match s.parse::<u64>() {
+        Ok(0) => Ok(0),
+        Ok(n) => Err(format!(
+            "pdamp d2 counts every pair (TISEAN's -N0); TISEAN's -N{n} stops counting each ε after \
+             {n} pairs taken in a random order, which pdamp does not do. Drop -N (or give -N0), \
+             and give TISEAN -N0 for the same C(ε)"
+        )),
+        Err(_) => Err(format!(
+            "`{s}` is not a number of pairs; only -N0 (all pairs) is accepted"
+        )),
+    }
 }
 
 /// Run `pdamp d2`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let x = args.input.read()?;
+    let mut x = args.input.read()?;
+    if args.rescale {
+        x = pdamp::analysis::rescale_unit(&x)
+            .with_context(|| format!("-E: rescaling {}", args.input.file))?
+            .values;
+    }
     let opts = D2Options {
         m_min: args.dim_range.min().expect("d2 gives -m a default"),
         m_max: args.dim_range.max()?.expect("d2 gives -M a default"),
@@ -84,8 +118,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     };
     let sums = correlation_sum(&x, &opts)
         .with_context(|| format!("correlation sum of {}", args.input.file))?;
-    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-    writeln!(out, "m,eps,c,pairs,slope")?;
+    let mut out = String::from("m,eps,c,pairs,slope\n");
     for c in &sums.curves {
         for l in 0..c.eps.len() {
             let s = c.slope[l].map_or(String::new(), |v| format!("{v:.6}"));
@@ -96,7 +129,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             )?;
         }
     }
-    out.flush()?;
+    args.output.write(out.as_bytes())?;
     let plateau = PlateauOptions {
         min_pairs: args.min_pairs,
         tolerance: args.tolerance,

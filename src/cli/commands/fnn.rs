@@ -1,11 +1,11 @@
 //! `pdamp fnn`: false nearest neighbours (Kennel et al. 1992; TISEAN `false_nearest`).
 
-use std::io::Write;
+use std::fmt::Write;
 
 use anyhow::Context;
 
 use crate::cli::commands::mutual::SeriesInput;
-use crate::cli::commands::tisean_args::{edit_arg, Delay, DimRange, Theiler};
+use crate::cli::commands::tisean_args::{edit_arg, Delay, DimRange, Output, Theiler};
 use pdamp::analysis::false_nearest_neighbors::suggested_dimension;
 use pdamp::analysis::{false_nearest_neighbors, FnnOptions};
 
@@ -56,6 +56,9 @@ pub struct Args {
     /// only sets the ranges, as in TISEAN 3.0.1).
     #[arg(long, help_heading = "Estimator")]
     pub tisean: bool,
+    /// Output file -o (TISEAN), stdout by default.
+    #[command(flatten)]
+    pub output: Output,
 }
 
 /// Run `pdamp fnn`.
@@ -84,11 +87,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     let fnn = false_nearest_neighbors(&x, &opts)
         .with_context(|| format!("false nearest neighbours of {}", args.input.file))?;
-    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-    writeln!(
-        out,
-        "m,false_fraction,accepted,false_count,mean_distance,rms_distance"
-    )?;
+    let mut out =
+        String::from("m,false_fraction,accepted,false_count,mean_distance,rms_distance\n");
     for p in &fnn {
         let f = p.fraction.map_or(String::new(), |f| format!("{f:.10e}"));
         writeln!(
@@ -97,7 +97,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             p.m, p.accepted, p.false_count, p.mean_distance, p.rms_distance
         )?;
     }
-    out.flush()?;
+    args.output.write(out.as_bytes())?;
     match suggested_dimension(&fnn, 0.01) {
         Some(m) => {
             tracing::info!("suggested embedding dimension: m = {m} (≤ 1 % false neighbours)")

@@ -1,11 +1,11 @@
 //! `pdamp lyap-k`: Kantz's maximal Lyapunov exponent (TISEAN `lyap_k`).
 
-use std::io::Write;
+use std::fmt::Write;
 
 use anyhow::Context;
 
 use crate::cli::commands::mutual::SeriesInput;
-use crate::cli::commands::tisean_args::{edit_arg, Delay, Radii, Theiler};
+use crate::cli::commands::tisean_args::{edit_arg, Delay, Output, Radii, Theiler};
 use pdamp::analysis::kantz::{
     estimate_from_curves, fit_scaling_region, kantz, KantzDefinition, KantzOptions, ScalingOptions,
 };
@@ -92,6 +92,9 @@ pub struct Args {
     /// Minimum R² of the linear region.
     #[arg(long, default_value_t = 0.99, help_heading = "Output")]
     pub r2_min: f64,
+    /// Output file -o (TISEAN), stdout by default.
+    #[command(flatten)]
+    pub output: Output,
 }
 
 /// Run `pdamp lyap-k`.
@@ -127,8 +130,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         definition,
     };
     let result = kantz(&x, &opts).with_context(|| format!("Kantz on {}", args.input.file))?;
-    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-    writeln!(out, "eps,m,dn_samples,s,count")?;
+    let mut out = String::from("eps,m,dn_samples,s,count\n");
     for c in &result.curves {
         for (t, (s, n)) in c.s.iter().zip(&c.count).enumerate() {
             if let Some(s) = s {
@@ -136,7 +138,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             }
         }
     }
-    out.flush()?;
+    args.output.write(out.as_bytes())?;
     let scaling = ScalingOptions {
         r2_min: args.r2_min,
         ..ScalingOptions::default()

@@ -1,11 +1,11 @@
 //! `pdamp lyap-r`: Rosenstein's maximal Lyapunov exponent (TISEAN `lyap_r`).
 
-use std::io::Write;
+use std::fmt::Write;
 
 use anyhow::Context;
 
 use crate::cli::commands::mutual::SeriesInput;
-use crate::cli::commands::tisean_args::{edit_arg, Delay, Dim, Theiler};
+use crate::cli::commands::tisean_args::{edit_arg, Delay, Dim, Output, Theiler};
 use pdamp::analysis::kantz::{fit_scaling_region, ScalingOptions};
 use pdamp::analysis::rosenstein::{rosenstein, RosensteinOptions};
 
@@ -57,6 +57,9 @@ pub struct Args {
     /// Minimum R² of the linear region.
     #[arg(long, default_value_t = 0.99, help_heading = "Output")]
     pub r2_min: f64,
+    /// Output file -o (TISEAN), stdout by default.
+    #[command(flatten)]
+    pub output: Output,
 }
 
 /// Run `pdamp lyap-r`.
@@ -70,14 +73,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         steps: args.steps,
     };
     let r = rosenstein(&x, &opts).with_context(|| format!("Rosenstein on {}", args.input.file))?;
-    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-    writeln!(out, "dn_samples,s,count")?;
+    let mut out = String::from("dn_samples,s,count\n");
     for (t, (s, c)) in r.s.iter().zip(&r.count).enumerate() {
         if let Some(s) = s {
             writeln!(out, "{t},{s:.10e},{c}")?;
         }
     }
-    out.flush()?;
+    args.output.write(out.as_bytes())?;
     let scaling = ScalingOptions {
         r2_min: args.r2_min,
         ..ScalingOptions::default()

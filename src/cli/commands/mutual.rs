@@ -1,6 +1,8 @@
 //! `pdamp mutual`: time-delayed mutual information I(τ) (TISEAN `mutual`).
 
-use std::io::Write;
+use std::fmt::Write;
+
+use crate::cli::commands::tisean_args::Output;
 
 use anyhow::Context;
 use pdamp::analysis::mutual_information::small_sample_bias;
@@ -106,6 +108,9 @@ pub struct Args {
         help_heading = "Estimator"
     )]
     pub bins: usize,
+    /// Output file -o (TISEAN), stdout by default.
+    #[command(flatten)]
+    pub output: Output,
 }
 
 /// Run `pdamp mutual`.
@@ -119,12 +124,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         },
     )
     .with_context(|| format!("mutual information of {}", args.input.file))?;
-    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-    writeln!(out, "lag_samples,mutual_information_nats")?;
+    let mut out = String::from("lag_samples,mutual_information_nats\n");
     for (tau, v) in mi.values.iter().enumerate() {
         writeln!(out, "{tau},{v:.10e}")?;
     }
-    out.flush()?;
+    args.output.write(out.as_bytes())?;
     // the estimator's bias at the largest lag (fewest pairs) against the entropy I(0)
     let max_lag = mi.values.len() - 1;
     let bias = small_sample_bias(x.len() - max_lag, mi.bins);

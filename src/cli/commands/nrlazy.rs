@@ -1,13 +1,13 @@
 //! `pdamp nrlazy`: Schreiber's simple nonlinear noise reduction (TISEAN `lazy` / `nrlazy`).
 
 use std::fmt::Write as _;
-use std::io::Write as _;
 
 use anyhow::Context;
 use rayon::prelude::*;
 
 use crate::cli::commands::mutual::SeriesInput;
 use crate::cli::commands::surrogates::reject_time_column;
+use crate::cli::commands::tisean_args::Output;
 use pdamp::analysis::noise_reduction::{
     nonlinear_noise_reduction, Correction, NoiseReductionOptions,
 };
@@ -75,9 +75,9 @@ pub struct Args {
     /// given in TISEAN's form `1,m`.
     #[arg(long, help_heading = "Noise reduction")]
     pub tisean: bool,
-    /// Write to this file instead of stdout (TISEAN -o).
-    #[arg(short = 'o', long = "output", help_heading = "Output")]
-    pub output: Option<String>,
+    /// Output file -o (TISEAN), stdout by default.
+    #[command(flatten)]
+    pub output: Output,
 }
 
 /// The `-m` argument: the dimension, and whether it came in TISEAN's `components,m` form.
@@ -173,15 +173,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         })
         .collect::<Vec<String>>()
         .concat();
-    match &args.output {
-        Some(path) => pdamp::io::atomic_write(std::path::Path::new(path), text.as_bytes())?,
-        None => {
-            let mut out = std::io::stdout().lock();
-            out.write_all(text.as_bytes())?;
-            out.flush()?;
-        }
-    }
-    Ok(())
+    args.output.write(text.as_bytes())
 }
 
 #[cfg(test)]

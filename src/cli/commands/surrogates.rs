@@ -1,11 +1,10 @@
 //! `pdamp surrogates`: IAAFT (default), phase-randomised or shuffled surrogate series
 //! (TISEAN `surrogates`, `endtoend`).
 
-use std::io::Write;
-
 use anyhow::{bail, Context};
 
 use crate::cli::commands::mutual::SeriesInput;
+use crate::cli::commands::tisean_args::Output;
 use pdamp::analysis::surrogates::{
     end_to_end_segment, surrogates, SurrogateMethod, SurrogateOptions,
 };
@@ -65,9 +64,9 @@ pub struct Args {
         help_heading = "Surrogates"
     )]
     pub end_to_end: Option<f64>,
-    /// Write to this file instead of stdout (TISEAN -o).
-    #[arg(short = 'o', long = "output", help_heading = "Output")]
-    pub output: Option<String>,
+    /// Output file -o (TISEAN), stdout by default.
+    #[command(flatten)]
+    pub output: Output,
 }
 
 /// Refuses a strictly monotone column (a time or index column, usually column 1 of a
@@ -149,13 +148,5 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         text.push_str(&row.join(" "));
         text.push('\n');
     }
-    match &args.output {
-        Some(path) => pdamp::io::atomic_write(std::path::Path::new(path), text.as_bytes())?,
-        None => {
-            let mut out = std::io::stdout().lock();
-            out.write_all(text.as_bytes())?;
-            out.flush()?;
-        }
-    }
-    Ok(())
+    args.output.write(text.as_bytes())
 }

@@ -2,7 +2,8 @@
 //! arguments (`#[command(flatten)]`): the delay `-d` (d2, lyap-k, lyap-r, fnn, cao, rqa), the
 //! radius range `-r -R -#` (d2, lyap-k), the Theiler window `-t` (d2, lyap-k, lyap-r, fnn,
 //! cao, rqa, surrogate-test, plot), the dimension range `-m -M` of TISEAN's `M` or
-//! `components,M` (d2, fnn) and the single embedding dimension `-m --dim` (lyap-r, rqa).
+//! `components,M` (d2, fnn), the single embedding dimension `-m --dim` (lyap-r, rqa) and the
+//! output file `-o` (mutual, fnn, lyap-k, lyap-r, d2, nrlazy, surrogates).
 //!
 //! A verb whose default for one of them differs in meaning (the largest radius of `d2` and
 //! `lyap-k`) states it in its own help with `mut_arg`, so every verb's flags, defaults and help
@@ -17,6 +18,42 @@
 //! number: TISEAN lyap_k has no `components,M`) and cao (no `-m`), `-m -M` of plot (`-M` reads
 //! `min,max`), and `-m --dimension` of embed, nrlazy (`m` or `components,m`) and
 //! surrogate-test.
+
+/// TISEAN's output file `-o`: the verb's text goes to this file (written atomically: a
+/// stopped run leaves no partial file) instead of stdout. The content is pdamp's (CSV with a
+/// header, or one column), not TISEAN's file format, so the file must be named: TISEAN's bare
+/// `-o` ("`'datafile'.ext`") is refused by clap's "a value is required".
+#[derive(Debug, Clone, clap::Args)]
+pub struct Output {
+    /// Write to this file instead of stdout (TISEAN -o), atomically.
+    #[arg(
+        short = 'o',
+        long = "output",
+        value_name = "FILE",
+        help_heading = "Output"
+    )]
+    pub path: Option<String>,
+}
+
+impl Output {
+    /// Writes `text` to the `-o` file (atomically) or to stdout.
+    ///
+    /// # Errors
+    /// The file cannot be written, or stdout is closed.
+    pub fn write(&self, text: &[u8]) -> anyhow::Result<()> {
+        use std::io::Write;
+        match &self.path {
+            Some(path) => pdamp::io::atomic_write(std::path::Path::new(path), text)
+                .map_err(|e| anyhow::anyhow!("-o {path}: {e}")),
+            None => {
+                let mut out = std::io::stdout().lock();
+                out.write_all(text)?;
+                out.flush()?;
+                Ok(())
+            }
+        }
+    }
+}
 
 /// TISEAN's delay `-d` (default 1).
 #[derive(Debug, Clone, Copy, clap::Args)]

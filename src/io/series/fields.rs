@@ -12,6 +12,7 @@ pub(super) const DECIMAL_COMMA_FIX: &str =
     columns, pass --delimiter comma";
 
 /// The layout fixed by the first non-comment line.
+#[derive(Clone)]
 pub(super) struct Layout {
     pub(super) delimiter: Delimiter,
     pub(super) fields: usize,

@@ -25,6 +25,7 @@
 
 mod columns;
 mod fields;
+mod parallel;
 mod read;
 mod types;
 

@@ -8,6 +8,10 @@ use super::fields::{field_count_message, field_ranges, first_row, parse_field, L
 use super::types::{Delimiter, SeriesReadOptions, SeriesTable};
 use crate::error::DataError;
 
+/// Files larger than this are read line by line as a stream (memory: the kept columns only);
+/// smaller ones are read whole and parsed on all cores ([`super::parallel`]).
+const STREAM_ABOVE_BYTES: u64 = 1 << 30;
+
 /// Reads the selected columns of a series file (`-` = standard input): one `Vec` per column.
 ///
 /// # Errors
@@ -36,7 +40,25 @@ pub fn read_table(path: &str, opts: &SeriesReadOptions) -> Result<SeriesTable, D
     } else {
         crate::io::run_dir::check_complete(std::path::Path::new(path))?;
         let file = std::fs::File::open(path).map_err(io_err)?;
-        parse_table(BufReader::new(file), path, opts)
+        if file.metadata().map_err(io_err)?.len() > STREAM_ABOVE_BYTES {
+            return parse_table(BufReader::new(file), path, opts);
+        }
+        let mut bytes = Vec::new();
+        std::io::Read::read_to_end(&mut &file, &mut bytes).map_err(io_err)?;
+        match String::from_utf8(bytes) {
+            Ok(text) => parse_table_str(&text, path, opts),
+            Err(e) => {
+                let valid = e.utf8_error().valid_up_to();
+                let bytes = e.as_bytes();
+                Err(DataError::Malformed {
+                    path: path.to_string(),
+                    line: 1 + bytes[..valid].iter().filter(|&&b| b == b'\n').count(),
+                    message: "not UTF-8 text: a series file is plain text (numbers, `#` \
+                              comments, an optional header); convert it, e.g. with `iconv`"
+                        .into(),
+                })
+            }
+        }
     }
 }
 
@@ -83,7 +105,7 @@ pub fn parse_table_str(
     name: &str,
     opts: &SeriesReadOptions,
 ) -> Result<SeriesTable, DataError> {
-    parse_table(text.as_bytes(), name, opts)
+    super::parallel::parse_text(text, name, opts)
 }
 
 /// Parses series text from any buffered reader into a [`SeriesTable`]; `name` is used in
@@ -96,27 +118,8 @@ pub fn parse_table(
     name: &str,
     opts: &SeriesReadOptions,
 ) -> Result<SeriesTable, DataError> {
-    let malformed = |line: usize, message: String| DataError::Malformed {
-        path: name.to_string(),
-        line,
-        message,
-    };
-    if opts.decimal_comma && opts.delimiter == Some(Delimiter::Comma) {
-        return Err(malformed(
-            0,
-            "--decimal-comma with --delimiter comma: a comma cannot be both; the delimiter of \
-             a decimal-comma file is a semicolon, tab or whitespace"
-                .into(),
-        ));
-    }
-    let mut layout: Option<Layout> = None;
-    // kept columns (selected, time candidates) by 0-based index; the rest are only counted
-    let mut raw: Vec<Option<Vec<f64>>> = Vec::new();
-    let mut rows = 0usize;
+    let mut sink = Rows::new(name, opts)?;
     let mut line = String::new();
-    let mut lineno = 0usize;
-    // byte ranges of the fields of the current line (no allocation per line)
-    let mut fields: Vec<(usize, usize)> = Vec::new();
     loop {
         line.clear();
         let read = reader
@@ -125,55 +128,149 @@ pub fn parse_table(
                 path: name.to_string(),
                 source,
             })?;
-        if read == 0 {
+        if read == 0 || !sink.line(&line)? {
             break;
         }
-        lineno += 1;
-        if lineno <= opts.skip_lines {
-            continue;
+    }
+    sink.finish()
+}
+
+/// The line loop's state: the layout once the first row fixed it, the kept columns, the rows
+/// read. Fed one line at a time ([`Rows::line`]); [`Rows::finish`] checks and selects.
+pub(super) struct Rows<'a> {
+    name: &'a str,
+    opts: &'a SeriesReadOptions,
+    pub(super) layout: Option<Layout>,
+    /// Kept columns (selected, time candidates) by 0-based index; the rest are only counted.
+    raw: Vec<Option<Vec<f64>>>,
+    pub(super) rows: usize,
+    /// Lines seen (the number of the last line fed).
+    pub(super) lineno: usize,
+    /// Lines to skip at the start (TISEAN `-x`), counted from this sink's first line.
+    skip: usize,
+    /// Byte ranges of the fields of the current line (no allocation per line).
+    fields: Vec<(usize, usize)>,
+}
+
+impl<'a> Rows<'a> {
+    /// # Errors
+    /// [`DataError::Malformed`] (line 0) for options that contradict each other.
+    pub(super) fn new(name: &'a str, opts: &'a SeriesReadOptions) -> Result<Self, DataError> {
+        if opts.decimal_comma && opts.delimiter == Some(Delimiter::Comma) {
+            return Err(DataError::Malformed {
+                path: name.to_string(),
+                line: 0,
+                message: "--decimal-comma with --delimiter comma: a comma cannot be both; the \
+                          delimiter of a decimal-comma file is a semicolon, tab or whitespace"
+                    .into(),
+            });
+        }
+        Ok(Self {
+            name,
+            opts,
+            layout: None,
+            raw: Vec::new(),
+            rows: 0,
+            lineno: 0,
+            skip: opts.skip_lines,
+            fields: Vec::new(),
+        })
+    }
+
+    /// A sink for lines after the first row, with `layout` and the kept columns of `of`, line
+    /// numbers counted from 1 again, nothing skipped.
+    pub(super) fn continuing(of: &Rows<'a>) -> Self {
+        Self {
+            name: of.name,
+            opts: of.opts,
+            layout: of.layout.clone(),
+            raw: of
+                .raw
+                .iter()
+                .map(|c| c.as_ref().map(|_| Vec::new()))
+                .collect(),
+            rows: 0,
+            lineno: 0,
+            skip: 0,
+            fields: Vec::new(),
+        }
+    }
+
+    fn malformed(&self, message: String) -> DataError {
+        DataError::Malformed {
+            path: self.name.to_string(),
+            line: self.lineno,
+            message,
+        }
+    }
+
+    /// Reads one line (with or without its line end). `Ok(false)`: the row limit is reached,
+    /// stop reading.
+    pub(super) fn line(&mut self, line: &str) -> Result<bool, DataError> {
+        self.lineno += 1;
+        if self.lineno <= self.skip {
+            return Ok(true);
         }
         let trimmed = line.trim();
         if trimmed.is_empty() || trimmed.starts_with('#') {
-            continue;
+            return Ok(true);
         }
-        if opts.max_rows.is_some_and(|m| rows >= m) {
-            break;
+        if self.opts.max_rows.is_some_and(|m| self.rows >= m) {
+            return Ok(false);
         }
-        let lay = match &layout {
-            Some(l) => l,
-            None => {
-                let l = first_row(trimmed, lineno, opts).map_err(|m| malformed(lineno, m))?;
-                raw = kept_columns(&l, opts).map_err(|m| malformed(lineno, m))?;
-                let is_header = l.header.is_some();
-                layout = Some(l);
-                if is_header {
-                    continue;
+        if self.layout.is_none() {
+            let l = first_row(trimmed, self.lineno, self.opts).map_err(|m| self.malformed(m))?;
+            self.raw = kept_columns(&l, self.opts).map_err(|m| self.malformed(m))?;
+            let is_header = l.header.is_some();
+            self.layout = Some(l);
+            if is_header {
+                return Ok(true);
+            }
+        }
+        let lay = self.layout.as_ref().expect("set above");
+        field_ranges(trimmed, lay.delimiter, &mut self.fields);
+        if self.fields.len() != lay.fields {
+            let m = field_count_message(self.fields.len(), lay, self.opts, trimmed);
+            return Err(self.malformed(m));
+        }
+        for k in 0..self.raw.len() {
+            if let Some(column) = &mut self.raw[k] {
+                let (a, b) = self.fields[k];
+                match parse_field(&trimmed[a..b], k, self.opts) {
+                    Ok(v) => column.push(v),
+                    Err(m) => return Err(self.malformed(m)),
                 }
-                layout.as_ref().expect("set above")
             }
+        }
+        self.rows += 1;
+        Ok(true)
+    }
+
+    /// Appends the rows of a [`Rows::continuing`] sink.
+    pub(super) fn append(&mut self, more: Rows<'_>) {
+        for (c, m) in self.raw.iter_mut().zip(more.raw) {
+            if let (Some(c), Some(m)) = (c, m) {
+                c.extend_from_slice(&m);
+            }
+        }
+        self.rows += more.rows;
+    }
+
+    /// The table, or why there is none.
+    pub(super) fn finish(self) -> Result<SeriesTable, DataError> {
+        let malformed = |line: usize, message: String| DataError::Malformed {
+            path: self.name.to_string(),
+            line,
+            message,
         };
-        field_ranges(trimmed, lay.delimiter, &mut fields);
-        if fields.len() != lay.fields {
-            return Err(malformed(
-                lineno,
-                field_count_message(fields.len(), lay, opts, trimmed),
-            ));
+        let Some(layout) = self.layout else {
+            return Err(malformed(0, "no data rows found".into()));
+        };
+        if self.rows == 0 {
+            return Err(malformed(0, "no data rows found".into()));
         }
-        for (k, column) in raw.iter_mut().enumerate() {
-            if let Some(column) = column {
-                let field = &trimmed[fields[k].0..fields[k].1];
-                column.push(parse_field(field, k, opts).map_err(|m| malformed(lineno, m))?);
-            }
-        }
-        rows += 1;
+        select(self.raw, &layout, self.opts).map_err(|m| malformed(layout.line, m))
     }
-    let Some(layout) = layout else {
-        return Err(malformed(0, "no data rows found".into()));
-    };
-    if rows == 0 {
-        return Err(malformed(0, "no data rows found".into()));
-    }
-    select(raw, &layout, opts).map_err(|m| malformed(layout.line, m))
 }
 
 /// The columns to keep (`Some` = kept) once the first row is known: the selected ones, or

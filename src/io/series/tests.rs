@@ -230,3 +230,48 @@ fn delimiter_detection() {
     assert_eq!("tab".parse::<Delimiter>(), Ok(Delimiter::Tab));
     assert!("pipe".parse::<Delimiter>().is_err());
 }
+
+#[test]
+fn text_in_memory_reads_as_the_stream_in_parallel_pieces() {
+    // > 2 pieces after the first row: the parallel path; comments, blank lines, CRLF and a
+    // header; the table equals the line-by-line reader's, and an error deep in the file
+    // names the same line.
+    let mut text = String::from("# comment\n\ntime_s,x\n");
+    for i in 0..60_000 {
+        let t = i as f64 * 0.01;
+        if i % 997 == 0 {
+            text.push_str("# note\r\n\n");
+        }
+        text.push_str(&format!("{t:.2},{:.12e}\r\n", (t * 1.3).sin()));
+    }
+    assert!(text.len() > 4 * 128 * 1024);
+    let o = SeriesReadOptions::default();
+    let streamed = super::parse_table(text.as_bytes(), "f", &o).unwrap();
+    let parallel = super::parse_table_str(&text, "f", &o).unwrap();
+    assert!(streamed == parallel, "the two readers differ");
+    assert_eq!(parallel.columns[0].len(), 60_000);
+    let bad = text.replacen("\n300.00,", "\n300.0x,", 1);
+    let e1 = super::parse_table(bad.as_bytes(), "f", &o)
+        .unwrap_err()
+        .to_string();
+    let e2 = super::parse_table_str(&bad, "f", &o)
+        .unwrap_err()
+        .to_string();
+    assert_eq!(e1, e2);
+    let line = bad.lines().position(|l| l.contains("300.0x,")).unwrap() + 1;
+    assert!(line > 20_000 && e2.contains(&format!("f:{line}:")), "{e2}");
+    // skip and length are honoured on the in-memory path too
+    let o = SeriesReadOptions {
+        skip_lines: 5,
+        max_rows: Some(40_000),
+        ..SeriesReadOptions::default()
+    };
+    let (a, b) = (
+        super::parse_table(text.as_bytes(), "f", &o).unwrap(),
+        super::parse_table_str(&text, "f", &o).unwrap(),
+    );
+    assert!(
+        a == b && a.columns[0].len() == 40_000,
+        "skip and length differ"
+    );
+}
