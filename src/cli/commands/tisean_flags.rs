@@ -2,7 +2,9 @@
 //! the pdamp equivalent named.
 //!
 //! TISEAN's `-V<n>` (verbosity) would print pdamp's version and exit; TISEAN `nrlazy`'s
-//! `-v<f>` (radius in units of the standard deviation) would count as `--verbose`.
+//! `-v<f>` (radius in units of the standard deviation) would count as `--verbose`; TISEAN
+//! `surrogates`' `-m<k>` (number of columns) is named for what it is rather than left to
+//! clap's "unexpected argument".
 
 /// The verbs whose options follow TISEAN's programs.
 const TISEAN_VERBS: [&str; 7] = [
@@ -48,6 +50,15 @@ pub fn check(args: &[String]) -> anyhow::Result<()> {
                  version); pdamp writes only results to stdout, notes to stderr (-q quietens them)"
             );
         }
+        if verb == "surrogates" {
+            if let Some(v) = value("-m") {
+                anyhow::bail!(
+                    "-m{v}: TISEAN surrogates' number of columns (multivariate surrogates that \
+                     keep the cross-spectrum) is not an option of pdamp surrogates, which makes \
+                     surrogates of one column (-c): drop -m{v} and give the column with -c"
+                );
+            }
+        }
         if let Some(v) = value("-v") {
             if verb == "nrlazy" {
                 anyhow::bail!(
@@ -84,5 +95,8 @@ mod tests {
         assert!(check(&args("pdamp nrlazy -V")).is_ok());
         assert!(check(&args("pdamp simulate -V0")).is_ok());
         assert!(check(&args("pdamp nrlazy -- -v0.2")).is_ok());
+        let e = check(&args("pdamp surrogates f.dat -n1 -m2")).unwrap_err();
+        assert!(e.to_string().contains("one column (-c)"), "{e}");
+        assert!(check(&args("pdamp nrlazy f.dat -m 7")).is_ok());
     }
 }

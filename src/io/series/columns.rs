@@ -101,6 +101,13 @@ pub(super) fn resolve_column(
             if fields == 1 { "" } else { "s" }
         )),
         Column::Index(i) => Ok(i - 1),
+        Column::Name(n) if is_tisean_column_list(n) && header.is_none_or(|h| !h.contains(n)) => {
+            Err(format!(
+                "-c {n}: TISEAN's list of columns (several components of a multivariate \
+                 series); this reads one column: give one number, e.g. -c {}",
+                n.split(',').next().unwrap_or("1")
+            ))
+        }
         Column::Name(n) => match header {
             Some(h) => h
                 .iter()
@@ -111,4 +118,9 @@ pub(super) fn resolve_column(
             )),
         },
     }
+}
+
+/// `1,2` or `1,2,3`: TISEAN's `-c` list of several columns.
+fn is_tisean_column_list(n: &str) -> bool {
+    n.contains(',') && n.split(',').all(|p| p.trim().parse::<usize>().is_ok())
 }
