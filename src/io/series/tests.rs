@@ -81,7 +81,10 @@ fn index_zero_from_the_library_is_an_error_not_a_panic() {
     );
     // TISEAN's list of columns is named as such, not read as a header name
     let e = err("1 2\n3 4\n", &opts(&["1,2"]));
-    assert!(e.contains("TISEAN's list of columns") && e.contains("-c 1"), "{e}");
+    assert!(
+        e.contains("TISEAN's list of columns") && e.contains("-c 1"),
+        "{e}"
+    );
     // …unless the header really has a column of that name
     let t = parse_str("a b 1,2\n1 2 3\n", "d", &opts(&["1,2"])).unwrap();
     assert_eq!(t, vec![vec![3.0]]);
