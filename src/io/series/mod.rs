@@ -27,6 +27,7 @@ mod columns;
 mod fields;
 mod parallel;
 mod read;
+mod rows;
 mod types;
 
 pub use read::{

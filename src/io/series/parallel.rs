@@ -7,7 +7,7 @@
 
 use rayon::prelude::*;
 
-use super::read::Rows;
+use super::rows::Rows;
 use super::types::{SeriesReadOptions, SeriesTable};
 use crate::error::DataError;
 
