@@ -12,7 +12,7 @@ use super::types::{SeriesReadOptions, SeriesTable};
 use crate::error::DataError;
 
 /// Bytes per piece parsed on one thread (about 7 000 lines of a one-column file).
-const PIECE_BYTES: usize = 128 * 1024;
+pub(super) const PIECE_BYTES: usize = 128 * 1024;
 
 /// [`super::parse_table`] of text in memory.
 pub(super) fn parse_text(
@@ -90,7 +90,12 @@ fn pieces(text: &str) -> Vec<&str> {
     let mut out = Vec::with_capacity(text.len() / PIECE_BYTES + 1);
     let mut rest = text;
     while rest.len() > PIECE_BYTES {
-        let Some(k) = rest[PIECE_BYTES..].find('\n') else {
+        // bytes, not `str` indices: PIECE_BYTES may fall inside a multi-byte character; a
+        // `\n` byte never does, so the cut after it is a character boundary
+        let Some(k) = rest.as_bytes()[PIECE_BYTES..]
+            .iter()
+            .position(|&b| b == b'\n')
+        else {
             break;
         };
         let end = PIECE_BYTES + k;

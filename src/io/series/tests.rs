@@ -284,3 +284,29 @@ fn text_in_memory_reads_as_the_stream_in_parallel_pieces() {
         "skip and length differ"
     );
 }
+
+#[test]
+fn a_piece_boundary_inside_a_multibyte_character_is_no_panic() {
+    // the byte where the first piece would be cut is the second byte of `é` (a comment after
+    // the first row); the pieces are cut after the next line end instead
+    let piece = super::parallel::PIECE_BYTES;
+    let mut text = format!("1.0\n# {}é\n", "x".repeat(piece - 3));
+    assert!(!text.is_char_boundary(4 + piece));
+    for i in 0..40_000 {
+        text.push_str(&format!("{}.5 # µ°\n", i % 97));
+    }
+    let o = SeriesReadOptions::default();
+    let e = super::parse_table_str(&text, "f", &o)
+        .unwrap_err()
+        .to_string();
+    let s = super::parse_table(text.as_bytes(), "f", &o)
+        .unwrap_err()
+        .to_string();
+    assert_eq!(e, s);
+    text = text.replace(" # µ°", "");
+    let (a, b) = (
+        super::parse_table_str(&text, "f", &o).unwrap(),
+        super::parse_table(text.as_bytes(), "f", &o).unwrap(),
+    );
+    assert!(a == b && a.columns[0].len() == 40_001);
+}
