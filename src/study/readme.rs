@@ -11,7 +11,7 @@ pub fn readme(opts: &ReproduceOptions, report: &ReproduceReport) -> String {
         .dem
         .as_ref()
         .and_then(|d| d.chapter4.as_ref())
-        .is_some_and(|c| !c.ensemble_seeds.is_empty());
+        .is_some_and(|c| c.has_checks());
     let flags = format!(
         "{}{}",
         mode.flag(),

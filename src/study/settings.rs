@@ -154,6 +154,12 @@ impl Chapter4Settings {
             (self.dt_fraction > CH4_SLOWER_DT_FRACTION).then_some(CH4_SLOWER_DT_FRACTION);
         self
     }
+
+    /// Whether these settings run the checks of [`Chapter4Settings::with_checks`] (the
+    /// further initial packings; `--ch4-checks` on the command line that reproduces them).
+    pub fn has_checks(&self) -> bool {
+        !self.ensemble_seeds.is_empty()
+    }
 }
 
 /// The source's per-frequency panels of chapter 4 (Hz).
