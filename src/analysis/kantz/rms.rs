@@ -4,7 +4,9 @@
 //! AVX2 beside the baseline (no FMA: bitwise the same sums).
 
 use super::arith::*;
-use super::buffers::{accumulate_squared_differences, Job, Scratch, SpreadTarget};
+use super::buffers::{
+    accumulate_groups, accumulate_squared_differences, Job, Scratch, SpreadTarget,
+};
 use super::options::MAX_DIMENSION;
 use crate::simd::Simd;
 
@@ -88,8 +90,13 @@ fn reference_rms_impl(job: &Job, i: usize, sc: &mut Scratch) {
             }
             let grp = *slot as usize - 1;
             g.npairs[grp] += 1;
+            if job.distinct {
+                // no zeros possible: added group by group after the loop
+                sc.batch.push((grp as u32, j as u32));
+                continue;
+            }
             let row = &mut g.sum[grp * width..grp * width + t_max + 1];
-            accumulate_squared_differences(a, b, row, !job.distinct)
+            accumulate_squared_differences(a, b, row, true)
         } else {
             let e = &mut sc.e[..=t_max];
             let z = squared_differences(a, b, e);
@@ -121,6 +128,10 @@ fn reference_rms_impl(job: &Job, i: usize, sc: &mut Scratch) {
                 }
             }
         }
+    }
+    if !sc.batch.is_empty() {
+        accumulate_groups(job, i, g, &sc.batch, &mut sc.by_group, &mut sc.group_end);
+        sc.batch.clear();
     }
     // spread the groups over the (slot, ε) bins, in the order they were first seen
     if use_table {
