@@ -22,22 +22,21 @@ pub(super) fn parse_text(
 ) -> Result<SeriesTable, DataError> {
     let mut sink = Rows::new(name, opts)?;
     let mut rest = text;
-    // in order until the first data row is read (past the skipped lines and the header)
-    while !rest.is_empty() && (sink.rows == 0 || sink.lineno < opts.skip_lines) {
+    // in order up to the first data row (past the skipped lines and the header), and to the
+    // end when a row limit is set or what is left is too short to share
+    while !rest.is_empty()
+        && (sink.rows == 0
+            || sink.lineno < opts.skip_lines
+            || opts.max_rows.is_some()
+            || rest.len() < 2 * PIECE_BYTES)
+    {
         let (line, after) = split_line(rest);
         rest = after;
         if !sink.line(line)? {
             return sink.finish();
         }
     }
-    if opts.max_rows.is_some() || rest.len() < 2 * PIECE_BYTES {
-        while !rest.is_empty() {
-            let (line, after) = split_line(rest);
-            rest = after;
-            if !sink.line(line)? {
-                break;
-            }
-        }
+    if rest.is_empty() {
         return sink.finish();
     }
     let pieces = pieces(rest);
