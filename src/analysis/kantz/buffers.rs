@@ -77,8 +77,9 @@ pub(super) struct Scratch {
 /// Buffers of the RMS path ([`reference_rms`]). With the TISEAN definition the per-reference
 /// sum over neighbours of `‖y_{i+Δn} − y_{j+Δn}‖²_m = Σ_{k<m} e_{Δn+kτ}` is linear in the
 /// pair's `e`, so the `e` of all pairs that fall in the same ε bins in every dimension (the
-/// same "bin pattern") are summed first — one pass over the row per four pairs ([`accumulate_groups`]) — and the patterns are
-/// then spread over the (m, ε) bins and shifted into distances once per reference.
+/// same "bin pattern") are summed first — one pass over the row per four pairs
+/// ([`accumulate_groups`]) — and the patterns are then spread over the (m, ε) bins and shifted
+/// into distances once per reference.
 pub(super) struct Grouped {
     /// Length of an `e` row: `steps + (m_max−1)τ + 1`.
     pub(super) width: usize,
