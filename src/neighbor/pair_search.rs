@@ -1,5 +1,5 @@
 //! The pair search of a prepared cell list: the candidate pairs of a run of occupied cells,
-//! cell by cell along the curve and the half stencil, by one hash lookup per neighbour cell
+//! cell by cell along the curve and the half stencil, by one lookup per neighbour cell
 //! ([`Curve::Morton`]) or by cursors walking up the neighbour columns ([`Curve::Columns`]).
 
 use super::cell_grid::{Curve, NeighborList};
@@ -23,7 +23,7 @@ impl NeighborList {
         }
     }
 
-    /// [`NeighborList::pairs_of_cells`] with one hash lookup per neighbour cell.
+    /// [`NeighborList::pairs_of_cells`] with one lookup (direct or hashed) per neighbour cell.
     fn pairs_by_hash(
         &self,
         cells: std::ops::Range<usize>,
@@ -48,7 +48,7 @@ impl NeighborList {
                 let c2 = if same {
                     c
                 } else {
-                    match self.find_cell(self.key([x, y, z])) {
+                    match self.find_cell([x, y, z]) {
                         Some(c2) => c2,
                         None => continue,
                     }
@@ -165,6 +165,7 @@ impl NeighborList {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::neighbor::morton::fill_hash;
     use crate::neighbor::pair::{index_by_grain, J_ROLE};
 
     #[test]
@@ -213,6 +214,14 @@ mod tests {
             let mut by_hash = Vec::new();
             nl.pairs_by_hash(0..nl.occupied_cells(), &pos, &rad, &mut by_hash);
             assert_eq!(whole, by_hash, "{curve:?}");
+            // the direct cell table and the hash table find the same pairs in the same order
+            assert!(!nl.dense.is_empty());
+            let mut hashed = nl.clone();
+            hashed.dense.clear();
+            fill_hash(&hashed.cell_keys, &mut hashed.cell_table);
+            let mut through_hash = Vec::new();
+            hashed.pairs_by_hash(0..nl.occupied_cells(), &pos, &rad, &mut through_hash);
+            assert_eq!(by_hash, through_hash, "{curve:?}");
             // runs of cells, listed one after the other, give the whole list
             let mut runs = Vec::new();
             for units in [1, 2, 3, 7, 64, 5000] {
