@@ -23,11 +23,11 @@ pub use super::pair::{index_by_grain, Pair, J_ROLE};
 use super::morton::{compact2, compact3, fill_hash, find_hashed, spread2, spread3};
 
 /// Largest number of grid cells per grain for which the occupied cells are found through a
-/// direct table ([`NeighborList::dense`]) rather than a hash table.
-pub const DENSE_CELLS_PER_GRAIN: usize = 8;
+/// direct table (one entry per cell) rather than a hash table.
+const DENSE_CELLS_PER_GRAIN: usize = 8;
 
 /// Grid cells always allowed a direct table, whatever the grain count.
-pub const DENSE_CELLS_MIN: usize = 4096;
+const DENSE_CELLS_MIN: usize = 4096;
 
 /// Verlet neighbour list built with a sorted (hashed) cell list: only occupied cells are
 /// stored, so its memory is O(N) whatever the box volume.
