@@ -65,20 +65,13 @@ pub(super) struct Scratch {
     pub(super) first_bin: Vec<usize>,
     /// The RMS (TISEAN) path's buffers.
     pub(super) grouped: Grouped,
-    /// The pairs of the current reference as (group, neighbour), in neighbour order, for the
-    /// grouped accumulation ([`accumulate_groups`]).
-    pub(super) batch: Vec<(u32, u32)>,
-    /// The neighbours of `batch` ordered by group (stable: neighbour order within a group),
-    /// and where each group's run ends.
-    pub(super) by_group: Vec<u32>,
-    pub(super) group_end: Vec<u32>,
 }
 
 /// Buffers of the RMS path ([`reference_rms`]). With the TISEAN definition the per-reference
 /// sum over neighbours of `‖y_{i+Δn} − y_{j+Δn}‖²_m = Σ_{k<m} e_{Δn+kτ}` is linear in the
 /// pair's `e`, so the `e` of all pairs that fall in the same ε bins in every dimension (the
 /// same "bin pattern") are summed first — one pass over the row per four pairs
-/// ([`accumulate_groups`]) — and the patterns are then spread over the (m, ε) bins and shifted
+/// ([`Grouped::accumulate`]) — and the patterns are then spread over the (m, ε) bins and shifted
 /// into distances once per reference.
 pub(super) struct Grouped {
     /// Length of an `e` row: `steps + (m_max−1)τ + 1`.
@@ -100,6 +93,13 @@ pub(super) struct Grouped {
     pub(super) bsum: Vec<f64>,
     /// Rows of `bsum` in use.
     pub(super) touched: Vec<bool>,
+    /// The pairs of the current reference as (group, neighbour), in neighbour order, for
+    /// [`Grouped::accumulate`].
+    pub(super) batch: Vec<(u32, u32)>,
+    /// The neighbours of `batch` ordered by group (stable: neighbour order within a group).
+    by_group: Vec<u32>,
+    /// Where each group's run in `by_group` ends.
+    group_end: Vec<u32>,
 }
 
 /// Largest bin-pattern table (entries) of the RMS path.
@@ -125,6 +125,9 @@ impl Grouped {
             sum: Vec::new(),
             bsum: vec![0.0; rows * width],
             touched: vec![false; rows],
+            batch: Vec::with_capacity(256),
+            by_group: Vec::with_capacity(256),
+            group_end: Vec::new(),
         }
     }
 
@@ -163,61 +166,59 @@ pub(super) struct SpreadTarget<'a> {
     pub(super) first_bin: &'a mut [usize],
 }
 
-/// Adds every batched pair's `(a − b)²` into its group's row: the pairs of a group in
-/// neighbour order, four at a time, `g = (((g + e₁) + e₂) + e₃) + e₄` — the additions of
-/// adding them one by one, in the same order (bitwise the same sums), with one load and store
-/// of the row per four pairs instead of per pair.
-#[inline(always)]
-pub(super) fn accumulate_groups(
-    job: &Job,
-    i: usize,
-    g: &mut Grouped,
-    batch: &[(u32, u32)],
-    by_group: &mut Vec<u32>,
-    group_end: &mut Vec<u32>,
-) {
-    // counting sort by group, stable: group_end[k] ends as the end of group k's run
-    let n_groups = g.npairs.len();
-    group_end.clear();
-    group_end.resize(n_groups, 0);
-    for &(grp, _) in batch {
-        group_end[grp as usize] += 1;
-    }
-    let mut start = 0;
-    for c in group_end.iter_mut() {
-        (*c, start) = (start, start + *c);
-    }
-    by_group.clear();
-    by_group.resize(batch.len(), 0);
-    for &(grp, j) in batch {
-        let at = &mut group_end[grp as usize];
-        by_group[*at as usize] = j;
-        *at += 1;
-    }
-    let (s, o, width) = (job.s, job.opts, g.width);
-    for grp in 0..n_groups {
-        let n = o.steps + (g.m_top[grp] - 1) * o.tau + 1;
-        let row = &mut g.sum[grp * width..grp * width + n];
-        let a = &s[i..i + n];
-        let from = if grp == 0 {
-            0
-        } else {
-            group_end[grp - 1] as usize
-        };
-        let js = &by_group[from..group_end[grp] as usize];
-        let mut quads = js.chunks_exact(4);
-        for q in &mut quads {
-            let b = |k: usize| &s[q[k] as usize..q[k] as usize + n];
-            let (b0, b1, b2, b3) = (b(0), b(1), b(2), b(3));
-            for t in 0..n {
-                let x = a[t];
-                let (d0, d1, d2, d3) = (x - b0[t], x - b1[t], x - b2[t], x - b3[t]);
-                row[t] = (((row[t] + d0 * d0) + d1 * d1) + d2 * d2) + d3 * d3;
+impl Grouped {
+    /// Adds every batched pair's `(a − b)²` (reference `i`) into its group's row and empties
+    /// the batch: the pairs of a group in neighbour order, four at a time,
+    /// `g = (((g + e₁) + e₂) + e₃) + e₄` — the additions of adding them one by one, in the
+    /// same order (bitwise the same sums), with one load and store of the row per four pairs
+    /// instead of per pair.
+    #[inline(always)]
+    pub(super) fn accumulate(&mut self, job: &Job, i: usize) {
+        // counting sort by group, stable: group_end[k] ends as the end of group k's run
+        let n_groups = self.npairs.len();
+        let group_end = &mut self.group_end;
+        group_end.clear();
+        group_end.resize(n_groups, 0);
+        for &(grp, _) in &self.batch {
+            group_end[grp as usize] += 1;
+        }
+        let mut start = 0;
+        for c in group_end.iter_mut() {
+            (*c, start) = (start, start + *c);
+        }
+        self.by_group.clear();
+        self.by_group.resize(self.batch.len(), 0);
+        for &(grp, j) in &self.batch {
+            let at = &mut group_end[grp as usize];
+            self.by_group[*at as usize] = j;
+            *at += 1;
+        }
+        let (s, o, width) = (job.s, job.opts, self.width);
+        for grp in 0..n_groups {
+            let n = o.steps + (self.m_top[grp] - 1) * o.tau + 1;
+            let row = &mut self.sum[grp * width..grp * width + n];
+            let a = &s[i..i + n];
+            let from = if grp == 0 {
+                0
+            } else {
+                self.group_end[grp - 1] as usize
+            };
+            let js = &self.by_group[from..self.group_end[grp] as usize];
+            let mut quads = js.chunks_exact(4);
+            for q in &mut quads {
+                let b = |k: usize| &s[q[k] as usize..q[k] as usize + n];
+                let (b0, b1, b2, b3) = (b(0), b(1), b(2), b(3));
+                for t in 0..n {
+                    let x = a[t];
+                    let (d0, d1, d2, d3) = (x - b0[t], x - b1[t], x - b2[t], x - b3[t]);
+                    row[t] = (((row[t] + d0 * d0) + d1 * d1) + d2 * d2) + d3 * d3;
+                }
+            }
+            for &j in quads.remainder() {
+                accumulate_squared_differences(a, &s[j as usize..j as usize + n], row, false);
             }
         }
-        for &j in quads.remainder() {
-            accumulate_squared_differences(a, &s[j as usize..j as usize + n], row, false);
-        }
+        self.batch.clear();
     }
 }
 

@@ -65,9 +65,6 @@ fn chunk<const K: usize>(
         zero_slot: vec![false; job.n_dims()],
         first_bin: vec![usize::MAX; job.n_dims()],
         grouped: Grouped::new(job, span + 1),
-        batch: Vec::with_capacity(256),
-        by_group: Vec::with_capacity(256),
-        group_end: Vec::new(),
     };
     let tisean = o.definition == KantzDefinition::TiseanRms;
     let simd = Simd::detect();

@@ -4,9 +4,7 @@
 //! AVX2 beside the baseline (no FMA: bitwise the same sums).
 
 use super::arith::*;
-use super::buffers::{
-    accumulate_groups, accumulate_squared_differences, Job, Scratch, SpreadTarget,
-};
+use super::buffers::{accumulate_squared_differences, Job, Scratch, SpreadTarget};
 use super::options::MAX_DIMENSION;
 use crate::simd::Simd;
 
@@ -92,7 +90,7 @@ fn reference_rms_impl(job: &Job, i: usize, sc: &mut Scratch) {
             g.npairs[grp] += 1;
             if job.distinct {
                 // no zeros possible: added group by group after the loop
-                sc.batch.push((grp as u32, j as u32));
+                g.batch.push((grp as u32, j as u32));
                 continue;
             }
             let row = &mut g.sum[grp * width..grp * width + t_max + 1];
@@ -129,9 +127,8 @@ fn reference_rms_impl(job: &Job, i: usize, sc: &mut Scratch) {
             }
         }
     }
-    if !sc.batch.is_empty() {
-        accumulate_groups(job, i, g, &sc.batch, &mut sc.by_group, &mut sc.group_end);
-        sc.batch.clear();
+    if !g.batch.is_empty() {
+        g.accumulate(job, i);
     }
     // spread the groups over the (slot, ε) bins, in the order they were first seen
     if use_table {
