@@ -4,7 +4,8 @@
 //! TISEAN's `-V<n>` (verbosity) would print pdamp's version and exit; TISEAN `nrlazy`'s
 //! `-v<f>` (radius in units of the standard deviation) would count as `--verbose`; TISEAN
 //! `surrogates`' `-m<k>` (number of columns) is named for what it is rather than left to
-//! clap's "unexpected argument".
+//! clap's "unexpected argument"; and fnn's range form given to lyap-k's `-M` (`-M2,4`) is
+//! answered with lyap-k's two flags (`-m 2 -M 4`) rather than clap's "invalid digit".
 
 /// The verbs whose options follow TISEAN's programs.
 const TISEAN_VERBS: [&str; 7] = [
