@@ -56,6 +56,7 @@ pub struct Args {
         short = 'M',
         long = "max-dim",
         default_value_t = 2,
+        value_parser = parse_max_dim,
         help_heading = "Estimator"
     )]
     pub m_max: usize,
@@ -166,4 +167,35 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         est.curves_used, est.per_sample, est.spread
     );
     Ok(())
+}
+
+/// `-M`: one dimension, as TISEAN lyap_k's `-M#`. A comma value is refused with both readings
+/// named: a range `m,M` (lyap-k takes `-m` and `-M` apart) and TISEAN's `components,M` of d2,
+/// fnn and nrlazy, which lyap-k does not take.
+fn parse_max_dim(s: &str) -> Result<usize, String> {
+    if let Some((lo, hi)) = s.split_once(',') {
+        return Err(format!(
+            "lyap-k's -M is one number, the largest embedding dimension (TISEAN lyap_k -M#): \
+             for dimensions {lo} to {hi} write -m {lo} -M {hi} (d2, fnn and nrlazy read `a,b` as \
+             TISEAN's components,M)"
+        ));
+    }
+    s.trim()
+        .parse()
+        .map_err(|_| format!("`{s}` is not a dimension (a whole number, e.g. -M 6)"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_max_dim;
+
+    #[test]
+    fn max_dim_is_one_number_and_a_range_names_the_two_flags() {
+        assert_eq!(parse_max_dim("4"), Ok(4));
+        let e = parse_max_dim("2,4").unwrap_err();
+        assert!(e.contains("-m 2 -M 4"), "{e}");
+        assert!(parse_max_dim("four")
+            .unwrap_err()
+            .contains("not a dimension"));
+    }
 }

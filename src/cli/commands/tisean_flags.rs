@@ -4,8 +4,7 @@
 //! TISEAN's `-V<n>` (verbosity) would print pdamp's version and exit; TISEAN `nrlazy`'s
 //! `-v<f>` (radius in units of the standard deviation) would count as `--verbose`; TISEAN
 //! `surrogates`' `-m<k>` (number of columns) is named for what it is rather than left to
-//! clap's "unexpected argument"; and fnn's range form given to lyap-k's `-M` (`-M2,4`) is
-//! answered with lyap-k's two flags (`-m 2 -M 4`) rather than clap's "invalid digit".
+//! clap's "unexpected argument".
 
 /// The verbs whose options follow TISEAN's programs.
 const TISEAN_VERBS: [&str; 7] = [
@@ -20,16 +19,6 @@ const TISEAN_VERBS: [&str; 7] = [
 
 fn is_number(s: &str) -> bool {
     !s.is_empty() && s.parse::<f64>().is_ok()
-}
-
-/// The value `a,b` given to `-M` / `--max-dim` by the argument `a` (followed by `next`), if it
-/// is a range: fnn's `-M 1,8`, which lyap-k's single `-M` would refuse as "invalid digit".
-fn dimension_range(a: &str, next: Option<&str>) -> Option<String> {
-    let tail = ["--max-dim=", "--max-dim", "-M"]
-        .iter()
-        .find_map(|flag| a.strip_prefix(flag))?;
-    let v = if tail.is_empty() { next? } else { tail };
-    v.contains(',').then(|| v.to_string())
 }
 
 /// Refuses TISEAN flags that clap would silently read as something else. `args` as from
@@ -67,16 +56,6 @@ pub fn check(args: &[String]) -> anyhow::Result<()> {
                     "-m{v}: TISEAN surrogates' number of columns (multivariate surrogates that \
                      keep the cross-spectrum) is not an option of pdamp surrogates, which makes \
                      surrogates of one column (-c): drop -m{v} and give the column with -c"
-                );
-            }
-        }
-        if verb == "lyap-k" {
-            if let Some(v) = dimension_range(a, rest.get(i + 1).map(|s| s.as_str())) {
-                let (lo, hi) = v.split_once(',').unwrap_or((&v, ""));
-                anyhow::bail!(
-                    "-M {v}: pdamp lyap-k takes the smallest and the largest embedding dimension \
-                     apart, as TISEAN's lyap_k does: -m {lo} -M {hi} (the range form -M a,b is \
-                     fnn's)"
                 );
             }
         }
@@ -119,22 +98,5 @@ mod tests {
         let e = check(&args("pdamp surrogates f.dat -n1 -m2")).unwrap_err();
         assert!(e.to_string().contains("one column (-c)"), "{e}");
         assert!(check(&args("pdamp nrlazy f.dat -m 7")).is_ok());
-    }
-
-    #[test]
-    fn lyap_k_names_its_two_dimension_flags_for_an_fnn_style_range() {
-        for line in [
-            "pdamp lyap-k f.dat -M2,4",
-            "pdamp lyap-k f.dat -M 2,4",
-            "pdamp lyap-k f.dat --max-dim 2,4",
-            "pdamp lyap-k f.dat --max-dim=2,4",
-        ] {
-            let e = check(&args(line)).unwrap_err();
-            assert!(e.to_string().contains("-m 2 -M 4"), "{line}: {e}");
-        }
-        assert!(check(&args("pdamp lyap-k f.dat -m 2 -M 4")).is_ok());
-        assert!(check(&args("pdamp lyap-k f.dat -M4")).is_ok());
-        // fnn's own range stays
-        assert!(check(&args("pdamp fnn f.dat -M 1,8")).is_ok());
     }
 }
